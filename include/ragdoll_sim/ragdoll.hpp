@@ -1,0 +1,69 @@
+// RagdollDef: a tree of links and joints independent of any file format (the URDF loader
+// produces one); spawnRagdoll instantiates it in a World.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "ragdoll_sim/world.hpp"
+
+namespace ragdoll_sim {
+
+struct LinkDef {
+  std::string name;
+  double mass = 1.0;
+  Vec3 com = Vec3::Zero();                 // link frame
+  Mat3 inertia = Mat3::Identity() * 0.01;  // about com, link-frame axes
+  std::vector<ShapeDef> shapes;            // in the link frame
+  Transform rest_pose;                     // link frame relative to the root link, zero angles
+  double linear_damping = 0.0;
+  double angular_damping = 0.0;
+};
+
+enum class RagdollJointKind { Ball, Hinge };
+
+struct RagdollJointDef {
+  std::string name;                        // ball: "<first>+<second>+<third>" revolute names
+  RagdollJointKind kind = RagdollJointKind::Hinge;
+  int parent = -1, child = -1;             // link indices
+  Transform frame_parent;                  // joint frame in the parent link frame
+  Transform frame_child;                   // joint frame in the child link frame
+  // Hinge: axes[0]. Ball: the three chain axes in order (joint frame).
+  std::vector<Vec3> axes;
+  bool limited = false;
+  std::vector<double> lower, upper;        // one per axis
+  std::vector<std::string> source_joints;  // URDF joint names, one per axis
+  std::vector<std::string> chain_links;    // URDF links inside a ball chain (massless dummies)
+  // Pose of chain link k relative to the joint frame rotated by the first k+1 axis angles:
+  // link_k = parent * frame_parent * R(a0,t0)..R(ak,tk) * chain_offsets[k] (O_{k+2}... folded).
+  std::vector<Transform> chain_offsets;
+};
+
+struct RagdollDef {
+  std::string name;
+  int root = 0;
+  std::vector<LinkDef> links;
+  std::vector<RagdollJointDef> joints;
+  std::vector<std::pair<int, int>> no_collide;  // link index pairs that never collide
+  std::vector<std::string> notes;                // what the loader approximated or merged
+
+  int findLink(const std::string& name) const;   // -1 if absent
+  double totalMass() const;
+};
+
+struct Ragdoll {
+  std::vector<BodyId> bodies;   // one per RagdollDef::links entry
+  std::vector<JointId> joints;  // one per RagdollDef::joints entry
+};
+
+// Creates bodies (root link at root_pose, the rest at their rest poses), shapes, joints and
+// collision filters. Optional material overrides every shape's material.
+Ragdoll spawnRagdoll(World& world, const RagdollDef& def, const Transform& root_pose,
+                     const Material* material = nullptr);
+
+// World poses of the chain links of a ball joint (for publishing them as TF).
+std::vector<Transform> ballChainLinkPoses(const World& world, const Ragdoll& ragdoll,
+                                          const RagdollDef& def, int joint_index);
+
+}  // namespace ragdoll_sim

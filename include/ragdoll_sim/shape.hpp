@@ -1,0 +1,69 @@
+// Collision shapes: geometry in a shape-local frame, placed on a body by ShapeDef::local.
+// Conventions: capsule and cylinder axes are the local z axis (as URDF cylinders);
+// the plane is {x : n . x = offset} in the body frame, solid on the side opposite n.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "ragdoll_sim/math.hpp"
+
+namespace ragdoll_sim {
+
+enum class ShapeType : uint8_t { Sphere, Capsule, Box, Cylinder, ConvexHull, Plane };
+
+const char* shapeTypeName(ShapeType t);
+
+// Convex hull data built once from a point set (faces with outward normals, unique edges).
+struct HullData {
+  std::vector<Vec3> vertices;
+  struct Face {
+    Vec3 normal;
+    double offset;             // normal . x = offset on the face
+    std::vector<int> verts;    // counter-clockwise seen from outside
+  };
+  std::vector<Face> faces;
+  std::vector<std::pair<int, int>> edges;
+  std::vector<std::pair<int, int>> edge_faces;  // the two faces on either side of edges[i]
+  Vec3 centroid = Vec3::Zero();                 // mean of the vertices: an interior point
+  // Build the convex hull of `points` (quickhull). Returns nullptr for degenerate input
+  // (fewer than 4 non-coplanar points).
+  static std::shared_ptr<const HullData> build(const std::vector<Vec3>& points);
+};
+
+struct Geometry {
+  ShapeType type = ShapeType::Sphere;
+  double radius = 0.1;                       // sphere, capsule, cylinder
+  double half_height = 0.1;                  // capsule (segment half length), cylinder
+  Vec3 half_extents = Vec3(0.1, 0.1, 0.1);   // box
+  Vec3 normal = Vec3::UnitZ();               // plane
+  double offset = 0.0;                       // plane
+  std::shared_ptr<const HullData> hull;      // convex hull
+
+  static Geometry sphere(double r);
+  static Geometry capsule(double r, double half_height);
+  static Geometry box(const Vec3& half_extents);
+  static Geometry cylinder(double r, double half_height);
+  static Geometry plane(const Vec3& n, double offset);
+  static Geometry convexHull(const std::vector<Vec3>& points);  // hull==nullptr if degenerate
+
+  double volume() const;                      // 0 for a plane
+  // Inertia about the shape origin, in the shape frame, for unit density.
+  Mat3 unitInertia() const;
+};
+
+// Contact coefficients; a pair combines them (friction: geometric mean, restitution: max).
+struct Material {
+  double static_friction = 0.8;
+  double kinetic_friction = 0.8;
+  double restitution = 0.0;
+};
+
+struct ShapeDef {
+  Geometry geometry;
+  Transform local;     // shape frame in the body (link) frame
+  Material material;
+};
+
+}  // namespace ragdoll_sim

@@ -1,0 +1,99 @@
+// The simulation world: bodies, shapes, joints, contacts and one solver step.
+// ROS-free; the node and the tests drive it through this API only.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ragdoll_sim/body.hpp"
+#include "ragdoll_sim/joint.hpp"
+#include "ragdoll_sim/shape.hpp"
+
+namespace ragdoll_sim {
+
+struct WorldDef {
+  Vec3 gravity = Vec3(0, 0, -9.81);
+  int substeps = 4;                     // solver substeps per step (soft step)
+  double contact_hertz = 30.0;          // contact softness (capped at a quarter of the substep rate)
+  double contact_damping_ratio = 10.0;
+  double joint_hertz = 240.0;           // joint position-error softness
+  double joint_damping_ratio = 2.0;
+  double max_push_velocity = 3.0;       // m/s, cap on the velocity used to push bodies apart
+  double restitution_threshold = 1.0;   // m/s, no bounce below this approach speed
+  double static_friction_speed = 0.02;  // m/s, below this tangential speed static friction holds
+  double speculative_distance = 0.02;   // m, contacts are made this far before touching
+  double linear_slop = 0.0005;          // m, penetration allowed to keep contacts warm
+  double max_linear_speed = 100.0;      // m/s, clamp against blow-ups
+  double max_angular_speed = 200.0;     // rad/s
+};
+
+// A contact point for display and tests.
+struct ContactInfo {
+  BodyId body_a, body_b;
+  Vec3 point;          // world, midway between the surfaces
+  Vec3 normal;         // world, from A to B
+  double separation;   // negative when penetrating
+  double normal_impulse;
+};
+
+class World {
+ public:
+  explicit World(const WorldDef& def = WorldDef());
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  // --- building -------------------------------------------------------------------------
+  BodyId createBody(const BodyDef& def);
+  void addShape(BodyId body, const ShapeDef& def);
+  JointId createBallJoint(const BallJointDef& def);
+  JointId createHingeJoint(const HingeJointDef& def);
+  // The pair never collides (joints also disable their pair unless collide_connected).
+  void disableCollision(BodyId a, BodyId b);
+
+  // --- stepping -------------------------------------------------------------------------
+  // Advances by dt seconds. Forces and torques applied since the last step act during it and
+  // are then cleared.
+  void step(double dt);
+  double time() const;
+  const WorldDef& def() const;
+  void setGravity(const Vec3& g);
+
+  // --- commands (world frame) ------------------------------------------------------------
+  void applyLinearImpulse(BodyId body, const Vec3& impulse, const Vec3& world_point);
+  void applyLinearImpulseToCenter(BodyId body, const Vec3& impulse);
+  void applyAngularImpulse(BodyId body, const Vec3& impulse);
+  void applyForce(BodyId body, const Vec3& force, const Vec3& world_point);
+  void applyTorque(BodyId body, const Vec3& torque);
+  void setBodyState(BodyId body, const Transform& pose, const Vec3& com_velocity,
+                    const Vec3& angular_velocity);
+
+  // --- queries ---------------------------------------------------------------------------
+  int bodyCount() const;
+  int jointCount() const;
+  bool isValid(BodyId body) const;
+  BodyState bodyState(BodyId body) const;
+  Transform bodyPose(BodyId body) const;  // link frame in world
+  const BodyDef& bodyDef(BodyId body) const;
+  const std::vector<ShapeDef>& bodyShapes(BodyId body) const;
+  Vec3 comPosition(BodyId body) const;
+  Vec3 pointVelocity(BodyId body, const Vec3& world_point) const;
+
+  JointType jointType(JointId joint) const;
+  double hingeAngle(JointId joint) const;
+  std::array<double, 3> ballAngles(JointId joint) const;  // Euler angles about the def's axes
+  Vec3 jointAnchorError(JointId joint) const;             // world anchor B - anchor A
+
+  Vec3 linearMomentum() const;
+  Vec3 angularMomentum(const Vec3& about) const;
+  double kineticEnergy() const;
+  std::vector<ContactInfo> contacts() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace ragdoll_sim

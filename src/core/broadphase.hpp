@@ -1,0 +1,31 @@
+// Broadphase: sweep and prune on the x axis. The proxies' order is kept between steps and
+// re-sorted by insertion sort, which is near linear when bodies move little per step; the
+// sweep then tests y and z only for proxies overlapping in x. Unbounded shapes (planes) are
+// tested against every bounded AABB (O(n) per plane).
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "narrowphase.hpp"
+
+namespace ragdoll_sim {
+
+struct PlaneProxy {
+  int shape;
+  Vec3 normal;   // world
+  double offset; // world: n . x = offset
+};
+
+class Broadphase {
+ public:
+  // aabbs[i] is shape i's box (ignored when unbounded[i]); pairs get (i, j) with i < j.
+  void findPairs(const std::vector<Aabb>& aabbs, const std::vector<char>& unbounded,
+                 const std::vector<PlaneProxy>& planes, double margin,
+                 std::vector<std::pair<int, int>>& pairs);
+
+ private:
+  std::vector<int> order_;
+};
+
+}  // namespace ragdoll_sim

@@ -1,0 +1,41 @@
+// Persistent contacts: one per overlapping shape pair, keyed by the ordered shape pair, with
+// the accumulated impulses of each manifold point kept by feature id for warm starting.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "narrowphase.hpp"
+
+namespace ragdoll_sim {
+
+struct Contact {
+  uint64_t key = 0;          // (shape_a << 32) | shape_b, shape_a < shape_b
+  int shape_a = -1, shape_b = -1;
+  int body_a = -1, body_b = -1;
+  Manifold manifold;
+  double normal_impulse[Manifold::kMaxPoints] = {};
+  Vec3 friction_impulse[Manifold::kMaxPoints];  // world, re-projected on new tangents
+  double static_friction = 0.0, kinetic_friction = 0.0, restitution = 0.0;
+};
+
+inline uint64_t pairKey(int shape_a, int shape_b) {
+  return (uint64_t(uint32_t(shape_a)) << 32) | uint32_t(shape_b);
+}
+
+// Carries the impulses of `old` points to the points of `fresh` with the same feature id.
+inline void matchImpulses(const Contact& old, Contact& fresh) {
+  for (int i = 0; i < fresh.manifold.count; ++i) {
+    fresh.normal_impulse[i] = 0.0;
+    fresh.friction_impulse[i].setZero();
+    for (int k = 0; k < old.manifold.count; ++k) {
+      if (old.manifold.points[k].id == fresh.manifold.points[i].id) {
+        fresh.normal_impulse[i] = old.normal_impulse[k];
+        fresh.friction_impulse[i] = old.friction_impulse[k];
+        break;
+      }
+    }
+  }
+}
+
+}  // namespace ragdoll_sim

@@ -1,0 +1,48 @@
+// Joint storage and the per-type solve functions (joint_ball.cpp, joint_hinge.cpp).
+// Every joint is composed from constraint parts (part_*.hpp) that hold the math.
+#pragma once
+
+#include <array>
+
+#include "joint_angles.hpp"
+#include "part_angle_limit.hpp"
+#include "part_hinge_axis.hpp"
+#include "part_point.hpp"
+#include "ragdoll_sim/joint.hpp"
+
+namespace ragdoll_sim {
+
+struct Joint {
+  JointType type = JointType::Ball;
+  int a = -1, b = -1;              // body / solver-body indices
+  Transform frame_a, frame_b;      // joint frames in the link frames
+  bool limits_enabled = false;
+  PointPart point;
+
+  // Hinge: axis in the joint frame; limit on its angle.
+  Vec3 axis = Vec3::UnitZ();
+  double lower = 0.0, upper = 0.0;
+  HingeAxisPart hinge_axis;
+  AngleLimitPart limit;
+
+  // Ball: Euler basis and per-axis limits.
+  EulerBasis euler;
+  std::array<double, 3> lower3{}, upper3{};
+  std::array<AngleLimitPart, 3> limits3;
+
+  Quat frameRotationA(const Quat& qa) const { return qa * frame_a.q; }
+  Quat frameRotationB(const Quat& qb) const { return qb * frame_b.q; }
+};
+
+void prepareJoint(Joint& j, const StepContext& ctx);
+void warmStartJoint(Joint& j, const StepContext& ctx);
+void solveJoint(Joint& j, const StepContext& ctx, bool use_bias);
+
+void prepareBallJoint(Joint& j, const StepContext& ctx);
+void warmStartBallJoint(Joint& j, const StepContext& ctx);
+void solveBallJoint(Joint& j, const StepContext& ctx, bool use_bias);
+void prepareHingeJoint(Joint& j, const StepContext& ctx);
+void warmStartHingeJoint(Joint& j, const StepContext& ctx);
+void solveHingeJoint(Joint& j, const StepContext& ctx, bool use_bias);
+
+}  // namespace ragdoll_sim

@@ -1,0 +1,65 @@
+// Joint angles from the relative rotation of the two joint frames, and their rate Jacobians.
+//
+// Hinge: theta = signed angle about the axis a between a perpendicular u carried by frame A
+// and the same u carried by frame B; theta_dot = a . (wB - wA).
+//
+// Ball (Euler): R_rel = R(a0,t0) R(a1,t1) R(a2,t2) with orthonormal joint-frame axes. With
+// P = [a0 a1 s a2] (s = +-1 so that det P = +1), R' = P^T R_rel P = Rx(t0) Ry(t1) Rz(s t2):
+//   t1 = asin(R'02), t0 = atan2(-R'12, R'22), s t2 = atan2(-R'01, R'00).
+// Rates: w' = t0_dot ex + t1_dot Rx(t0) ey + (s t2)_dot Rx(t0) Ry(t1) ez = M(t) t_dot, with
+//   M = [ (1,0,0), (0,c0,s0), (s1,-s0 c1,c0 c1) ],  det M = cos t1 (gimbal lock at t1 = +-pi/2).
+// So t_dot = diag(1,1,s) M^-1 P^T R_JA^T (wB - wA): each row is one limit's Jacobian.
+#pragma once
+
+#include <array>
+#include <cmath>
+
+#include <Eigen/Dense>
+
+#include "ragdoll_sim/math.hpp"
+
+namespace ragdoll_sim {
+
+inline double hingeAngle(const Quat& frame_a, const Quat& frame_b, const Vec3& axis) {
+  const Vec3 u = anyPerpendicular(axis);
+  const Vec3 a = frame_a * axis, uA = frame_a * u, uB = frame_b * u;
+  return std::atan2(a.dot(uA.cross(uB)), uA.dot(uB));
+}
+
+struct EulerBasis {
+  Mat3 P = Mat3::Identity();  // columns a0, a1, s a2
+  double s = 1.0;
+
+  explicit EulerBasis(const std::array<Vec3, 3>& axes = {Vec3::UnitX(), Vec3::UnitY(),
+                                                         Vec3::UnitZ()}) {
+    P.col(0) = axes[0].normalized();
+    P.col(1) = axes[1].normalized();
+    P.col(2) = axes[2].normalized();
+    if (P.determinant() < 0) {
+      s = -1.0;
+      P.col(2) = -P.col(2);
+    }
+  }
+
+  // Angles (t0, t1, t2) of the relative rotation frame_a^-1 frame_b.
+  Vec3 angles(const Quat& frame_a, const Quat& frame_b) const {
+    const Mat3 R = P.transpose() * (frame_a.conjugate() * frame_b).toRotationMatrix() * P;
+    const double t1 = std::asin(std::clamp(R(0, 2), -1.0, 1.0));
+    return {std::atan2(-R(1, 2), R(2, 2)), t1, s * std::atan2(-R(0, 1), R(0, 0))};
+  }
+
+  // World Jacobian rows j_i (t_i dot = j_i . (wB - wA)); false near gimbal lock.
+  bool rates(const Quat& frame_a, const Vec3& t, std::array<Vec3, 3>& j) const {
+    const double c0 = std::cos(t[0]), s0 = std::sin(t[0]);
+    const double c1 = std::cos(t[1]), s1 = std::sin(t[1]);
+    if (std::abs(c1) < 1e-3) return false;
+    Mat3 M;
+    M << 1, 0, s1, 0, c0, -s0 * c1, 0, s0, c0 * c1;
+    Mat3 rows = M.inverse() * P.transpose() * frame_a.toRotationMatrix().transpose();
+    rows.row(2) *= s;
+    for (int i = 0; i < 3; ++i) j[i] = rows.row(i).transpose();
+    return true;
+  }
+};
+
+}  // namespace ragdoll_sim

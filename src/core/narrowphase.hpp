@@ -1,0 +1,39 @@
+// Narrowphase: contact manifolds between two placed geometries.
+#pragma once
+
+#include <cstdint>
+
+#include "ragdoll_sim/shape.hpp"
+
+namespace ragdoll_sim {
+
+struct ManifoldPoint {
+  Vec3 point;          // world, midway between the two surfaces
+  double separation;   // signed distance along the normal (negative = penetration)
+  uint32_t id;         // feature id, stable across steps while the same features touch
+};
+
+struct Manifold {
+  static constexpr int kMaxPoints = 4;
+  Vec3 normal = Vec3::UnitZ();  // world, pointing from shape A to shape B
+  int count = 0;
+  ManifoldPoint points[kMaxPoints];
+};
+
+// Fills `out` with up to 4 points whose separation is below `speculative_distance`; out.count
+// is 0 when the shapes are farther apart. Works for every pair of shape types except
+// plane-plane; the order of the arguments only flips the normal.
+void collide(const Geometry& a, const Transform& xa, const Geometry& b, const Transform& xb,
+             double speculative_distance, Manifold& out);
+
+// World-space axis-aligned bounding box; planes are unbounded (see isUnbounded).
+struct Aabb {
+  Vec3 lo, hi;
+  bool overlaps(const Aabb& o) const {
+    return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all();
+  }
+};
+Aabb computeAabb(const Geometry& g, const Transform& x);
+inline bool isUnbounded(const Geometry& g) { return g.type == ShapeType::Plane; }
+
+}  // namespace ragdoll_sim

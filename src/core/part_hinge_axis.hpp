@@ -1,0 +1,72 @@
+// Hinge axis part: the hinge axis a1 fixed in A stays parallel to the axis a2 fixed in B.
+// With b2, c2 unit vectors fixed in B and perpendicular to a2:
+//   C    = [a1 . b2, a1 . c2]                                      2 rows
+//   Cdot = U^T (wB - wA),  U = [b2 x a1, c2 x a1]   (d/dt(a1.b2) = (wB - wA) . (b2 x a1))
+//   K    = U^T (IA^-1 + IB^-1) U                                   2x2
+//   lambda = -mass_scale K^-1 (Cdot + bias_rate C) - impulse_scale lambda_acc,
+//   angular impulse U lambda on B, minus on A.
+#pragma once
+
+#include <Eigen/Dense>
+
+#include "solver_context.hpp"
+
+namespace ragdoll_sim {
+
+struct HingeAxisPart {
+  Vec3 a1_0 = Vec3::UnitZ(), a2_0 = Vec3::UnitZ();  // world at step start
+  Vec3 b2_0 = Vec3::UnitX(), c2_0 = Vec3::UnitY();
+  Eigen::Vector2d impulse = Eigen::Vector2d::Zero();
+
+  // Axes given in each body's axes (link frame).
+  void prepare(const BodyMotion& A, const BodyMotion& B, const Vec3& axis_in_a,
+               const Vec3& axis_in_b) {
+    a1_0 = A.q * axis_in_a;
+    a2_0 = B.q * axis_in_b;
+    b2_0 = anyPerpendicular(a2_0);
+    c2_0 = a2_0.cross(b2_0);
+  }
+
+  void jacobian(const SolverBody& A, const SolverBody& B, Vec3& a1, Vec3& u1, Vec3& u2,
+                Eigen::Vector2d& C) const {
+    a1 = A.dq * a1_0;
+    const Vec3 b2 = B.dq * b2_0, c2 = B.dq * c2_0;
+    u1 = b2.cross(a1);
+    u2 = c2.cross(a1);
+    C = {a1.dot(b2), a1.dot(c2)};
+  }
+
+  void warmStart(SolverBody& A, SolverBody& B) const {
+    Vec3 a1, u1, u2;
+    Eigen::Vector2d C;
+    jacobian(A, B, a1, u1, u2, C);
+    applyPairAngularImpulse(A, B, impulse.x() * u1 + impulse.y() * u2);
+  }
+
+  void solve(SolverBody& A, SolverBody& B, const Softness& soft, bool use_bias) {
+    Vec3 a1, u1, u2;
+    Eigen::Vector2d C;
+    jacobian(A, B, a1, u1, u2, C);
+    const Vec3 dw = B.w - A.w;
+    const Eigen::Vector2d cdot(u1.dot(dw), u2.dot(dw));
+    Eigen::Vector2d bias = Eigen::Vector2d::Zero();
+    double mass_scale = 1.0, impulse_scale = 0.0;
+    if (use_bias) {
+      bias = soft.bias_rate * C;
+      mass_scale = soft.mass_scale;
+      impulse_scale = soft.impulse_scale;
+    }
+    const Mat3 I = A.inv_inertia + B.inv_inertia;
+    const Vec3 Iu1 = I * u1, Iu2 = I * u2;
+    Eigen::Matrix2d K;
+    K << u1.dot(Iu1), u1.dot(Iu2), u2.dot(Iu1), u2.dot(Iu2);
+    const double det = K.determinant();
+    if (!(det > 1e-300)) return;
+    const Eigen::Vector2d lambda =
+        -mass_scale * K.inverse() * (cdot + bias) - impulse_scale * impulse;
+    impulse += lambda;
+    applyPairAngularImpulse(A, B, lambda.x() * u1 + lambda.y() * u2);
+  }
+};
+
+}  // namespace ragdoll_sim

@@ -1,0 +1,54 @@
+// Point constraint part: anchor A (fixed in body A) and anchor B (fixed in B) coincide.
+//   C    = (xB + rB) - (xA + rA)                           3 rows, r = anchor - COM (world)
+//   Cdot = vB + wB x rB - vA - wA x rA
+//   J    = [ -I  skew(rA)  I  -skew(rB) ]
+//   K    = J M^-1 J^T = (1/mA + 1/mB) I - skew(rA) IA^-1 skew(rA) - skew(rB) IB^-1 skew(rB)
+//   lambda = -mass_scale K^-1 (Cdot + bias_rate C) - impulse_scale lambda_acc   (softness.hpp)
+// C is tracked through the substeps from the bodies' accumulated deltas: the anchors are
+// rotated by the delta rotation and the centres moved by the delta positions.
+#pragma once
+
+#include "solver_context.hpp"
+
+namespace ragdoll_sim {
+
+struct PointPart {
+  Vec3 rA0 = Vec3::Zero(), rB0 = Vec3::Zero();  // world anchors from the COMs at step start
+  Vec3 delta_center = Vec3::Zero();             // xB - xA at step start
+  Vec3 impulse = Vec3::Zero();                  // accumulated (per substep)
+
+  void prepare(const BodyMotion& A, const BodyMotion& B, const Vec3& local_anchor_a,
+               const Vec3& local_anchor_b) {
+    rA0 = A.q * (local_anchor_a - A.local_com);
+    rB0 = B.q * (local_anchor_b - B.local_com);
+    delta_center = B.x - A.x;
+  }
+
+  void warmStart(SolverBody& A, SolverBody& B) const {
+    applyPairImpulse(A, B, impulse, A.dq * rA0, B.dq * rB0);
+  }
+
+  Vec3 error(const SolverBody& A, const SolverBody& B) const {
+    return (B.dp - A.dp) + (B.dq * rB0 - A.dq * rA0) + delta_center;
+  }
+
+  void solve(SolverBody& A, SolverBody& B, const Softness& soft, bool use_bias) {
+    const Vec3 rA = A.dq * rA0, rB = B.dq * rB0;
+    const Vec3 cdot = B.v + B.w.cross(rB) - A.v - A.w.cross(rA);
+    Vec3 bias = Vec3::Zero();
+    double mass_scale = 1.0, impulse_scale = 0.0;
+    if (use_bias) {
+      bias = soft.bias_rate * ((B.dp - A.dp) + (rB - rA) + delta_center);
+      mass_scale = soft.mass_scale;
+      impulse_scale = soft.impulse_scale;
+    }
+    const Mat3 sA = skew(rA), sB = skew(rB);
+    Mat3 K = (A.inv_mass + B.inv_mass) * Mat3::Identity() - sA * A.inv_inertia * sA -
+             sB * B.inv_inertia * sB;
+    const Vec3 lambda = -mass_scale * K.ldlt().solve(cdot + bias) - impulse_scale * impulse;
+    impulse += lambda;
+    applyPairImpulse(A, B, lambda, rA, rB);
+  }
+};
+
+}  // namespace ragdoll_sim

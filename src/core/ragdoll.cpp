@@ -1,0 +1,88 @@
+// RagdollDef -> bodies, shapes, joints and collision filters in a World.
+#include "ragdoll_sim/ragdoll.hpp"
+
+#include <Eigen/Geometry>
+
+namespace ragdoll_sim {
+
+int RagdollDef::findLink(const std::string& link_name) const {
+  for (size_t i = 0; i < links.size(); ++i)
+    if (links[i].name == link_name) return int(i);
+  return -1;
+}
+
+double RagdollDef::totalMass() const {
+  double m = 0.0;
+  for (const LinkDef& l : links) m += l.mass;
+  return m;
+}
+
+Ragdoll spawnRagdoll(World& world, const RagdollDef& def, const Transform& root_pose,
+                     const Material* material) {
+  Ragdoll r;
+  const Transform root_rest_inv = def.links.at(def.root).rest_pose.inverse();
+  for (const LinkDef& l : def.links) {
+    BodyDef bd;
+    bd.name = l.name;
+    bd.pose = root_pose * root_rest_inv * l.rest_pose;
+    bd.mass = l.mass;
+    bd.com = l.com;
+    bd.inertia = l.inertia;
+    bd.linear_damping = l.linear_damping;
+    bd.angular_damping = l.angular_damping;
+    const BodyId id = world.createBody(bd);
+    for (ShapeDef s : l.shapes) {
+      if (material) s.material = *material;
+      world.addShape(id, s);
+    }
+    r.bodies.push_back(id);
+  }
+  for (const RagdollJointDef& j : def.joints) {
+    const BodyId a = r.bodies.at(j.parent), b = r.bodies.at(j.child);
+    if (j.kind == RagdollJointKind::Ball) {
+      BallJointDef bj;
+      bj.body_a = a;
+      bj.body_b = b;
+      bj.frame_a = j.frame_parent;
+      bj.frame_b = j.frame_child;
+      for (int k = 0; k < 3 && k < int(j.axes.size()); ++k) bj.axes[k] = j.axes[k];
+      bj.enable_limits = j.limited && j.lower.size() >= 3 && j.upper.size() >= 3;
+      for (int k = 0; bj.enable_limits && k < 3; ++k) {
+        bj.lower[k] = j.lower[k];
+        bj.upper[k] = j.upper[k];
+      }
+      r.joints.push_back(world.createBallJoint(bj));
+    } else {
+      HingeJointDef hj;
+      hj.body_a = a;
+      hj.body_b = b;
+      hj.frame_a = j.frame_parent;
+      hj.frame_b = j.frame_child;
+      hj.axis = j.axes.empty() ? Vec3::UnitZ() : j.axes[0];
+      hj.enable_limit = j.limited && !j.lower.empty() && !j.upper.empty();
+      if (hj.enable_limit) {
+        hj.lower = j.lower[0];
+        hj.upper = j.upper[0];
+      }
+      r.joints.push_back(world.createHingeJoint(hj));
+    }
+  }
+  for (const auto& [a, b] : def.no_collide) world.disableCollision(r.bodies.at(a), r.bodies.at(b));
+  return r;
+}
+
+std::vector<Transform> ballChainLinkPoses(const World& world, const Ragdoll& ragdoll,
+                                          const RagdollDef& def, int joint_index) {
+  const RagdollJointDef& j = def.joints.at(joint_index);
+  std::vector<Transform> poses;
+  if (j.kind != RagdollJointKind::Ball) return poses;
+  const std::array<double, 3> t = world.ballAngles(ragdoll.joints.at(joint_index));
+  Transform frame = world.bodyPose(ragdoll.bodies.at(j.parent)) * j.frame_parent;
+  for (size_t k = 0; k < j.chain_links.size() && k < j.chain_offsets.size() && k < 3; ++k) {
+    frame = frame * Transform(Vec3::Zero(), Quat(Eigen::AngleAxisd(t[k], j.axes[k])));
+    poses.push_back(frame * j.chain_offsets[k]);
+  }
+  return poses;
+}
+
+}  // namespace ragdoll_sim

@@ -1,0 +1,38 @@
+// What every constraint needs during one step.
+#pragma once
+
+#include <vector>
+
+#include "body.hpp"
+#include "ragdoll_sim/world.hpp"
+#include "softness.hpp"
+
+namespace ragdoll_sim {
+
+struct StepContext {
+  double dt = 0.0;        // full step
+  double h = 0.0;         // substep
+  double inv_h = 0.0;
+  Softness contact_softness;
+  Softness joint_softness;
+  const WorldDef* def = nullptr;
+  std::vector<SolverBody>* bodies = nullptr;
+  const std::vector<BodyMotion>* motions = nullptr;  // poses at the start of the step
+};
+
+// Applies a world impulse P at world offset r (from the COM) to A (negative) and B (positive).
+inline void applyPairImpulse(SolverBody& A, SolverBody& B, const Vec3& P, const Vec3& rA,
+                             const Vec3& rB) {
+  A.v -= A.inv_mass * P;
+  A.w -= A.inv_inertia * rA.cross(P);
+  B.v += B.inv_mass * P;
+  B.w += B.inv_inertia * rB.cross(P);
+}
+
+// Applies an angular impulse L to A (negative) and B (positive).
+inline void applyPairAngularImpulse(SolverBody& A, SolverBody& B, const Vec3& L) {
+  A.w -= A.inv_inertia * L;
+  B.w += B.inv_inertia * L;
+}
+
+}  // namespace ragdoll_sim

@@ -1,0 +1,462 @@
+// World: storage and the step pipeline.
+//
+// step(dt) (Box2D v3 soft step, in 3D):
+//   1. collide: broadphase pairs -> narrowphase manifolds at the poses of the step start;
+//      impulses carried over by feature id (warm starting);
+//   2. prepare joints and contacts; substep h = dt / substeps;
+//   3. per substep: integrate velocities (gravity, forces, damping, implicit gyroscopic term),
+//      warm start, solve with bias (soft), integrate positions, relax without bias;
+//   4. restitution, store impulses, write the deltas back to the bodies, clear forces.
+// Semi-implicit Euler: v += h a first, then x += h v with the new v (and the same for the
+// rotation, q += h/2 (0,w) q, renormalised).
+#include "ragdoll_sim/world.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <unordered_set>
+
+#include "body.hpp"
+#include "broadphase.hpp"
+#include "contact.hpp"
+#include "contact_solver.hpp"
+#include "joint.hpp"
+
+namespace ragdoll_sim {
+
+namespace {
+uint64_t bodyPairKey(int a, int b) { return pairKey(std::min(a, b), std::max(a, b)); }
+
+// Implicit gyroscopic step (Catto, GDC 2015): one Newton iteration on
+// I (w - w0) + h w x (I w) = 0 in body axes.
+Vec3 gyroscopicStep(const Vec3& w_world, const Quat& q, const Mat3& I, double h) {
+  const Vec3 wb = q.conjugate() * w_world;
+  const Vec3 f = h * wb.cross(I * wb);
+  const Mat3 J = I + h * (skew(wb) * I - skew(I * wb));
+  return q * (wb - J.partialPivLu().solve(f));
+}
+}  // namespace
+
+struct ShapeRef {
+  int body;
+  int index;  // in Body::shapes
+};
+
+struct World::Impl {
+  WorldDef def;
+  double time = 0.0;
+  std::vector<Body> bodies;
+  std::vector<BodyMotion> motions;
+  std::vector<SolverBody> solver;
+  std::vector<ShapeRef> shapes;
+  std::vector<Joint> joints;
+  std::unordered_set<uint64_t> disabled;
+  Broadphase broadphase;
+  std::vector<Contact> contacts, next_contacts;
+  ContactSolver contact_solver;
+  // scratch, reused every step
+  std::vector<Aabb> aabbs;
+  std::vector<char> unbounded;
+  std::vector<PlaneProxy> planes;
+  std::vector<std::pair<int, int>> pairs;
+
+  const ShapeDef& shapeDef(int s) const { return bodies[shapes[s].body].shapes[shapes[s].index]; }
+  Transform shapePose(int s) const {
+    return motions[shapes[s].body].linkPose() * shapeDef(s).local;
+  }
+  void checkBody(BodyId id) const {
+    if (id.index < 0 || id.index >= int(bodies.size()))
+      throw std::out_of_range("ragdoll_sim: invalid body id");
+  }
+  bool isDynamic(int b) const { return bodies[b].def.type == BodyType::Dynamic; }
+
+  void collide(double dt);
+  void integrateVelocities(double h);
+  void integratePositions(double h);
+  void finishStep();
+  Joint& addJoint(JointType type, BodyId a, BodyId b, const Transform& fa, const Transform& fb,
+                  bool collide_connected);
+};
+
+void World::Impl::collide(double dt) {
+  const int n = int(shapes.size());
+  aabbs.resize(n);
+  unbounded.assign(n, 0);
+  planes.clear();
+  const double spec = def.speculative_distance;
+  for (int s = 0; s < n; ++s) {
+    const Geometry& g = shapeDef(s).geometry;
+    const Transform x = shapePose(s);
+    if (isUnbounded(g)) {
+      unbounded[s] = 1;
+      const Vec3 nw = x.q * g.normal;
+      planes.push_back({s, nw, g.offset + nw.dot(x.p)});
+      continue;
+    }
+    Aabb box = computeAabb(g, x);
+    const BodyMotion& m = motions[shapes[s].body];
+    const Vec3 grow = Vec3::Constant(spec) + (m.v * dt).cwiseAbs();
+    box.lo -= grow;
+    box.hi += grow;
+    aabbs[s] = box;
+  }
+  broadphase.findPairs(aabbs, unbounded, planes, spec, pairs);
+
+  // Keep pairs between different bodies, at least one dynamic, not disabled; sort by key to
+  // merge with last step's contacts (also sorted by key).
+  next_contacts.clear();
+  for (const auto& [sa, sb] : pairs) {
+    const int ba = shapes[sa].body, bb = shapes[sb].body;
+    if (ba == bb || (!isDynamic(ba) && !isDynamic(bb))) continue;
+    if (disabled.count(bodyPairKey(ba, bb))) continue;
+    Contact c;
+    c.key = pairKey(sa, sb);
+    c.shape_a = sa;
+    c.shape_b = sb;
+    c.body_a = ba;
+    c.body_b = bb;
+    next_contacts.push_back(c);
+  }
+  std::sort(next_contacts.begin(), next_contacts.end(),
+            [](const Contact& x, const Contact& y) { return x.key < y.key; });
+
+  size_t old = 0;
+  for (Contact& c : next_contacts) {
+    const ShapeDef &da = shapeDef(c.shape_a), &db = shapeDef(c.shape_b);
+    ragdoll_sim::collide(da.geometry, shapePose(c.shape_a), db.geometry, shapePose(c.shape_b),
+                         spec, c.manifold);
+    c.static_friction = std::sqrt(da.material.static_friction * db.material.static_friction);
+    c.kinetic_friction = std::sqrt(da.material.kinetic_friction * db.material.kinetic_friction);
+    c.restitution = std::max(da.material.restitution, db.material.restitution);
+    while (old < contacts.size() && contacts[old].key < c.key) ++old;
+    if (old < contacts.size() && contacts[old].key == c.key) matchImpulses(contacts[old], c);
+    else matchImpulses(Contact(), c);
+  }
+  contacts.swap(next_contacts);
+}
+
+void World::Impl::integrateVelocities(double h) {
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    if (!isDynamic(int(i))) continue;
+    const BodyMotion& m = motions[i];
+    SolverBody& s = solver[i];
+    const Vec3 a = m.gravity_scale * def.gravity + m.inv_mass * m.force;
+    s.v = (s.v + h * a) / (1.0 + h * m.linear_damping);
+    const Quat q = s.dq * m.q;
+    Vec3 w = gyroscopicStep(s.w, q, m.inertia_local, h);
+    w += h * (s.inv_inertia * m.torque);
+    s.w = w / (1.0 + h * m.angular_damping);
+  }
+}
+
+void World::Impl::integratePositions(double h) {
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    if (!isDynamic(int(i))) continue;
+    SolverBody& s = solver[i];
+    s.dp += h * s.v;
+    const Vec3 hw = 0.5 * h * s.w;
+    Quat dq = s.dq;
+    dq.coeffs() += (Quat(0, hw.x(), hw.y(), hw.z()) * s.dq).coeffs();
+    s.dq = dq.normalized();
+  }
+}
+
+void World::Impl::finishStep() {
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    BodyMotion& m = motions[i];
+    SolverBody& s = solver[i];
+    if (isDynamic(int(i))) {
+      m.x += s.dp;
+      m.q = (s.dq * m.q).normalized();
+      m.v = s.v;
+      m.w = s.w;
+      const double vn = m.v.norm(), wn = m.w.norm();
+      if (vn > def.max_linear_speed) m.v *= def.max_linear_speed / vn;
+      if (wn > def.max_angular_speed) m.w *= def.max_angular_speed / wn;
+    }
+    m.force.setZero();
+    m.torque.setZero();
+  }
+}
+
+Joint& World::Impl::addJoint(JointType type, BodyId a, BodyId b, const Transform& fa,
+                             const Transform& fb, bool collide_connected) {
+  checkBody(a);
+  checkBody(b);
+  if (a == b) throw std::invalid_argument("ragdoll_sim: a joint needs two different bodies");
+  Joint j;
+  j.type = type;
+  j.a = a.index;
+  j.b = b.index;
+  j.frame_a = fa;
+  j.frame_b = fb;
+  if (!collide_connected) disabled.insert(bodyPairKey(a.index, b.index));
+  joints.push_back(j);
+  return joints.back();
+}
+
+World::World(const WorldDef& def) : impl_(new Impl) { impl_->def = def; }
+World::~World() = default;
+
+BodyId World::createBody(const BodyDef& def) {
+  Impl& w = *impl_;
+  Body body;
+  body.def = def;
+  BodyMotion m;
+  m.local_com = def.com;
+  m.q = def.pose.q.normalized();
+  m.x = def.pose.p + m.q * def.com;
+  m.inertia_local = def.inertia;
+  m.linear_damping = def.linear_damping;
+  m.angular_damping = def.angular_damping;
+  m.gravity_scale = def.gravity_scale;
+  if (def.type == BodyType::Dynamic) {
+    if (!(def.mass > 0.0) || !def.inertia.allFinite() || def.inertia.determinant() <= 0.0)
+      throw std::invalid_argument("ragdoll_sim: body '" + def.name +
+                                  "' needs a positive mass and a positive definite inertia");
+    m.inv_mass = 1.0 / def.mass;
+    m.inv_inertia_local = def.inertia.inverse();
+    m.v = def.linear_velocity;
+    m.w = def.angular_velocity;
+  }
+  w.bodies.push_back(std::move(body));
+  w.motions.push_back(m);
+  w.solver.emplace_back();
+  return BodyId{int32_t(w.bodies.size() - 1)};
+}
+
+void World::addShape(BodyId id, const ShapeDef& def) {
+  impl_->checkBody(id);
+  Body& b = impl_->bodies[id.index];
+  b.shapes.push_back(def);
+  b.shape_ids.push_back(int(impl_->shapes.size()));
+  impl_->shapes.push_back({id.index, int(b.shapes.size() - 1)});
+}
+
+JointId World::createBallJoint(const BallJointDef& def) {
+  Joint& j = impl_->addJoint(JointType::Ball, def.body_a, def.body_b, def.frame_a, def.frame_b,
+                             def.collide_connected);
+  j.euler = EulerBasis(def.axes);
+  j.limits_enabled = def.enable_limits;
+  j.lower3 = def.lower;
+  j.upper3 = def.upper;
+  return JointId{int32_t(impl_->joints.size() - 1)};
+}
+
+JointId World::createHingeJoint(const HingeJointDef& def) {
+  Joint& j = impl_->addJoint(JointType::Hinge, def.body_a, def.body_b, def.frame_a, def.frame_b,
+                             def.collide_connected);
+  j.axis = def.axis.normalized();
+  j.limits_enabled = def.enable_limit;
+  j.lower = def.lower;
+  j.upper = def.upper;
+  return JointId{int32_t(impl_->joints.size() - 1)};
+}
+
+void World::disableCollision(BodyId a, BodyId b) {
+  impl_->checkBody(a);
+  impl_->checkBody(b);
+  impl_->disabled.insert(bodyPairKey(a.index, b.index));
+}
+
+void World::step(double dt) {
+  Impl& w = *impl_;
+  if (!(dt > 0.0)) return;
+  const int substeps = std::max(1, w.def.substeps);
+  StepContext ctx;
+  ctx.dt = dt;
+  ctx.h = dt / substeps;
+  ctx.inv_h = 1.0 / ctx.h;
+  ctx.def = &w.def;
+  ctx.bodies = &w.solver;
+  ctx.motions = &w.motions;
+  ctx.contact_softness = Softness::make(std::min(w.def.contact_hertz, 0.25 * ctx.inv_h),
+                                        w.def.contact_damping_ratio, ctx.h);
+  ctx.joint_softness = Softness::make(std::min(w.def.joint_hertz, 0.25 * ctx.inv_h),
+                                      w.def.joint_damping_ratio, ctx.h);
+
+  w.collide(dt);
+
+  for (size_t i = 0; i < w.bodies.size(); ++i) {
+    const BodyMotion& m = w.motions[i];
+    SolverBody& s = w.solver[i];
+    s.dp.setZero();
+    s.dq = Quat::Identity();
+    if (w.isDynamic(int(i))) {
+      const Mat3 R = m.q.toRotationMatrix();
+      s.v = m.v;
+      s.w = m.w;
+      s.inv_mass = m.inv_mass;
+      s.inv_inertia = R * m.inv_inertia_local * R.transpose();
+    } else {
+      s = SolverBody();
+    }
+  }
+
+  for (Joint& j : w.joints) prepareJoint(j, ctx);
+  w.contact_solver.prepare(w.contacts, ctx);
+
+  for (int sub = 0; sub < substeps; ++sub) {
+    w.integrateVelocities(ctx.h);
+    for (Joint& j : w.joints) warmStartJoint(j, ctx);
+    w.contact_solver.warmStart(ctx);
+    for (Joint& j : w.joints) solveJoint(j, ctx, true);
+    w.contact_solver.solve(ctx, true);
+    w.integratePositions(ctx.h);
+    for (Joint& j : w.joints) solveJoint(j, ctx, false);
+    w.contact_solver.solve(ctx, false);
+  }
+  w.contact_solver.applyRestitution(ctx);
+  w.contact_solver.storeImpulses(w.contacts);
+  w.finishStep();
+  w.time += dt;
+}
+
+double World::time() const { return impl_->time; }
+const WorldDef& World::def() const { return impl_->def; }
+void World::setGravity(const Vec3& g) { impl_->def.gravity = g; }
+
+void World::applyLinearImpulse(BodyId id, const Vec3& impulse, const Vec3& world_point) {
+  impl_->checkBody(id);
+  BodyMotion& m = impl_->motions[id.index];
+  if (m.inv_mass == 0.0) return;
+  const Mat3 R = m.q.toRotationMatrix();
+  m.v += m.inv_mass * impulse;
+  m.w += R * m.inv_inertia_local * R.transpose() * (world_point - m.x).cross(impulse);
+}
+
+void World::applyLinearImpulseToCenter(BodyId id, const Vec3& impulse) {
+  impl_->checkBody(id);
+  BodyMotion& m = impl_->motions[id.index];
+  m.v += m.inv_mass * impulse;
+}
+
+void World::applyAngularImpulse(BodyId id, const Vec3& impulse) {
+  impl_->checkBody(id);
+  BodyMotion& m = impl_->motions[id.index];
+  if (m.inv_mass == 0.0) return;
+  const Mat3 R = m.q.toRotationMatrix();
+  m.w += R * m.inv_inertia_local * R.transpose() * impulse;
+}
+
+void World::applyForce(BodyId id, const Vec3& force, const Vec3& world_point) {
+  impl_->checkBody(id);
+  BodyMotion& m = impl_->motions[id.index];
+  m.force += force;
+  m.torque += (world_point - m.x).cross(force);
+}
+
+void World::applyTorque(BodyId id, const Vec3& torque) {
+  impl_->checkBody(id);
+  impl_->motions[id.index].torque += torque;
+}
+
+void World::setBodyState(BodyId id, const Transform& pose, const Vec3& v, const Vec3& w) {
+  impl_->checkBody(id);
+  BodyMotion& m = impl_->motions[id.index];
+  m.q = pose.q.normalized();
+  m.x = pose.p + m.q * m.local_com;
+  const bool dyn = impl_->isDynamic(id.index);
+  m.v = dyn ? v : Vec3::Zero();
+  m.w = dyn ? w : Vec3::Zero();
+  m.force.setZero();
+  m.torque.setZero();
+}
+
+int World::bodyCount() const { return int(impl_->bodies.size()); }
+int World::jointCount() const { return int(impl_->joints.size()); }
+bool World::isValid(BodyId id) const { return id.index >= 0 && id.index < bodyCount(); }
+
+BodyState World::bodyState(BodyId id) const {
+  impl_->checkBody(id);
+  const BodyMotion& m = impl_->motions[id.index];
+  return {m.linkPose(), m.x, m.v, m.w};
+}
+
+Transform World::bodyPose(BodyId id) const {
+  impl_->checkBody(id);
+  return impl_->motions[id.index].linkPose();
+}
+
+const BodyDef& World::bodyDef(BodyId id) const {
+  impl_->checkBody(id);
+  return impl_->bodies[id.index].def;
+}
+
+const std::vector<ShapeDef>& World::bodyShapes(BodyId id) const {
+  impl_->checkBody(id);
+  return impl_->bodies[id.index].shapes;
+}
+
+Vec3 World::comPosition(BodyId id) const {
+  impl_->checkBody(id);
+  return impl_->motions[id.index].x;
+}
+
+Vec3 World::pointVelocity(BodyId id, const Vec3& p) const {
+  impl_->checkBody(id);
+  const BodyMotion& m = impl_->motions[id.index];
+  return m.v + m.w.cross(p - m.x);
+}
+
+JointType World::jointType(JointId id) const { return impl_->joints.at(id.index).type; }
+
+double World::hingeAngle(JointId id) const {
+  const Joint& j = impl_->joints.at(id.index);
+  if (j.type != JointType::Hinge) return 0.0;
+  return ragdoll_sim::hingeAngle(j.frameRotationA(impl_->motions[j.a].q),
+                                 j.frameRotationB(impl_->motions[j.b].q), j.axis);
+}
+
+std::array<double, 3> World::ballAngles(JointId id) const {
+  const Joint& j = impl_->joints.at(id.index);
+  if (j.type != JointType::Ball) return {0, 0, 0};
+  const Vec3 t = j.euler.angles(j.frameRotationA(impl_->motions[j.a].q),
+                                j.frameRotationB(impl_->motions[j.b].q));
+  return {t[0], t[1], t[2]};
+}
+
+Vec3 World::jointAnchorError(JointId id) const {
+  const Joint& j = impl_->joints.at(id.index);
+  const auto& m = impl_->motions;
+  return m[j.b].linkPose().apply(j.frame_b.p) - m[j.a].linkPose().apply(j.frame_a.p);
+}
+
+Vec3 World::linearMomentum() const {
+  Vec3 p = Vec3::Zero();
+  for (size_t i = 0; i < impl_->bodies.size(); ++i)
+    if (impl_->isDynamic(int(i))) p += impl_->motions[i].v / impl_->motions[i].inv_mass;
+  return p;
+}
+
+Vec3 World::angularMomentum(const Vec3& about) const {
+  Vec3 L = Vec3::Zero();
+  for (size_t i = 0; i < impl_->bodies.size(); ++i) {
+    if (!impl_->isDynamic(int(i))) continue;
+    const BodyMotion& m = impl_->motions[i];
+    const Mat3 R = m.q.toRotationMatrix();
+    L += (m.x - about).cross(m.v / m.inv_mass) + R * m.inertia_local * R.transpose() * m.w;
+  }
+  return L;
+}
+
+double World::kineticEnergy() const {
+  double e = 0.0;
+  for (size_t i = 0; i < impl_->bodies.size(); ++i) {
+    if (!impl_->isDynamic(int(i))) continue;
+    const BodyMotion& m = impl_->motions[i];
+    const Vec3 wb = m.q.conjugate() * m.w;
+    e += 0.5 * m.v.squaredNorm() / m.inv_mass + 0.5 * wb.dot(m.inertia_local * wb);
+  }
+  return e;
+}
+
+std::vector<ContactInfo> World::contacts() const {
+  std::vector<ContactInfo> out;
+  for (const Contact& c : impl_->contacts)
+    for (int i = 0; i < c.manifold.count; ++i)
+      out.push_back({BodyId{c.body_a}, BodyId{c.body_b}, c.manifold.points[i].point,
+                     c.manifold.normal, c.manifold.points[i].separation, c.normal_impulse[i]});
+  return out;
+}
+
+}  // namespace ragdoll_sim
