@@ -4,11 +4,11 @@
 //   1. collide: broadphase pairs -> narrowphase manifolds at the poses of the step start;
 //      impulses carried over by feature id (warm starting);
 //   2. prepare joints and contacts; substep h = dt / substeps;
-//   3. per substep: integrate velocities (gravity, forces, damping, implicit gyroscopic term),
+//   3. per substep: integrate velocities (gravity, forces, damping),
 //      warm start, solve with bias (soft), integrate positions, relax without bias;
 //   4. restitution, store impulses, write the deltas back to the bodies, clear forces.
 // Semi-implicit Euler: v += h a first, then x += h v with the new v (and the same for the
-// rotation, q += h/2 (0,w) q, renormalised).
+// rotation, q += h/2 (0,w) q, renormalised, with the gyroscopic update in integratePositions).
 #include "ragdoll_sim/world.hpp"
 
 #include <algorithm>
@@ -26,14 +26,6 @@ namespace ragdoll_sim {
 namespace {
 uint64_t bodyPairKey(int a, int b) { return pairKey(std::min(a, b), std::max(a, b)); }
 
-// Implicit gyroscopic step (Catto, GDC 2015): one Newton iteration on
-// I (w - w0) + h w x (I w) = 0 in body axes.
-Vec3 gyroscopicStep(const Vec3& w_world, const Quat& q, const Mat3& I, double h) {
-  const Vec3 wb = q.conjugate() * w_world;
-  const Vec3 f = h * wb.cross(I * wb);
-  const Mat3 J = I + h * (skew(wb) * I - skew(I * wb));
-  return q * (wb - J.partialPivLu().solve(f));
-}
 }  // namespace
 
 struct ShapeRef {
@@ -141,22 +133,27 @@ void World::Impl::integrateVelocities(double h) {
     SolverBody& s = solver[i];
     const Vec3 a = m.gravity_scale * def.gravity + m.inv_mass * m.force;
     s.v = (s.v + h * a) / (1.0 + h * m.linear_damping);
-    const Quat q = s.dq * m.q;
-    Vec3 w = gyroscopicStep(s.w, q, m.inertia_local, h);
-    w += h * (s.inv_inertia * m.torque);
-    s.w = w / (1.0 + h * m.angular_damping);
+    s.w = (s.w + h * (s.inv_inertia * m.torque)) / (1.0 + h * m.angular_damping);
   }
 }
 
+// The rotation advances with w; then w is recomputed from the world angular momentum
+// L = R I R^T w, which free rotation conserves: w' = R' I^-1 R'^T L. This is the gyroscopic
+// term (precession, the middle-axis flip) and keeps L exact in free flight.
 void World::Impl::integratePositions(double h) {
   for (size_t i = 0; i < bodies.size(); ++i) {
     if (!isDynamic(int(i))) continue;
+    const BodyMotion& m = motions[i];
     SolverBody& s = solver[i];
     s.dp += h * s.v;
+    const Quat q0 = s.dq * m.q;
+    const Vec3 L = q0 * (m.inertia_local * (q0.conjugate() * s.w));
     const Vec3 hw = 0.5 * h * s.w;
     Quat dq = s.dq;
     dq.coeffs() += (Quat(0, hw.x(), hw.y(), hw.z()) * s.dq).coeffs();
     s.dq = dq.normalized();
+    const Quat q1 = s.dq * m.q;
+    s.w = q1 * (m.inv_inertia_local * (q1.conjugate() * L));
   }
 }
 

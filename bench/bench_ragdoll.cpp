@@ -1,0 +1,200 @@
+// bench_ragdoll: our engine on the peer scenes (../shared/peers/README.md), same result line.
+//   a: 1 ragdoll standing, pelvis at 1.5 m, 10 000 steps
+//   b: 32 ragdolls standing on a 4 x 8 grid, 1.5 m pitch, 3 000 steps
+//   c: 8 ragdolls prone (pitch 90 deg), yaw k*45 deg, pelvis at 1.5 + 0.6 k, 5 000 steps
+// dt = 1 ms, gravity -9.81 z, ground z = 0, friction 0.8. Only World::step is timed. The
+// metrics are computed here from link poses and the URDF joint data alone (anchor error,
+// ground penetration of the analytic shapes, joint angles vs limits, rest state at 3 s).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include "joint_angles.hpp"
+#include "ragdoll_sim/urdf_loader.hpp"
+
+using namespace ragdoll_sim;
+
+namespace {
+
+struct Scene {
+  char id;
+  int steps;
+  std::vector<Transform> roots;
+};
+
+Scene makeScene(char id) {
+  Scene s{id, 0, {}};
+  if (id == 'a') {
+    s.steps = 10000;
+    s.roots.push_back({Vec3(0, 0, 1.5), Quat::Identity()});
+  } else if (id == 'b') {
+    s.steps = 3000;
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 8; ++j) s.roots.push_back({Vec3((i - 1.5) * 1.5, (j - 3.5) * 1.5, 1.5), Quat::Identity()});
+  } else if (id == 'c') {
+    s.steps = 5000;
+    for (int k = 0; k < 8; ++k) s.roots.push_back({Vec3(0, 0, 1.5 + 0.6 * k), quatFromRpy(0, M_PI / 2, k * M_PI / 4)});
+  } else {
+    std::fprintf(stderr, "scenario must be a, b or c\n");
+    std::exit(2);
+  }
+  return s;
+}
+
+double lowestZ(const Geometry& g, const Transform& x) {
+  const Mat3 R = x.q.toRotationMatrix();
+  const double cz = x.p.z();
+  switch (g.type) {
+    case ShapeType::Sphere: return cz - g.radius;
+    case ShapeType::Box: return cz - R.row(2).cwiseAbs().dot(g.half_extents);
+    case ShapeType::Capsule: return cz - g.half_height * std::abs(R(2, 2)) - g.radius;
+    case ShapeType::Cylinder: {
+      const double az = std::abs(R(2, 2));
+      return cz - g.half_height * az - g.radius * std::sqrt(std::max(0.0, 1 - az * az));
+    }
+    default: return cz;
+  }
+}
+
+struct Metrics {
+  double max_anchor = 0, max_pen = 0, max_limit = 0;
+  std::string worst_joint = "-";
+  int worst_step = -1;
+  bool nan = false;
+  double pel_mean = NAN, pel_min = NAN, pel_max = NAN, pen3 = NAN, anchor3 = NAN, vmax3 = NAN;
+  std::vector<Vec3> prev;
+
+  void sample(const RagdollDef& def, const std::vector<Transform>& poses, int n, int step,
+              double dt, int step3) {
+    const size_t L = def.links.size();
+    double pen = 0, anchor = 0, lim = 0;
+    const RagdollJointDef* wj = nullptr;
+    for (const Transform& p : poses)
+      if (!p.p.allFinite() || !p.q.coeffs().allFinite()) nan = true;
+    for (int r = 0; r < n; ++r) {
+      const Transform* W = &poses[r * L];
+      for (size_t i = 0; i < L; ++i)
+        for (const ShapeDef& s : def.links[i].shapes)
+          pen = std::max(pen, -lowestZ(s.geometry, W[i] * s.local));
+      for (const RagdollJointDef& j : def.joints) {
+        const Transform fa = W[j.parent] * j.frame_parent, fb = W[j.child] * j.frame_child;
+        anchor = std::max(anchor, (fb.p - fa.p).norm());
+        double v = 0;
+        if (j.kind == RagdollJointKind::Hinge) {
+          const double q = hingeAngle(fa.q, fb.q, j.axes[0]);
+          v = std::max(j.lower[0] - q, q - j.upper[0]);
+        } else {
+          const Vec3 q = EulerBasis({j.axes[0], j.axes[1], j.axes[2]}).angles(fa.q, fb.q);
+          for (int k = 0; k < 3; ++k) v = std::max({v, j.lower[k] - q[k], q[k] - j.upper[k]});
+        }
+        if (v > lim) {
+          lim = v;
+          wj = &j;
+        }
+      }
+    }
+    max_pen = std::max(max_pen, pen);
+    max_anchor = std::max(max_anchor, anchor);
+    if (lim > max_limit) {
+      max_limit = lim;
+      worst_joint = wj->name;
+      worst_step = step;
+    }
+    if (step == step3 - 1) {
+      prev.clear();
+      for (const Transform& p : poses) prev.push_back(p.p);
+    }
+    if (step == step3) {
+      pen3 = pen;
+      anchor3 = anchor;
+      double s = 0, mn = 1e300, mx = -1e300;
+      for (int r = 0; r < n; ++r) {
+        const double z = poses[r * L].p.z();
+        s += z;
+        mn = std::min(mn, z);
+        mx = std::max(mx, z);
+      }
+      pel_mean = s / n;
+      pel_min = mn;
+      pel_max = mx;
+      vmax3 = 0;
+      for (size_t i = 0; i < poses.size() && i < prev.size(); ++i)
+        vmax3 = std::max(vmax3, (poses[i].p - prev[i]).norm() / dt);
+    }
+  }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  char scenario = 'a';
+  int steps = -1, substeps = -1;
+  bool metrics = true;
+  std::string urdf = "../shared/peers/ragdoll15.urdf";
+  for (int i = 1; i < argc; ++i) {
+    const std::string s = argv[i];
+    if (s == "--steps" && i + 1 < argc) steps = std::atoi(argv[++i]);
+    else if (s == "--urdf" && i + 1 < argc) urdf = argv[++i];
+    else if (s == "--substeps" && i + 1 < argc) substeps = std::atoi(argv[++i]);
+    else if (s == "--no-metrics") metrics = false;
+    else if (s.size() == 1 && s[0] >= 'a' && s[0] <= 'c') scenario = s[0];
+    else {
+      std::fprintf(stderr, "usage: %s a|b|c [--steps N] [--urdf F] [--substeps N] [--no-metrics]\n", argv[0]);
+      return 2;
+    }
+  }
+  const UrdfLoadResult loaded = loadUrdfFile(urdf);
+  if (!loaded.ok) {
+    std::fprintf(stderr, "bench_ragdoll: %s\n", loaded.error.c_str());
+    return 1;
+  }
+  const RagdollDef& def = loaded.def;
+  const Scene sc = makeScene(scenario);
+  if (steps < 0) steps = sc.steps;
+  const int n = int(sc.roots.size());
+  const double dt = 1e-3;
+
+  WorldDef wd;
+  if (substeps > 0) wd.substeps = substeps;
+  World world(wd);
+  BodyDef ground;
+  ground.type = BodyType::Static;
+  Material mat;
+  mat.static_friction = mat.kinetic_friction = 0.8;
+  world.addShape(world.createBody(ground), {Geometry::plane(Vec3::UnitZ(), 0.0), Transform(), mat});
+  std::vector<Ragdoll> ragdolls;
+  for (const Transform& root : sc.roots) ragdolls.push_back(spawnRagdoll(world, def, root, &mat));
+
+  Metrics m;
+  std::vector<Transform> poses(n * def.links.size());
+  double wall = 0.0;
+  const auto loop0 = std::chrono::steady_clock::now();
+  for (int step = 1; step <= steps; ++step) {
+    const auto t0 = std::chrono::steady_clock::now();
+    world.step(dt);
+    wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (metrics || step == 2999 || step == 3000) {
+      for (int r = 0; r < n; ++r)
+        for (size_t i = 0; i < def.links.size(); ++i)
+          poses[r * def.links.size() + i] = world.bodyPose(ragdolls[r].bodies[i]);
+      m.sample(def, poses, n, step, dt, 3000);
+    }
+  }
+  const double loop_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop0).count();
+  const long bodies = long(n) * long(def.links.size());
+  const double sps = steps / wall;
+  std::printf(
+      "engine=ragdoll_sim scenario=%c ragdolls=%d bodies=%ld steps=%d wall_s=%.4f steps_per_s=%.1f "
+      "body_steps_per_s=%.0f us_per_body_step=%.3f max_anchor_err_m=%.3g max_ground_pen_m=%.4f "
+      "max_limit_viol_rad=%.3g pelvis_z_3s_mean=%.4f pelvis_z_3s_min=%.4f pelvis_z_3s_max=%.4f "
+      "ground_pen_3s_m=%.4f anchor_err_3s_m=%.3g vmax_3s=%.3g worst_limit=%s@%d nan=%d "
+      "loop_wall_s=%.3f substeps=%d max_contacts=%zu\n",
+      sc.id, n, bodies, steps, wall, sps, sps * bodies, 1e6 * wall / (steps * double(bodies)),
+      m.max_anchor, m.max_pen, m.max_limit, m.pel_mean, m.pel_min, m.pel_max, m.pen3, m.anchor3,
+      m.vmax3, m.worst_joint.c_str(), m.worst_step, m.nan ? 1 : 0, loop_wall, wd.substeps,
+      world.contacts().size());
+  return 0;
+}

@@ -1,0 +1,138 @@
+// Closed-form contact cases: sliding distance, incline stick/slip, rolling, sphere collisions,
+// free flight with the gyroscopic term.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "ragdoll_sim/world.hpp"
+
+using namespace ragdoll_sim;
+
+namespace {
+constexpr double kDt = 1e-3;
+constexpr double kG = 9.81;
+
+Mat3 boxInertia(const Vec3& half, double mass) {
+  const Vec3 s = 2.0 * half;
+  return (mass / 12.0 * Vec3(s.y() * s.y() + s.z() * s.z(), s.x() * s.x() + s.z() * s.z(),
+                             s.x() * s.x() + s.y() * s.y()))
+      .asDiagonal();
+}
+
+BodyId addStaticPlane(World& w, const Quat& q, const Material& m) {
+  BodyDef d;
+  d.type = BodyType::Static;
+  d.pose.q = q;
+  const BodyId g = w.createBody(d);
+  w.addShape(g, {Geometry::plane(Vec3::UnitZ(), 0.0), Transform(), m});
+  return g;
+}
+
+BodyId addBody(World& w, const Geometry& g, double mass, const Mat3& inertia, const Transform& pose,
+               const Material& m, const Vec3& v = Vec3::Zero()) {
+  BodyDef d;
+  d.pose = pose;
+  d.mass = mass;
+  d.inertia = inertia;
+  d.linear_velocity = v;
+  const BodyId b = w.createBody(d);
+  w.addShape(b, {g, Transform(), m});
+  return b;
+}
+
+Material friction(double mu_s, double mu_k) {
+  Material m;
+  m.static_friction = mu_s;
+  m.kinetic_friction = mu_k;
+  return m;
+}
+}  // namespace
+
+// A box launched at v on flat ground stops after v^2 / (2 mu_k g).
+class Slide : public ::testing::TestWithParam<double> {};
+TEST_P(Slide, StopsAfterClosedFormDistance) {
+  const double mu_k = GetParam(), v0 = 3.0;
+  World w;
+  const Material m = friction(mu_k + 0.1, mu_k);
+  addStaticPlane(w, Quat::Identity(), m);
+  const Vec3 half(0.2, 0.2, 0.1);
+  const BodyId box = addBody(w, Geometry::box(half), 4.0, boxInertia(half, 4.0),
+                             Transform(Vec3(0, 0, half.z()), Quat::Identity()), m, Vec3(v0, 0, 0));
+  const double x0 = w.comPosition(box).x();
+  for (int i = 0; i < 5000; ++i) w.step(kDt);
+  const double d = w.comPosition(box).x() - x0, expected = v0 * v0 / (2 * mu_k * kG);
+  EXPECT_NEAR(d, expected, 0.03 * expected) << "mu_k=" << mu_k;
+  EXPECT_LT(w.bodyState(box).linear_velocity.norm(), 1e-3);
+  std::printf("[ slide    ] mu_k %.2f: %.4f m (closed form %.4f)\n", mu_k, d, expected);
+}
+INSTANTIATE_TEST_SUITE_P(Friction, Slide, ::testing::Values(0.3, 0.5, 0.8));
+
+// A box on a slope stays put iff tan(theta) < mu_s.
+TEST(Incline, StaysBelowAndSlidesAboveFrictionAngle) {
+  const double mu_s = 0.6, mu_k = 0.5, critical = std::atan(mu_s);
+  for (double theta : {critical - 0.03, critical + 0.03}) {
+    World w;
+    const Material m = friction(mu_s, mu_k);
+    const Quat slope(Eigen::AngleAxisd(theta, Vec3::UnitY()));
+    addStaticPlane(w, slope, m);
+    const Vec3 half(0.1, 0.1, 0.05);
+    const BodyId box = addBody(w, Geometry::box(half), 1.0, boxInertia(half, 1.0),
+                               Transform(slope * Vec3(0, 0, half.z()), slope), m);
+    const Vec3 p0 = w.comPosition(box);
+    for (int i = 0; i < 2000; ++i) w.step(kDt);
+    const double moved = (w.comPosition(box) - p0).norm();
+    if (theta < critical) {
+      EXPECT_LT(moved, 2e-3) << "theta " << theta;
+    } else {
+      // slides with a = g (sin - mu_k cos) once it breaks away
+      const double a = kG * (std::sin(theta) - mu_k * std::cos(theta));
+      EXPECT_GT(moved, 0.5 * 0.5 * a * 4.0) << "theta " << theta;
+    }
+    std::printf("[ incline  ] theta %.4f (critical %.4f): moved %.4f m in 2 s\n", theta, critical, moved);
+  }
+}
+
+// A sphere rolling without slipping down an incline accelerates at (5/7) g sin(theta).
+TEST(Rolling, SphereAcceleratesAtFiveSeventhsGSinTheta) {
+  const double theta = 0.3, r = 0.2, mass = 2.0;
+  World w;
+  const Material m = friction(1.0, 1.0);
+  const Quat slope(Eigen::AngleAxisd(theta, Vec3::UnitY()));
+  addStaticPlane(w, slope, m);
+  const BodyId ball = addBody(w, Geometry::sphere(r), mass, Mat3::Identity() * 0.4 * mass * r * r,
+                              Transform(slope * Vec3(0, 0, r), Quat::Identity()), m);
+  for (int i = 0; i < 200; ++i) w.step(kDt);  // settle into rolling
+  const Vec3 down = slope * Vec3(1, 0, 0);
+  const double v1 = w.bodyState(ball).linear_velocity.dot(down), t1 = w.time();
+  for (int i = 0; i < 1000; ++i) w.step(kDt);
+  const double v2 = w.bodyState(ball).linear_velocity.dot(down), t2 = w.time();
+  const double a = (v2 - v1) / (t2 - t1), expected = 5.0 / 7.0 * kG * std::sin(theta);
+  EXPECT_NEAR(a, expected, 0.02 * expected);
+  std::printf("[ rolling  ] a = %.4f m/s^2 (closed form %.4f)\n", a, expected);
+}
+
+// Free flight: linear and angular momentum are conserved, and a box spun about its middle
+// axis with a small perturbation flips (Dzhanibekov effect, needs the gyroscopic term).
+TEST(FreeFlight, MomentumConservedAndMiddleAxisFlips) {
+  WorldDef def;
+  def.gravity.setZero();
+  def.max_angular_speed = 1e3;
+  World w(def);
+  const Vec3 half(0.3, 0.2, 0.05);  // inertia smallest about x, middle about y
+  const BodyId b = addBody(w, Geometry::box(half), 3.0, boxInertia(half, 3.0), Transform(),
+                           Material(), Vec3(0.1, -0.2, 0.3));
+  w.setBodyState(b, Transform(), Vec3(0.1, -0.2, 0.3), Vec3(0.01, 6.0, 0.01));
+  const Vec3 p0 = w.linearMomentum();
+  const Vec3 L0 = w.angularMomentum(Vec3::Zero());
+  double min_dot = 1.0;
+  for (int i = 0; i < 10000; ++i) {
+    w.step(kDt);
+    const Vec3 y_axis = w.bodyPose(b).q * Vec3::UnitY();
+    min_dot = std::min(min_dot, y_axis.dot(Vec3::UnitY()));
+  }
+  const Vec3 L1 = w.angularMomentum(Vec3::Zero());
+  EXPECT_LT((w.linearMomentum() - p0).norm(), 1e-6 * p0.norm());
+  EXPECT_LT((L1 - L0).norm(), 1e-6 * L0.norm());
+  EXPECT_LT(min_dot, -0.9) << "the middle axis never flipped";
+  std::printf("[ flight   ] |dL|/|L| = %.2e, min y.y = %.3f\n", (L1 - L0).norm() / L0.norm(), min_dot);
+}

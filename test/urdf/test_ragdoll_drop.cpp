@@ -1,0 +1,86 @@
+// The bundled ragdoll, loaded from urdf/ragdoll.urdf, simulated by the core: it falls, lands,
+// comes to rest on the ground, and its joints hold (anchors together, limits respected).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "ragdoll_sim/urdf_loader.hpp"
+
+using namespace ragdoll_sim;
+
+namespace {
+struct Scene {
+  World world;
+  RagdollDef def;
+  Ragdoll ragdoll;
+
+  explicit Scene(const WorldDef& wd, const Transform& root_pose) : world(wd) {
+    const UrdfLoadResult r = loadUrdfFile(std::string(RAGDOLL_SIM_SOURCE_DIR) + "/urdf/ragdoll.urdf");
+    EXPECT_TRUE(r.ok) << r.error;
+    def = r.def;
+    BodyDef ground;
+    ground.type = BodyType::Static;
+    const BodyId g = world.createBody(ground);
+    world.addShape(g, {Geometry::plane(Vec3::UnitZ(), 0.0), Transform(), Material()});
+    ragdoll = spawnRagdoll(world, def, root_pose);
+  }
+
+  double maxAnchorError() const {
+    double e = 0.0;
+    for (JointId j : ragdoll.joints) e = std::max(e, world.jointAnchorError(j).norm());
+    return e;
+  }
+  // Largest violation of any joint limit (rad).
+  double maxLimitViolation() const {
+    double v = 0.0;
+    for (size_t k = 0; k < def.joints.size(); ++k) {
+      const RagdollJointDef& j = def.joints[k];
+      if (!j.limited) continue;
+      if (j.kind == RagdollJointKind::Hinge) {
+        const double a = world.hingeAngle(ragdoll.joints[k]);
+        v = std::max({v, j.lower[0] - a, a - j.upper[0]});
+      } else {
+        const auto a = world.ballAngles(ragdoll.joints[k]);
+        for (int i = 0; i < 3; ++i) v = std::max({v, j.lower[i] - a[i], a[i] - j.upper[i]});
+      }
+    }
+    return v;
+  }
+};
+}  // namespace
+
+TEST(RagdollDrop, FallsAndComesToRestOnTheGround) {
+  Scene s(WorldDef(), Transform(Vec3(0, 0, 1.5), quatFromRpy(0.0, 0.3, 0.0)));
+  const int pelvis = s.def.findLink("pelvis");
+  ASSERT_GE(pelvis, 0);
+  double worst_anchor = 0.0, worst_limit = 0.0;
+  for (int i = 0; i < 4000; ++i) {
+    s.world.step(1e-3);
+    worst_anchor = std::max(worst_anchor, s.maxAnchorError());
+    worst_limit = std::max(worst_limit, s.maxLimitViolation());
+  }
+  const BodyState p = s.world.bodyState(s.ragdoll.bodies[pelvis]);
+  ASSERT_TRUE(p.pose.p.allFinite());
+  EXPECT_GT(p.pose.p.z(), 0.05);
+  EXPECT_LT(p.pose.p.z(), 0.4);
+  double vmax = 0.0;
+  for (BodyId b : s.ragdoll.bodies) vmax = std::max(vmax, s.world.bodyState(b).linear_velocity.norm());
+  EXPECT_LT(vmax, 0.05) << "not at rest";
+  EXPECT_LT(worst_anchor, 0.005);
+  EXPECT_LT(s.maxAnchorError(), 0.001);
+  EXPECT_LT(worst_limit, 0.1);
+  std::printf("[ drop     ] pelvis z %.4f m, vmax %.2e m/s, anchor max %.2e m (rest %.2e), limit max %.3f rad\n",
+              p.pose.p.z(), vmax, worst_anchor, s.maxAnchorError(), worst_limit);
+}
+
+TEST(RagdollDrop, ImpulseInZeroGravityGivesMomentum) {
+  WorldDef wd;
+  wd.gravity.setZero();
+  Scene s(wd, Transform(Vec3(0, 0, 2.0), Quat::Identity()));
+  const BodyId pelvis = s.ragdoll.bodies[s.def.findLink("pelvis")];
+  const Vec3 J(0, 10, 0);
+  s.world.applyLinearImpulse(pelvis, J, s.world.comPosition(pelvis) + Vec3(0.02, 0, 0.05));
+  for (int i = 0; i < 500; ++i) s.world.step(1e-3);
+  EXPECT_LT((s.world.linearMomentum() - J).norm(), 1e-9 * J.norm());
+  EXPECT_NEAR(s.def.totalMass(), 70.0, 2.0);
+}
