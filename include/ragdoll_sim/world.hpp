@@ -27,6 +27,9 @@ struct WorldDef {
   double linear_slop = 0.0005;          // m, penetration allowed to keep contacts warm
   double max_linear_speed = 100.0;      // m/s, clamp against blow-ups
   double max_angular_speed = 200.0;     // rad/s
+  bool enable_sleep = true;
+  double time_to_sleep = 0.5;           // s an island must stay slow before it sleeps
+  double sleep_speed = 0.05;            // m/s, |v| + extent |w| below this counts as slow
 };
 
 // A contact point for display and tests.
@@ -80,6 +83,9 @@ class World {
   const std::vector<ShapeDef>& bodyShapes(BodyId body) const;
   Vec3 comPosition(BodyId body) const;
   Vec3 pointVelocity(BodyId body, const Vec3& world_point) const;
+  bool isAwake(BodyId body) const;
+  void wake(BodyId body);
+  int awakeBodyCount() const;
 
   JointType jointType(JointId joint) const;
   double hingeAngle(JointId joint) const;

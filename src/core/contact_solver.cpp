@@ -40,7 +40,7 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
   constraints_.clear();
   for (int ci = 0; ci < int(contacts.size()); ++ci) {
     const Contact& c = contacts[ci];
-    if (c.manifold.count == 0) continue;
+    if (c.manifold.count == 0 || (!motions[c.body_a].awake && !motions[c.body_b].awake)) continue;
     ContactConstraint cc;
     cc.a = c.body_a;
     cc.b = c.body_b;

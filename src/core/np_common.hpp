@@ -34,6 +34,12 @@ void reduce(const Vec3& normal, const Candidates& cs, double speculative, Manifo
 void closestSegmentParams(const Vec3& p1, const Vec3& d1, const Vec3& p2, const Vec3& d2,
                           double& s, double& t);
 
+// Two points for near-parallel segment cores pa + s da (radius ra) and pb + t db (radius rb)
+// whose projections overlap: B's core clipped to A's slab, each end against its closest point
+// on A, separations along n. Adds nothing otherwise.
+void parallelSegments(const Vec3& pa, const Vec3& da, double ra, const Vec3& pb, const Vec3& db,
+                      double rb, const Vec3& n, Candidates& cs);
+
 // Polygon (or a segment when n == 2) being clipped. Each vertex has a 16-bit id: an original
 // vertex keeps its own; a vertex made by plane j cutting the edge labelled L gets
 // 0x8000 | L << 7 | j. `label` names the edge leaving the vertex (an original edge index, or

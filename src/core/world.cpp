@@ -6,7 +6,9 @@
 //   2. prepare joints and contacts; substep h = dt / substeps;
 //   3. per substep: integrate velocities (gravity, forces, damping),
 //      warm start, solve with bias (soft), integrate positions, relax without bias;
-//   4. restitution, store impulses, write the deltas back to the bodies, clear forces.
+//   4. restitution, store impulses, write the deltas back to the bodies, clear forces;
+//   5. islands (island.hpp) that stayed slow long enough go to sleep. Sleeping bodies are
+//      identity solver bodies: not integrated, and pairs of them are not collided or solved.
 // Semi-implicit Euler: v += h a first, then x += h v with the new v (and the same for the
 // rotation, q += h/2 (0,w) q, renormalised, with the gyroscopic update in integratePositions).
 #include "ragdoll_sim/world.hpp"
@@ -19,6 +21,7 @@
 #include "broadphase.hpp"
 #include "contact.hpp"
 #include "contact_solver.hpp"
+#include "island.hpp"
 #include "joint.hpp"
 
 namespace ragdoll_sim {
@@ -45,11 +48,14 @@ struct World::Impl {
   Broadphase broadphase;
   std::vector<Contact> contacts, next_contacts;
   ContactSolver contact_solver;
+  Islands islands;
   // scratch, reused every step
   std::vector<Aabb> aabbs;
   std::vector<char> unbounded;
   std::vector<PlaneProxy> planes;
   std::vector<std::pair<int, int>> pairs;
+  std::vector<double> island_slow;
+  std::vector<Joint*> active_joints;
 
   const ShapeDef& shapeDef(int s) const { return bodies[shapes[s].body].shapes[shapes[s].index]; }
   Transform shapePose(int s) const {
@@ -60,11 +66,18 @@ struct World::Impl {
       throw std::out_of_range("ragdoll_sim: invalid body id");
   }
   bool isDynamic(int b) const { return bodies[b].def.type == BodyType::Dynamic; }
+  void wake(int b) {
+    if (!isDynamic(b)) return;
+    motions[b].awake = true;
+    motions[b].sleep_time = 0.0;
+  }
 
   void collide(double dt);
   void integrateVelocities(double h);
   void integratePositions(double h);
   void finishStep();
+  void buildIslands();
+  void updateSleep(double dt);
   Joint& addJoint(JointType type, BodyId a, BodyId b, const Transform& fa, const Transform& fb,
                   bool collide_connected);
 };
@@ -113,22 +126,26 @@ void World::Impl::collide(double dt) {
 
   size_t old = 0;
   for (Contact& c : next_contacts) {
+    while (old < contacts.size() && contacts[old].key < c.key) ++old;
+    const bool have_old = old < contacts.size() && contacts[old].key == c.key;
+    if (!motions[c.body_a].awake && !motions[c.body_b].awake) {
+      if (have_old) c = contacts[old];  // asleep: the manifold and impulses stay as they were
+      continue;
+    }
     const ShapeDef &da = shapeDef(c.shape_a), &db = shapeDef(c.shape_b);
     ragdoll_sim::collide(da.geometry, shapePose(c.shape_a), db.geometry, shapePose(c.shape_b),
                          spec, c.manifold);
     c.static_friction = std::sqrt(da.material.static_friction * db.material.static_friction);
     c.kinetic_friction = std::sqrt(da.material.kinetic_friction * db.material.kinetic_friction);
     c.restitution = std::max(da.material.restitution, db.material.restitution);
-    while (old < contacts.size() && contacts[old].key < c.key) ++old;
-    if (old < contacts.size() && contacts[old].key == c.key) matchImpulses(contacts[old], c);
-    else matchImpulses(Contact(), c);
+    matchImpulses(have_old ? contacts[old] : Contact(), c);
   }
   contacts.swap(next_contacts);
 }
 
 void World::Impl::integrateVelocities(double h) {
   for (size_t i = 0; i < bodies.size(); ++i) {
-    if (!isDynamic(int(i))) continue;
+    if (!motions[i].awake) continue;
     const BodyMotion& m = motions[i];
     SolverBody& s = solver[i];
     const Vec3 a = m.gravity_scale * def.gravity + m.inv_mass * m.force;
@@ -142,8 +159,8 @@ void World::Impl::integrateVelocities(double h) {
 // term (precession, the middle-axis flip) and keeps L exact in free flight.
 void World::Impl::integratePositions(double h) {
   for (size_t i = 0; i < bodies.size(); ++i) {
-    if (!isDynamic(int(i))) continue;
     const BodyMotion& m = motions[i];
+    if (!m.awake) continue;
     SolverBody& s = solver[i];
     s.dp += h * s.v;
     const Quat q0 = s.dq * m.q;
@@ -161,7 +178,7 @@ void World::Impl::finishStep() {
   for (size_t i = 0; i < bodies.size(); ++i) {
     BodyMotion& m = motions[i];
     SolverBody& s = solver[i];
-    if (isDynamic(int(i))) {
+    if (m.awake) {
       m.x += s.dp;
       m.q = (s.dq * m.q).normalized();
       m.v = s.v;
@@ -175,11 +192,50 @@ void World::Impl::finishStep() {
   }
 }
 
+void World::Impl::buildIslands() {
+  islands.reset(int(bodies.size()));
+  for (const Joint& j : joints)
+    if (isDynamic(j.a) && isDynamic(j.b)) islands.unite(j.a, j.b);
+  for (const Contact& c : contacts)
+    if (c.manifold.count > 0 && isDynamic(c.body_a) && isDynamic(c.body_b))
+      islands.unite(c.body_a, c.body_b);
+  // An island with one awake body is awake as a whole.
+  for (size_t i = 0; i < bodies.size(); ++i)
+    if (motions[i].awake) motions[islands.find(int(i))].awake = true;
+  for (size_t i = 0; i < bodies.size(); ++i)
+    if (isDynamic(int(i)) && !motions[i].awake && motions[islands.find(int(i))].awake) wake(int(i));
+}
+
+void World::Impl::updateSleep(double dt) {
+  if (!def.enable_sleep) return;
+  const int n = int(bodies.size());
+  // island root's sleep_time becomes the island minimum (roots have the smallest index)
+  std::vector<double>& slow = island_slow;
+  slow.assign(n, 1e300);
+  for (int i = 0; i < n; ++i) {
+    BodyMotion& m = motions[i];
+    if (!m.awake) continue;
+    const double speed = m.v.norm() + m.extent * m.w.norm();
+    m.sleep_time = speed < def.sleep_speed ? m.sleep_time + dt : 0.0;
+    double& r = slow[islands.find(i)];
+    r = std::min(r, m.sleep_time);
+  }
+  for (int i = 0; i < n; ++i) {
+    BodyMotion& m = motions[i];
+    if (!m.awake || slow[islands.find(i)] < def.time_to_sleep) continue;
+    m.awake = false;
+    m.v.setZero();
+    m.w.setZero();
+  }
+}
+
 Joint& World::Impl::addJoint(JointType type, BodyId a, BodyId b, const Transform& fa,
                              const Transform& fb, bool collide_connected) {
   checkBody(a);
   checkBody(b);
   if (a == b) throw std::invalid_argument("ragdoll_sim: a joint needs two different bodies");
+  wake(a.index);
+  wake(b.index);
   Joint j;
   j.type = type;
   j.a = a.index;
@@ -214,6 +270,7 @@ BodyId World::createBody(const BodyDef& def) {
     m.inv_inertia_local = def.inertia.inverse();
     m.v = def.linear_velocity;
     m.w = def.angular_velocity;
+    m.awake = true;
   }
   w.bodies.push_back(std::move(body));
   w.motions.push_back(m);
@@ -227,6 +284,13 @@ void World::addShape(BodyId id, const ShapeDef& def) {
   b.shapes.push_back(def);
   b.shape_ids.push_back(int(impl_->shapes.size()));
   impl_->shapes.push_back({id.index, int(b.shapes.size() - 1)});
+  // bounding-sphere radius about the COM, for the sleep speed
+  BodyMotion& m = impl_->motions[id.index];
+  if (!isUnbounded(def.geometry)) {
+    const Aabb box = computeAabb(def.geometry, def.local);
+    const Vec3 c = 0.5 * (box.lo + box.hi) - m.local_com;
+    m.extent = std::max(m.extent, c.norm() + 0.5 * (box.hi - box.lo).norm());
+  }
 }
 
 JointId World::createBallJoint(const BallJointDef& def) {
@@ -272,13 +336,14 @@ void World::step(double dt) {
                                       w.def.joint_damping_ratio, ctx.h);
 
   w.collide(dt);
+  w.buildIslands();
 
   for (size_t i = 0; i < w.bodies.size(); ++i) {
     const BodyMotion& m = w.motions[i];
     SolverBody& s = w.solver[i];
     s.dp.setZero();
     s.dq = Quat::Identity();
-    if (w.isDynamic(int(i))) {
+    if (m.awake) {
       const Mat3 R = m.q.toRotationMatrix();
       s.v = m.v;
       s.w = m.w;
@@ -289,22 +354,28 @@ void World::step(double dt) {
     }
   }
 
-  for (Joint& j : w.joints) prepareJoint(j, ctx);
+  w.active_joints.clear();
+  for (Joint& j : w.joints)
+    if (w.motions[j.a].awake || w.motions[j.b].awake) {
+      prepareJoint(j, ctx);
+      w.active_joints.push_back(&j);
+    }
   w.contact_solver.prepare(w.contacts, ctx);
 
   for (int sub = 0; sub < substeps; ++sub) {
     w.integrateVelocities(ctx.h);
-    for (Joint& j : w.joints) warmStartJoint(j, ctx);
+    for (Joint* j : w.active_joints) warmStartJoint(*j, ctx);
     w.contact_solver.warmStart(ctx);
-    for (Joint& j : w.joints) solveJoint(j, ctx, true);
+    for (Joint* j : w.active_joints) solveJoint(*j, ctx, true);
     w.contact_solver.solve(ctx, true);
     w.integratePositions(ctx.h);
-    for (Joint& j : w.joints) solveJoint(j, ctx, false);
+    for (Joint* j : w.active_joints) solveJoint(*j, ctx, false);
     w.contact_solver.solve(ctx, false);
   }
   w.contact_solver.applyRestitution(ctx);
   w.contact_solver.storeImpulses(w.contacts);
   w.finishStep();
+  w.updateSleep(dt);
   w.time += dt;
 }
 
@@ -314,6 +385,7 @@ void World::setGravity(const Vec3& g) { impl_->def.gravity = g; }
 
 void World::applyLinearImpulse(BodyId id, const Vec3& impulse, const Vec3& world_point) {
   impl_->checkBody(id);
+  impl_->wake(id.index);
   BodyMotion& m = impl_->motions[id.index];
   if (m.inv_mass == 0.0) return;
   const Mat3 R = m.q.toRotationMatrix();
@@ -323,12 +395,14 @@ void World::applyLinearImpulse(BodyId id, const Vec3& impulse, const Vec3& world
 
 void World::applyLinearImpulseToCenter(BodyId id, const Vec3& impulse) {
   impl_->checkBody(id);
+  impl_->wake(id.index);
   BodyMotion& m = impl_->motions[id.index];
   m.v += m.inv_mass * impulse;
 }
 
 void World::applyAngularImpulse(BodyId id, const Vec3& impulse) {
   impl_->checkBody(id);
+  impl_->wake(id.index);
   BodyMotion& m = impl_->motions[id.index];
   if (m.inv_mass == 0.0) return;
   const Mat3 R = m.q.toRotationMatrix();
@@ -337,6 +411,7 @@ void World::applyAngularImpulse(BodyId id, const Vec3& impulse) {
 
 void World::applyForce(BodyId id, const Vec3& force, const Vec3& world_point) {
   impl_->checkBody(id);
+  impl_->wake(id.index);
   BodyMotion& m = impl_->motions[id.index];
   m.force += force;
   m.torque += (world_point - m.x).cross(force);
@@ -344,11 +419,13 @@ void World::applyForce(BodyId id, const Vec3& force, const Vec3& world_point) {
 
 void World::applyTorque(BodyId id, const Vec3& torque) {
   impl_->checkBody(id);
+  impl_->wake(id.index);
   impl_->motions[id.index].torque += torque;
 }
 
 void World::setBodyState(BodyId id, const Transform& pose, const Vec3& v, const Vec3& w) {
   impl_->checkBody(id);
+  impl_->wake(id.index);
   BodyMotion& m = impl_->motions[id.index];
   m.q = pose.q.normalized();
   m.x = pose.p + m.q * m.local_com;
@@ -361,6 +438,22 @@ void World::setBodyState(BodyId id, const Transform& pose, const Vec3& v, const 
 
 int World::bodyCount() const { return int(impl_->bodies.size()); }
 int World::jointCount() const { return int(impl_->joints.size()); }
+bool World::isAwake(BodyId id) const {
+  impl_->checkBody(id);
+  return impl_->motions[id.index].awake;
+}
+
+void World::wake(BodyId id) {
+  impl_->checkBody(id);
+  impl_->wake(id.index);
+}
+
+int World::awakeBodyCount() const {
+  int n = 0;
+  for (const BodyMotion& m : impl_->motions) n += m.awake ? 1 : 0;
+  return n;
+}
+
 bool World::isValid(BodyId id) const { return id.index >= 0 && id.index < bodyCount(); }
 
 BodyState World::bodyState(BodyId id) const {

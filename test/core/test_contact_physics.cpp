@@ -136,3 +136,27 @@ TEST(FreeFlight, MomentumConservedAndMiddleAxisFlips) {
   EXPECT_LT(min_dot, -0.9) << "the middle axis never flipped";
   std::printf("[ flight   ] |dL|/|L| = %.2e, min y.y = %.3f\n", (L1 - L0).norm() / L0.norm(), min_dot);
 }
+
+// A body at rest falls asleep after time_to_sleep and wakes on an impulse.
+TEST(Sleep, RestingBoxSleepsAndWakesOnImpulse) {
+  World w;
+  addStaticPlane(w, Quat::Identity(), Material());
+  const Vec3 half(0.2, 0.2, 0.1);
+  const BodyId box = addBody(w, Geometry::box(half), 2.0, boxInertia(half, 2.0),
+                             Transform(Vec3(0, 0, 0.2), Quat::Identity()), Material());
+  int asleep_at = -1;
+  for (int i = 0; i < 3000 && asleep_at < 0; ++i) {
+    w.step(kDt);
+    if (!w.isAwake(box)) asleep_at = i;
+  }
+  ASSERT_GT(asleep_at, 0) << "never slept";
+  EXPECT_EQ(w.awakeBodyCount(), 0);
+  const Vec3 rest = w.comPosition(box);
+  for (int i = 0; i < 100; ++i) w.step(kDt);
+  EXPECT_EQ((w.comPosition(box) - rest).norm(), 0.0);  // asleep: not integrated at all
+  w.applyLinearImpulse(box, Vec3(2.0, 0, 0), w.comPosition(box));
+  EXPECT_TRUE(w.isAwake(box));
+  for (int i = 0; i < 100; ++i) w.step(kDt);
+  EXPECT_GT(w.comPosition(box).x() - rest.x(), 0.01);
+  std::printf("[ sleep    ] box asleep after %.3f s\n", (asleep_at + 1) * kDt);
+}

@@ -1,0 +1,28 @@
+// Distance or penetration between two convex cores given by support mappings.
+#pragma once
+
+#include "ragdoll_sim/shape.hpp"
+
+namespace ragdoll_sim {
+namespace np {
+
+// The core of a placed shape: a sphere's centre, a capsule's segment, or the whole solid for
+// a box, cylinder or hull. The shape is the core grown by radius().
+struct ConvexCore {
+  const Geometry* g;
+  Transform x;
+  Vec3 support(const Vec3& d) const;  // world point of the core farthest along d (world)
+  double radius() const;
+};
+
+struct CoreDistance {
+  Vec3 normal;      // unit, from A to B
+  double distance;  // signed: negative is the penetration depth of the cores
+  Vec3 pa, pb;      // witness points on the cores (pb - pa == distance * normal)
+};
+
+// GJK for separated cores; EPA on the Minkowski difference when they overlap.
+CoreDistance coreDistance(const ConvexCore& a, const ConvexCore& b);
+
+}  // namespace np
+}  // namespace ragdoll_sim
