@@ -16,7 +16,7 @@ namespace ragdoll_sim {
 struct WorldDef {
   Vec3 gravity = Vec3(0, 0, -9.81);
   int substeps = 4;                     // solver substeps per step (soft step)
-  double contact_hertz = 30.0;          // contact softness (capped at a quarter of the substep rate)
+  double contact_hertz = 240.0;         // contact softness (capped at a quarter of the substep rate)
   double contact_damping_ratio = 10.0;
   double joint_hertz = 240.0;           // joint position-error softness
   double joint_damping_ratio = 2.0;
