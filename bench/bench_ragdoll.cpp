@@ -131,18 +131,41 @@ struct Metrics {
 
 int main(int argc, char** argv) {
   char scenario = 'a';
-  int steps = -1, substeps = -1;
+  int steps = -1;
+  WorldDef wd;
   bool metrics = true;
   std::string urdf = "../shared/peers/ragdoll15.urdf";
   for (int i = 1; i < argc; ++i) {
     const std::string s = argv[i];
     if (s == "--steps" && i + 1 < argc) steps = std::atoi(argv[++i]);
     else if (s == "--urdf" && i + 1 < argc) urdf = argv[++i];
-    else if (s == "--substeps" && i + 1 < argc) substeps = std::atoi(argv[++i]);
+    else if (s == "--opt" && i + 1 < argc) {
+      // comma-separated key=value solver settings
+      std::string opts = argv[++i];
+      for (size_t b = 0; b < opts.size();) {
+        size_t e = opts.find(',', b);
+        if (e == std::string::npos) e = opts.size();
+        const std::string kv = opts.substr(b, e - b);
+        const size_t eq = kv.find('=');
+        const std::string k = kv.substr(0, eq);
+        const double v = eq == std::string::npos ? 1.0 : std::atof(kv.c_str() + eq + 1);
+        if (k == "substeps") wd.substeps = int(v);
+        else if (k == "joint_hertz") wd.joint_hertz = v;
+        else if (k == "joint_zeta") wd.joint_damping_ratio = v;
+        else if (k == "contact_hertz") wd.contact_hertz = v;
+        else if (k == "contact_zeta") wd.contact_damping_ratio = v;
+        else if (k == "sleep") wd.enable_sleep = v != 0.0;
+        else {
+          std::fprintf(stderr, "unknown option %s\n", k.c_str());
+          return 2;
+        }
+        b = e + 1;
+      }
+    }
     else if (s == "--no-metrics") metrics = false;
     else if (s.size() == 1 && s[0] >= 'a' && s[0] <= 'c') scenario = s[0];
     else {
-      std::fprintf(stderr, "usage: %s a|b|c [--steps N] [--urdf F] [--substeps N] [--no-metrics]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s a|b|c [--steps N] [--urdf F] [--no-metrics] [--opt substeps=4,joint_hertz=240,contact_hertz=240,sleep=1,...]\n", argv[0]);
       return 2;
     }
   }
@@ -157,8 +180,6 @@ int main(int argc, char** argv) {
   const int n = int(sc.roots.size());
   const double dt = 1e-3;
 
-  WorldDef wd;
-  if (substeps > 0) wd.substeps = substeps;
   World world(wd);
   BodyDef ground;
   ground.type = BodyType::Static;
@@ -191,10 +212,10 @@ int main(int argc, char** argv) {
       "body_steps_per_s=%.0f us_per_body_step=%.3f max_anchor_err_m=%.3g max_ground_pen_m=%.4f "
       "max_limit_viol_rad=%.3g pelvis_z_3s_mean=%.4f pelvis_z_3s_min=%.4f pelvis_z_3s_max=%.4f "
       "ground_pen_3s_m=%.4f anchor_err_3s_m=%.3g vmax_3s=%.3g worst_limit=%s@%d nan=%d "
-      "loop_wall_s=%.3f substeps=%d max_contacts=%zu\n",
+      "loop_wall_s=%.3f substeps=%d joint_hertz=%g contact_hertz=%g sleep=%d max_contacts=%zu\n",
       sc.id, n, bodies, steps, wall, sps, sps * bodies, 1e6 * wall / (steps * double(bodies)),
       m.max_anchor, m.max_pen, m.max_limit, m.pel_mean, m.pel_min, m.pel_max, m.pen3, m.anchor3,
       m.vmax3, m.worst_joint.c_str(), m.worst_step, m.nan ? 1 : 0, loop_wall, wd.substeps,
-      world.contacts().size());
+      wd.joint_hertz, wd.contact_hertz, wd.enable_sleep ? 1 : 0, world.contacts().size());
   return 0;
 }

@@ -18,7 +18,7 @@ struct WorldDef {
   int substeps = 4;                     // solver substeps per step (soft step)
   double contact_hertz = 240.0;         // contact softness (capped at a quarter of the substep rate)
   double contact_damping_ratio = 10.0;
-  double joint_hertz = 240.0;           // joint position-error softness
+  double joint_hertz = 1000.0;          // joint position-error softness
   double joint_damping_ratio = 2.0;
   double max_push_velocity = 3.0;       // m/s, cap on the velocity used to push bodies apart
   double restitution_threshold = 1.0;   // m/s, no bounce below this approach speed

@@ -76,14 +76,14 @@ void segmentPair(const Vec3& pa, const Vec3& da, double ra, const Vec3& pb, cons
   const double dist = n.norm();
   if (dist > 1e-12) {
     n /= dist;
-  } else {  // cores touch: use the plane through both axes, else any axis perpendicular
+  } else {  // cores touch: normal of the plane through both axes, else across one axis
+    const Vec3 axis = da.squaredNorm() > 1e-24 ? da : db;
     n = da.cross(db);
-    if (n.squaredNorm() < 1e-24 && da.squaredNorm() > 1e-24)
-      n = centre_dir - centre_dir.dot(da) / da.squaredNorm() * da;
-    if (n.squaredNorm() < 1e-24) n = centre_dir;
-    n = n.squaredNorm() < 1e-24 ? (da.squaredNorm() > 1e-24 ? anyPerpendicular(da.normalized())
-                                                             : Vec3(Vec3::UnitZ()))
-                                : Vec3(n.normalized());
+    if (n.squaredNorm() < 1e-24 && axis.squaredNorm() > 1e-24)
+      n = centre_dir - centre_dir.dot(axis) / axis.squaredNorm() * axis;
+    if (n.squaredNorm() < 1e-24)
+      n = axis.squaredNorm() > 1e-24 ? anyPerpendicular(axis.normalized()) : Vec3(Vec3::UnitZ());
+    n.normalize();
     if (n.dot(centre_dir) < 0) n = -n;
   }
   const double sep = dist - ra - rb;

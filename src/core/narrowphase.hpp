@@ -8,9 +8,9 @@
 namespace ragdoll_sim {
 
 struct ManifoldPoint {
-  Vec3 point;          // world, midway between the two surfaces
-  double separation;   // signed distance along the normal (negative = penetration)
-  uint32_t id;         // feature id, stable across steps while the same features touch
+  Vec3 point = Vec3::Zero();  // world, midway between the two surfaces
+  double separation = 0.0;    // signed distance along the normal (negative = penetration)
+  uint32_t id = 0;            // feature id, stable across steps while the same features touch
 };
 
 struct Manifold {

@@ -28,16 +28,21 @@ void reduce(const Vec3& normal, const Candidates& cs, double speculative, Manifo
     for (int i = 0; i < k; ++i) emit(idx[i]);
     return;
   }
-  auto p = [&](int i) -> const Vec3& { return cs.c[idx[i]].point; };
-  auto area = [&](int a, int b, int c) { return (p(b) - p(a)).cross(p(c) - p(a)).dot(normal); };
+  // Work in the contact plane: 2D coordinates along two tangents.
+  const Vec3 t1 = anyPerpendicular(normal), t2 = normal.cross(t1);
+  Eigen::Vector2d p[Candidates::kCap];
+  for (int i = 0; i < k; ++i) p[i] = {t1.dot(cs.c[idx[i]].point), t2.dot(cs.c[idx[i]].point)};
+  auto area = [&](int a, int b, int c) {
+    const Eigen::Vector2d u = p[b] - p[a], v = p[c] - p[a];
+    return u.x() * v.y() - u.y() * v.x();
+  };
   int i0 = 0;
   for (int i = 1; i < k; ++i)
     if (cs.c[idx[i]].separation < cs.c[idx[i0]].separation) i0 = i;
   int i1 = -1;
   double best = -1;
   for (int i = 0; i < k; ++i) {
-    const Vec3 d = p(i) - p(i0);
-    const double d2 = (d - d.dot(normal) * normal).squaredNorm();
+    const double d2 = (p[i] - p[i0]).squaredNorm();
     if (i != i0 && d2 > best) best = d2, i1 = i;
   }
   int i2 = -1;

@@ -20,9 +20,18 @@ struct Candidates {
   static constexpr int kCap = 64;
   Candidate c[kCap];
   int n = 0;
-  // pB lies on the surface of B; the stored point is midway between the two surfaces.
+  // pB lies on the surface of B; the stored point is midway between the two surfaces. When
+  // full, the new point replaces the shallowest one if it is deeper.
   void add(const Vec3& pB, const Vec3& normal, double sep, uint32_t id) {
-    if (n < kCap) c[n++] = {pB - 0.5 * sep * normal, sep, id};
+    const Candidate cand{pB - 0.5 * sep * normal, sep, id};
+    if (n < kCap) {
+      c[n++] = cand;
+      return;
+    }
+    int worst = 0;
+    for (int i = 1; i < n; ++i)
+      if (c[i].separation > c[worst].separation) worst = i;
+    if (sep < c[worst].separation) c[worst] = cand;
   }
 };
 

@@ -27,7 +27,7 @@ constexpr double kEdgeBias = 1e-3;  // an edge axis must beat both faces by this
 
 struct Query {
   double sep = -std::numeric_limits<double>::infinity();
-  int fa = 0, fb = 0;  // faces, or edges for an edge query
+  int ia = 0, ib = 0;  // face of the queried shape, or the two edges of an edge query
   Vec3 axis = Vec3::UnitZ();
 };
 
@@ -83,11 +83,11 @@ void edgeContact(const Poly& a, const Transform& xa, const Poly& b, const Transf
 void finish(const Poly& pa, const Transform& xa, const Poly& pb, const Transform& xb,
             const Query& fa, const Query& fb, const Query& edge, double spec, Manifold& out) {
   if (edge.sep > std::max(fa.sep, fb.sep) + kEdgeBias)
-    edgeContact(pa, xa, pb, xb, edge.fa, edge.fb, edge.axis, spec, out);
+    edgeContact(pa, xa, pb, xb, edge.ia, edge.ib, edge.axis, spec, out);
   else if (fb.sep > fa.sep + kFaceBias)
-    faceContact(pb, xb, pa, xa, fb.fa, true, spec, out);
+    faceContact(pb, xb, pa, xa, fb.ia, true, spec, out);
   else
-    faceContact(pa, xa, pb, xb, fa.fa, false, spec, out);
+    faceContact(pa, xa, pb, xb, fa.ia, false, spec, out);
 }
 
 // Most separating face of p against q; rel places q in p's frame.
@@ -96,7 +96,7 @@ Query faceQuery(const Poly& p, const Poly& q, const Transform& rel) {
   for (int f = 0; f < p.numFaces(); ++f) {
     const Vec3 n = p.normal(f);
     const double s = n.dot(rel.apply(q.vertex(q.support(rel.q.conjugate() * -n)))) - p.offset(f);
-    if (s > best.sep) best.sep = s, best.fa = f;
+    if (s > best.sep) best.sep = s, best.ia = f;
   }
   return best;
 }
@@ -120,10 +120,10 @@ void collideBoxBox(const Geometry& a, const Transform& xa, const Geometry& b,
   Query fa, fb, edge;
   for (int i = 0; i < 3; ++i) {
     const double s = std::abs(t[i]) - ha[i] - abs_r.row(i).dot(hb);
-    if (s > fa.sep) fa.sep = s, fa.fa = 2 * i + (t[i] < 0 ? 1 : 0);
+    if (s > fa.sep) fa.sep = s, fa.ia = 2 * i + (t[i] < 0 ? 1 : 0);
     const double tb = t.dot(r.col(i));
     const double sb = std::abs(tb) - abs_r.col(i).dot(ha) - hb[i];
-    if (sb > fb.sep) fb.sep = sb, fb.fa = 2 * i + (tb > 0 ? 1 : 0);
+    if (sb > fb.sep) fb.sep = sb, fb.ia = 2 * i + (tb > 0 ? 1 : 0);
   }
   if (std::max(fa.sep, fb.sep) > spec) return;
   for (int i = 0; i < 3; ++i)
@@ -140,8 +140,8 @@ void collideBoxBox(const Geometry& a, const Transform& xa, const Geometry& b,
         const int ja = (i + 1) % 3, ka = (i + 2) % 3, jb = (j + 1) % 3, kb = (j + 2) % 3;
         edge.sep = s;
         edge.axis = l;
-        edge.fa = 4 * i + (l[ja] > 0 ? 1 : 0) + (l[ka] > 0 ? 2 : 0);
-        edge.fb = 4 * j + (lb[jb] < 0 ? 1 : 0) + (lb[kb] < 0 ? 2 : 0);
+        edge.ia = 4 * i + (l[ja] > 0 ? 1 : 0) + (l[ka] > 0 ? 2 : 0);
+        edge.ib = 4 * j + (lb[jb] < 0 ? 1 : 0) + (lb[kb] < 0 ? 2 : 0);
       }
     }
   finish(Poly(a), xa, Poly(b), xb, fa, fb, edge, spec, out);
@@ -178,7 +178,7 @@ void collidePolytopes(const Geometry& a, const Transform& xa, const Geometry& b,
       if (l.dot(p1 - ca) < 0) l = -l;
       const double s = l.dot(p2 - p1);
       if (s > spec) return;
-      if (s > edge.sep) edge.sep = s, edge.fa = ea, edge.fb = eb, edge.axis = l;
+      if (s > edge.sep) edge.sep = s, edge.ia = ea, edge.ib = eb, edge.axis = l;
     }
   }
   finish(pa, xa, pb, xb, fa, fb, edge, spec, out);

@@ -177,6 +177,19 @@ TEST(Narrowphase, PlaneHullAndPlanePlane) {
   m = run(kGround, Transform(), hull, at(0, 0, 0.5 * std::sqrt(3.0) - 0.01, kCornerDown));
   ASSERT_EQ(m.count, 1);
   EXPECT_EQ(run(kGround, Transform(), kGround, at(0, 0, -1)).count, 0);
+
+  // A hull with far more vertices under the plane than a manifold buffer holds keeps the deepest.
+  std::vector<Vec3> ball;
+  for (int i = 0; i <= 30; ++i)
+    for (int j = 0; j < 60; ++j) {
+      const double th = kPi * i / 30, ph = kPi * j / 30;
+      ball.push_back(Vec3(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), -std::cos(th)));
+    }
+  const Geometry round = Geometry::convexHull(ball);
+  ASSERT_TRUE(round.hull);
+  m = run(kGround, Transform(), round, at(0, 0, 0.5), 0.5);
+  ASSERT_EQ(m.count, 4);
+  EXPECT_NEAR(minSep(m), -0.5, 1e-12);
 }
 
 // ------------------------------------------------------------------- spheres and capsules
@@ -204,6 +217,11 @@ TEST(Narrowphase, SphereCapsule) {
   ASSERT_EQ(m.count, 1);
   expectNormal(m, -Vec3::UnitZ());
   EXPECT_NEAR(m.points[0].separation, -0.01, 1e-12);
+  m = run(s, at(0.2, 0, 0), c, at(0, 0, 0, rot(kPi / 2, Vec3::UnitY())));  // centre on the axis
+  ASSERT_EQ(m.count, 1);
+  EXPECT_NEAR(m.normal.norm(), 1, 1e-12);
+  EXPECT_NEAR(std::abs(m.normal.x()), 0, 1e-12);
+  EXPECT_NEAR(m.points[0].separation, -0.3, 1e-12);
   m = run(s, at(0.79, 0, 0), c, at(0, 0, 0, rot(kPi / 2, Vec3::UnitY())));  // end cap
   ASSERT_EQ(m.count, 1);
   expectNormal(m, -Vec3::UnitX());
@@ -584,8 +602,9 @@ TEST(Narrowphase, FuzzAllPairsFiniteAndConsistent) {
           ASSERT_GT(m.points[i].separation, -2.0);
         }
         // A sphere's separation is its centre's signed distance to the other shape minus r.
-        if (a.type == ShapeType::Sphere && b.type != ShapeType::ConvexHull)
+        if (a.type == ShapeType::Sphere && b.type != ShapeType::ConvexHull) {
           EXPECT_NEAR(minSep(m), sdf(b, xb, xa.p) - a.radius, 1e-6) << shapeTypeName(b.type);
+        }
       }
     }
 }
