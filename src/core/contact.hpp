@@ -15,7 +15,7 @@ struct Contact {
   int body_a = -1, body_b = -1;
   Manifold manifold;
   double normal_impulse[Manifold::kMaxPoints] = {};
-  Vec3 friction_impulse[Manifold::kMaxPoints];  // world, re-projected on new tangents
+  Vec3 friction_impulse[Manifold::kMaxPoints] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};  // world, re-projected on new tangents
   double static_friction = 0.0, kinetic_friction = 0.0, restitution = 0.0;
 };
 
