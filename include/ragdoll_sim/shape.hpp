@@ -53,11 +53,13 @@ struct Geometry {
   Mat3 unitInertia() const;
 };
 
-// Contact coefficients; a pair combines them (friction: geometric mean, restitution: max).
+// Contact coefficients of one surface. A pair of surfaces uses the coefficients listed for
+// the pair of material ids in WorldDef::materials, else combines the two (material.hpp).
 struct Material {
   double static_friction = 0.8;
   double kinetic_friction = 0.8;
   double restitution = 0.0;
+  int id = 0;  // index in the material table; 0 = unnamed
 };
 
 struct ShapeDef {

@@ -9,6 +9,7 @@
 
 #include "ragdoll_sim/body.hpp"
 #include "ragdoll_sim/joint.hpp"
+#include "ragdoll_sim/material.hpp"
 #include "ragdoll_sim/shape.hpp"
 
 namespace ragdoll_sim {
@@ -30,6 +31,7 @@ struct WorldDef {
   bool enable_sleep = true;
   double time_to_sleep = 0.5;           // s an island must stay slow before it sleeps
   double sleep_speed = 0.05;            // m/s, |v| + extent |w| below this counts as slow
+  MaterialTable materials;              // pair coefficients and the combine rules
 };
 
 // A contact point for display and tests.

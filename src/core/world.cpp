@@ -135,9 +135,10 @@ void World::Impl::collide(double dt) {
     const ShapeDef &da = shapeDef(c.shape_a), &db = shapeDef(c.shape_b);
     ragdoll_sim::collide(da.geometry, shapePose(c.shape_a), db.geometry, shapePose(c.shape_b),
                          spec, c.manifold);
-    c.static_friction = std::sqrt(da.material.static_friction * db.material.static_friction);
-    c.kinetic_friction = std::sqrt(da.material.kinetic_friction * db.material.kinetic_friction);
-    c.restitution = std::max(da.material.restitution, db.material.restitution);
+    const Material pair = def.materials.resolve(da.material, db.material);
+    c.static_friction = pair.static_friction;
+    c.kinetic_friction = pair.kinetic_friction;
+    c.restitution = pair.restitution;
     matchImpulses(have_old ? contacts[old] : Contact(), c);
   }
   contacts.swap(next_contacts);

@@ -160,3 +160,46 @@ TEST(Sleep, RestingBoxSleepsAndWakesOnImpulse) {
   EXPECT_GT(w.comPosition(box).x() - rest.x(), 0.01);
   std::printf("[ sleep    ] box asleep after %.3f s\n", (asleep_at + 1) * kDt);
 }
+
+// A compound body (two spheres on a bar, offsets from the COM) rests on both spheres.
+TEST(Compound, DumbbellRestsOnBothEnds) {
+  World w;
+  addStaticPlane(w, Quat::Identity(), Material());
+  BodyDef d;
+  d.pose = Transform(Vec3(0, 0, 0.5), quatFromRpy(0.0, 0.2, 0.0));
+  d.mass = 2.0;
+  d.inertia = Vec3(0.005, 0.2, 0.2).asDiagonal();
+  const BodyId b = w.createBody(d);
+  const double r = 0.08;
+  w.addShape(b, {Geometry::sphere(r), Transform(Vec3(-0.4, 0, 0), Quat::Identity()), Material()});
+  w.addShape(b, {Geometry::sphere(r), Transform(Vec3(0.4, 0, 0), Quat::Identity()), Material()});
+  w.addShape(b, {Geometry::capsule(0.02, 0.4), Transform(Vec3::Zero(), quatFromRpy(0, M_PI / 2, 0)), Material()});
+  for (int i = 0; i < 3000; ++i) w.step(kDt);
+  const Transform p = w.bodyPose(b);
+  EXPECT_NEAR(p.apply(Vec3(-0.4, 0, 0)).z(), r, 2e-3);
+  EXPECT_NEAR(p.apply(Vec3(0.4, 0, 0)).z(), r, 2e-3);
+  int points = 0;
+  for (const ContactInfo& c : w.contacts()) points += c.separation < 1e-3 ? 1 : 0;
+  EXPECT_EQ(points, 2);
+}
+
+// Penetration is removed without adding energy: a box created 3 cm deep in the ground is
+// pushed out and stays put; it never rises above its resting height.
+TEST(Penetration, PushOutAddsNoEnergy) {
+  World w;
+  addStaticPlane(w, Quat::Identity(), Material());
+  const Vec3 half(0.2, 0.2, 0.1);
+  const BodyId box = addBody(w, Geometry::box(half), 2.0, boxInertia(half, 2.0),
+                             Transform(Vec3(0, 0, half.z() - 0.03), Quat::Identity()), Material());
+  double max_z = 0.0, max_up = 0.0;
+  for (int i = 0; i < 1000; ++i) {
+    w.step(kDt);
+    max_z = std::max(max_z, w.comPosition(box).z());
+    max_up = std::max(max_up, w.bodyState(box).linear_velocity.z());
+  }
+  EXPECT_NEAR(w.comPosition(box).z(), half.z(), 2e-3);
+  EXPECT_LT(max_z, half.z() + 1e-3) << "popped out above the rest height";
+  EXPECT_LE(max_up, w.def().max_push_velocity);
+  std::printf("[ pushout  ] 3 cm deep box: rest z %.4f (ideal %.4f), max z %.4f, max up speed %.3f m/s\n",
+              w.comPosition(box).z(), half.z(), max_z, max_up);
+}

@@ -1,0 +1,44 @@
+// Material pair table: coefficients measured for pairs of surfaces (a textbook friction table
+// lists pairs, not single materials), with a combine rule for the pairs not listed.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "ragdoll_sim/shape.hpp"
+
+namespace ragdoll_sim {
+
+enum class CombineRule { GeometricMean, Average, Min, Max };
+
+// Parses "geometric_mean" | "average" | "min" | "max"; false if unknown.
+bool parseCombineRule(const std::string& text, CombineRule* rule);
+double combine(CombineRule rule, double a, double b);
+
+class MaterialTable {
+ public:
+  CombineRule friction_rule = CombineRule::GeometricMean;
+  CombineRule restitution_rule = CombineRule::Max;
+
+  // Registers a named material and returns its id (>= 1); an existing name is updated.
+  int add(const std::string& name, const Material& material);
+  int find(const std::string& name) const;  // -1 if unknown
+  const Material& material(int id) const { return materials_.at(id); }
+  const std::string& name(int id) const { return names_.at(id); }
+  int size() const { return int(materials_.size()); }
+
+  // Coefficients for the pair (a, b), in either order.
+  void setPair(int a, int b, const Material& pair);
+  // The pair's listed coefficients, else the combination of the two surfaces' own.
+  Material resolve(const Material& a, const Material& b) const;
+
+ private:
+  std::vector<std::string> names_{""};
+  std::vector<Material> materials_{Material()};
+  std::vector<Material> pairs_{Material()};  // n x n, valid where has_pair_
+  std::vector<char> has_pair_{0};
+  int n_ = 1;
+  void grow(int n);
+};
+
+}  // namespace ragdoll_sim

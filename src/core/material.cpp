@@ -1,0 +1,78 @@
+#include "ragdoll_sim/material.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ragdoll_sim {
+
+bool parseCombineRule(const std::string& text, CombineRule* rule) {
+  if (text == "geometric_mean") *rule = CombineRule::GeometricMean;
+  else if (text == "average") *rule = CombineRule::Average;
+  else if (text == "min") *rule = CombineRule::Min;
+  else if (text == "max") *rule = CombineRule::Max;
+  else return false;
+  return true;
+}
+
+double combine(CombineRule rule, double a, double b) {
+  switch (rule) {
+    case CombineRule::GeometricMean: return std::sqrt(a * b);
+    case CombineRule::Average: return 0.5 * (a + b);
+    case CombineRule::Min: return std::min(a, b);
+    case CombineRule::Max: return std::max(a, b);
+  }
+  return a;
+}
+
+void MaterialTable::grow(int n) {
+  if (n <= n_) return;
+  std::vector<Material> pairs(size_t(n) * n);
+  std::vector<char> has(size_t(n) * n, 0);
+  for (int i = 0; i < n_; ++i)
+    for (int j = 0; j < n_; ++j) {
+      pairs[size_t(i) * n + j] = pairs_[size_t(i) * n_ + j];
+      has[size_t(i) * n + j] = has_pair_[size_t(i) * n_ + j];
+    }
+  pairs_.swap(pairs);
+  has_pair_.swap(has);
+  n_ = n;
+}
+
+int MaterialTable::add(const std::string& name, const Material& material) {
+  int id = find(name);
+  if (id < 0) {
+    id = int(materials_.size());
+    names_.push_back(name);
+    materials_.push_back(material);
+    grow(id + 1);
+  }
+  materials_[id] = material;
+  materials_[id].id = id;
+  return id;
+}
+
+int MaterialTable::find(const std::string& name) const {
+  for (size_t i = 1; i < names_.size(); ++i)
+    if (names_[i] == name) return int(i);
+  return -1;
+}
+
+void MaterialTable::setPair(int a, int b, const Material& pair) {
+  grow(std::max(a, b) + 1);
+  for (const auto& [i, j] : {std::make_pair(a, b), std::make_pair(b, a)}) {
+    pairs_[size_t(i) * n_ + j] = pair;
+    has_pair_[size_t(i) * n_ + j] = 1;
+  }
+}
+
+Material MaterialTable::resolve(const Material& a, const Material& b) const {
+  if (a.id > 0 && b.id > 0 && a.id < n_ && b.id < n_ && has_pair_[size_t(a.id) * n_ + b.id])
+    return pairs_[size_t(a.id) * n_ + b.id];
+  Material m;
+  m.static_friction = combine(friction_rule, a.static_friction, b.static_friction);
+  m.kinetic_friction = combine(friction_rule, a.kinetic_friction, b.kinetic_friction);
+  m.restitution = combine(restitution_rule, a.restitution, b.restitution);
+  return m;
+}
+
+}  // namespace ragdoll_sim
