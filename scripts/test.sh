@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Builds and runs all tests (gtests and rostests) of the workspace, prints the results and a
+# final line "tests: N passed, M failed". Exits non-zero on any failure or error.
+set -uo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
+cd "$WS"
+rm -rf "$WS/build/test_results"
+if ! catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -j2 run_tests; then
+  echo "test: catkin_make run_tests failed (build error?)"
+  exit 1
+fi
+results="$(catkin_test_results --all "$WS/build/test_results")"
+rc=$?
+echo "$results"
+# Count test cases from the JUnit reports (catkin_test_results counts gtest files twice).
+read -r passed failed skipped < <(/usr/bin/python3 - "$WS/build/test_results" <<'PY'
+import glob, sys, xml.etree.ElementTree as ET
+p = f = s = 0
+for path in glob.glob(sys.argv[1] + "/**/*.xml", recursive=True):
+    wrapper = "/rostest-" in path  # one case per launch; its test cases are in rosunit-*.xml
+    for case in ET.parse(path).getroot().iter("testcase"):
+        if case.find("failure") is not None or case.find("error") is not None: f += 1
+        elif wrapper: continue
+        elif case.find("skipped") is not None or case.get("status") == "notrun": s += 1
+        else: p += 1
+print(p, f, s)
+PY
+)
+if [[ "$((passed + failed))" -eq 0 ]]; then
+  echo "test: no tests ran"
+  rc=1
+fi
+echo "tests: $passed passed, $failed failed, $skipped skipped"
+exit $rc

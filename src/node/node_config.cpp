@@ -1,0 +1,103 @@
+#include "node_config.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+#include <ros/node_handle.h>
+
+namespace ragdoll_sim {
+namespace node {
+
+Transform NodeConfig::spawnTransform() const {
+  return Transform(Vec3(spawn.x, spawn.y, spawn.z), quatFromRpy(spawn.roll, spawn.pitch, spawn.yaw));
+}
+
+namespace {
+
+// A parameter that is absent keeps its default; one that is present with the wrong type is an
+// error (ros::NodeHandle::param would silently fall back to the default).
+template <class T>
+bool read(const ros::NodeHandle& pnh, const std::string& name, const char* type, T* value,
+          std::string* error) {
+  if (!pnh.hasParam(name)) return true;
+  if (pnh.getParam(name, *value)) return true;
+  *error = "parameter " + pnh.resolveName(name) + " must be " + type;
+  return false;
+}
+
+}  // namespace
+
+bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* c, std::string* error) {
+  std::vector<double> gravity{c->gravity.x(), c->gravity.y(), c->gravity.z()};
+  bool ok = read(pnh, "physics_rate", "a number (Hz)", &c->physics_rate, error) &&
+            read(pnh, "publish_rate", "a number (Hz)", &c->publish_rate, error) &&
+            read(pnh, "substeps", "an integer", &c->substeps, error) &&
+            read(pnh, "gravity", "a list of 3 numbers (m/s^2)", &gravity, error) &&
+            read(pnh, "spawn/x", "a number (m)", &c->spawn.x, error) &&
+            read(pnh, "spawn/y", "a number (m)", &c->spawn.y, error) &&
+            read(pnh, "spawn/z", "a number (m)", &c->spawn.z, error) &&
+            read(pnh, "spawn/roll", "a number (rad)", &c->spawn.roll, error) &&
+            read(pnh, "spawn/pitch", "a number (rad)", &c->spawn.pitch, error) &&
+            read(pnh, "spawn/yaw", "a number (rad)", &c->spawn.yaw, error) &&
+            read(pnh, "static_friction", "a number", &c->material.static_friction, error) &&
+            read(pnh, "kinetic_friction", "a number", &c->material.kinetic_friction, error) &&
+            read(pnh, "restitution", "a number", &c->material.restitution, error) &&
+            read(pnh, "paused", "a bool", &c->paused, error) &&
+            read(pnh, "urdf_file", "a string", &c->urdf_file, error) &&
+            read(pnh, "world_frame", "a string", &c->world_frame, error) &&
+            read(pnh, "ground", "a bool", &c->ground, error) &&
+            read(pnh, "max_impulse", "a number (N*s)", &c->max_impulse, error) &&
+            read(pnh, "max_force", "a number (N)", &c->max_force, error) &&
+            read(pnh, "max_torque", "a number (N*m)", &c->max_torque, error) &&
+            read(pnh, "max_lever_arm", "a number (m)", &c->max_lever_arm, error) &&
+            read(pnh, "max_catchup", "a number (s)", &c->max_catchup, error) &&
+            read(pnh, "publish_markers", "a bool", &c->publish_markers, error);
+  if (!ok) return false;
+  if (gravity.size() != 3) {
+    *error = "parameter " + pnh.resolveName("gravity") + " must be a list of 3 numbers, got " +
+             std::to_string(gravity.size());
+    return false;
+  }
+  c->gravity = Vec3(gravity[0], gravity[1], gravity[2]);
+  *error = validateNodeConfig(*c);
+  return error->empty();
+}
+
+std::string validateNodeConfig(const NodeConfig& c) {
+  auto positive = [](const char* name, double v) -> std::string {
+    if (std::isfinite(v) && v > 0.0) return "";
+    std::ostringstream s;
+    s << "parameter ~" << name << " must be a finite number > 0, got " << v;
+    return s.str();
+  };
+  auto nonneg = [](const char* name, double v) -> std::string {
+    if (std::isfinite(v) && v >= 0.0) return "";
+    std::ostringstream s;
+    s << "parameter ~" << name << " must be a finite number >= 0, got " << v;
+    return s.str();
+  };
+  std::string e;
+  if (!(e = positive("physics_rate", c.physics_rate)).empty()) return e;
+  if (c.physics_rate > 1e6) return "parameter ~physics_rate must be <= 1e6 Hz";
+  if (!(e = positive("publish_rate", c.publish_rate)).empty()) return e;
+  if (c.substeps < 1) return "parameter ~substeps must be >= 1, got " + std::to_string(c.substeps);
+  if (!c.gravity.allFinite()) return "parameter ~gravity must be finite";
+  const SpawnPose& s = c.spawn;
+  for (double v : {s.x, s.y, s.z, s.roll, s.pitch, s.yaw})
+    if (!std::isfinite(v)) return "parameters ~spawn/{x,y,z,roll,pitch,yaw} must be finite";
+  if (!(e = nonneg("static_friction", c.material.static_friction)).empty()) return e;
+  if (!(e = nonneg("kinetic_friction", c.material.kinetic_friction)).empty()) return e;
+  if (!(e = nonneg("restitution", c.material.restitution)).empty()) return e;
+  if (c.material.restitution > 1.0) return "parameter ~restitution must be <= 1";
+  if (c.world_frame.empty()) return "parameter ~world_frame must not be empty";
+  if (!(e = positive("max_impulse", c.max_impulse)).empty()) return e;
+  if (!(e = positive("max_force", c.max_force)).empty()) return e;
+  if (!(e = positive("max_torque", c.max_torque)).empty()) return e;
+  if (!(e = positive("max_lever_arm", c.max_lever_arm)).empty()) return e;
+  if (!(e = positive("max_catchup", c.max_catchup)).empty()) return e;
+  return "";
+}
+
+}  // namespace node
+}  // namespace ragdoll_sim

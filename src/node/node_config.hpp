@@ -1,0 +1,50 @@
+// All parameters of ragdoll_sim_node, read once at start-up from the private namespace (~).
+#pragma once
+
+#include <string>
+
+#include "ragdoll_sim/math.hpp"
+#include "ragdoll_sim/shape.hpp"
+
+namespace ros {
+class NodeHandle;
+}
+
+namespace ragdoll_sim {
+namespace node {
+
+struct SpawnPose {
+  double x = 0.0, y = 0.0, z = 1.1;  // root link origin, m (z = 1.1: feet ~0.1 m above ground)
+  double roll = 0.0, pitch = 0.0, yaw = 0.0;  // rad
+};
+
+struct NodeConfig {
+  double physics_rate = 1000.0;        // Hz, fixed physics step = 1 / physics_rate
+  double publish_rate = 60.0;          // Hz, TF / markers / joint_states
+  int substeps = 4;                    // solver substeps per physics step
+  Vec3 gravity = Vec3(0.0, 0.0, -9.81);
+  SpawnPose spawn;
+  Material material{0.8, 0.6, 0.0};    // static_friction, kinetic_friction, restitution
+  bool paused = false;
+  std::string urdf_file;               // "" -> URDF text from the robot_description param
+  std::string world_frame = "world";
+  bool ground = true;                  // static ground plane z = 0
+  double max_impulse = 1000.0;         // N*s
+  double max_force = 1e5;              // N
+  double max_torque = 1e5;             // N*m
+  double max_lever_arm = 10.0;         // m
+  double max_catchup = 0.1;            // s of physics run at most per loop iteration when late
+  bool publish_markers = true;
+
+  Transform spawnTransform() const;
+};
+
+// Reads every parameter (defaults above for the missing ones). Returns false and sets *error
+// (naming the parameter) when a value is present but invalid.
+bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* config, std::string* error);
+
+// Range checks, ROS-free. Returns "" when valid, else a message naming the parameter.
+std::string validateNodeConfig(const NodeConfig& c);
+
+}  // namespace node
+}  // namespace ragdoll_sim
