@@ -5,6 +5,7 @@
 #include <vector>
 
 #include <ros/node_handle.h>
+#include <xmlrpcpp/XmlRpcException.h>
 
 namespace ragdoll_sim {
 namespace node {
@@ -24,6 +25,98 @@ bool read(const ros::NodeHandle& pnh, const std::string& name, const char* type,
   if (pnh.getParam(name, *value)) return true;
   *error = "parameter " + pnh.resolveName(name) + " must be " + type;
   return false;
+}
+
+double number(XmlRpc::XmlRpcValue& v) {
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) return double(int(v));
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) return double(v);
+  return std::nan("");
+}
+
+// [static_friction, kinetic_friction, restitution] starting at list index `first`.
+bool coefficients(XmlRpc::XmlRpcValue& list, int first, Material* m) {
+  if (list.getType() != XmlRpc::XmlRpcValue::TypeArray || list.size() != first + 3) return false;
+  m->static_friction = number(list[first]);
+  m->kinetic_friction = number(list[first + 1]);
+  m->restitution = number(list[first + 2]);
+  return std::isfinite(m->static_friction) && m->static_friction >= 0 &&
+         std::isfinite(m->kinetic_friction) && m->kinetic_friction >= 0 &&
+         std::isfinite(m->restitution) && m->restitution >= 0 && m->restitution <= 1;
+}
+
+// ~materials: {combine: {friction, restitution}, surfaces: {name: [mu_s, mu_k, e]},
+//              pairs: [[a, b, mu_s, mu_k, e], ...]}
+bool loadMaterials(const ros::NodeHandle& pnh, MaterialTable* t, std::string* error) {
+  XmlRpc::XmlRpcValue root;
+  if (!pnh.getParam("materials", root)) return true;
+  const std::string where = "parameter " + pnh.resolveName("materials");
+  if (root.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
+    *error = where + " must be a dictionary";
+    return false;
+  }
+  try {
+    if (root.hasMember("combine")) {
+      XmlRpc::XmlRpcValue& c = root["combine"];
+      for (const char* key : {"friction", "restitution"}) {
+        if (!c.hasMember(key)) continue;
+        CombineRule* rule = std::string(key) == "friction" ? &t->friction_rule : &t->restitution_rule;
+        if (c[key].getType() != XmlRpc::XmlRpcValue::TypeString ||
+            !parseCombineRule(std::string(c[key]), rule)) {
+          *error = where + "/combine/" + key + " must be geometric_mean, average, min or max";
+          return false;
+        }
+      }
+    }
+    if (root.hasMember("surfaces")) {
+      for (auto& [name, value] : root["surfaces"]) {
+        Material m;
+        if (!coefficients(value, 0, &m)) {
+          *error = where + "/surfaces/" + name +
+                   " must be [static_friction, kinetic_friction, restitution] (>= 0, e <= 1)";
+          return false;
+        }
+        t->add(name, m);
+      }
+    }
+    if (root.hasMember("pairs")) {
+      XmlRpc::XmlRpcValue& pairs = root["pairs"];
+      for (int i = 0; i < pairs.size(); ++i) {
+        Material m;
+        const std::string item = where + "/pairs[" + std::to_string(i) + "]";
+        if (!coefficients(pairs[i], 2, &m) || pairs[i][0].getType() != XmlRpc::XmlRpcValue::TypeString ||
+            pairs[i][1].getType() != XmlRpc::XmlRpcValue::TypeString) {
+          *error = item + " must be [a, b, static_friction, kinetic_friction, restitution]";
+          return false;
+        }
+        const int a = t->find(pairs[i][0]), b = t->find(pairs[i][1]);
+        if (a < 0 || b < 0) {
+          *error = item + " names a surface missing from " + where + "/surfaces";
+          return false;
+        }
+        t->setPair(a, b, m);
+      }
+    }
+  } catch (const XmlRpc::XmlRpcException& e) {
+    *error = where + ": " + e.getMessage();
+    return false;
+  }
+  return true;
+}
+
+// The named surface of the table, or the fallback when the name is empty.
+bool surface(const MaterialTable& t, const std::string& name, const char* param,
+             const Material& fallback, Material* out, std::string* error) {
+  if (name.empty()) {
+    *out = fallback;
+    return true;
+  }
+  const int id = t.find(name);
+  if (id < 0) {
+    *error = std::string("parameter ~") + param + " names '" + name + "', not in ~materials/surfaces";
+    return false;
+  }
+  *out = t.material(id);
+  return true;
 }
 
 }  // namespace
@@ -52,7 +145,10 @@ bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* c, std::string* erro
             read(pnh, "max_torque", "a number (N*m)", &c->max_torque, error) &&
             read(pnh, "max_lever_arm", "a number (m)", &c->max_lever_arm, error) &&
             read(pnh, "max_catchup", "a number (s)", &c->max_catchup, error) &&
-            read(pnh, "publish_markers", "a bool", &c->publish_markers, error);
+            read(pnh, "publish_markers", "a bool", &c->publish_markers, error) &&
+            read(pnh, "ragdoll_material", "a string", &c->ragdoll_material, error) &&
+            read(pnh, "ground_material", "a string", &c->ground_material, error) &&
+            loadMaterials(pnh, &c->materials, error);
   if (!ok) return false;
   if (gravity.size() != 3) {
     *error = "parameter " + pnh.resolveName("gravity") + " must be a list of 3 numbers, got " +
@@ -61,7 +157,11 @@ bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* c, std::string* erro
   }
   c->gravity = Vec3(gravity[0], gravity[1], gravity[2]);
   *error = validateNodeConfig(*c);
-  return error->empty();
+  return error->empty() &&
+         surface(c->materials, c->ragdoll_material, "ragdoll_material", c->material,
+                 &c->ragdoll_surface, error) &&
+         surface(c->materials, c->ground_material, "ground_material", c->material,
+                 &c->ground_surface, error);
 }
 
 std::string validateNodeConfig(const NodeConfig& c) {

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "ragdoll_sim/material.hpp"
 #include "ragdoll_sim/math.hpp"
 #include "ragdoll_sim/shape.hpp"
 
@@ -25,6 +26,10 @@ struct NodeConfig {
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);
   SpawnPose spawn;
   Material material{0.8, 0.6, 0.0};    // static_friction, kinetic_friction, restitution
+  MaterialTable materials;             // ~materials (config/materials.yaml)
+  std::string ragdoll_material;        // surface names in `materials`; "" = `material`
+  std::string ground_material;
+  Material ragdoll_surface, ground_surface;  // resolved from the two names above
   bool paused = false;
   std::string urdf_file;               // "" -> URDF text from the robot_description param
   std::string world_frame = "world";

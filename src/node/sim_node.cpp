@@ -93,6 +93,7 @@ bool SimNode::init(std::string* error) {
   WorldDef wd;
   wd.gravity = config_.gravity;
   wd.substeps = config_.substeps;
+  wd.materials = config_.materials;
   world_ = std::make_unique<World>(wd);
   if (config_.ground) {
     BodyDef gd;
@@ -101,10 +102,10 @@ bool SimNode::init(std::string* error) {
     ground_ = world_->createBody(gd);
     ShapeDef sd;
     sd.geometry = Geometry::plane(Vec3::UnitZ(), 0.0);
-    sd.material = config_.material;
+    sd.material = config_.ground_surface;
     world_->addShape(ground_, sd);
   }
-  ragdoll_ = spawnRagdoll(*world_, def_, config_.spawnTransform(), &config_.material);
+  ragdoll_ = spawnRagdoll(*world_, def_, config_.spawnTransform(), &config_.ragdoll_surface);
   if (ragdoll_.bodies.size() != def_.links.size() || ragdoll_.joints.size() != def_.joints.size()) {
     *error = "spawnRagdoll returned " + std::to_string(ragdoll_.bodies.size()) + " bodies / " +
              std::to_string(ragdoll_.joints.size()) + " joints for a model with " +

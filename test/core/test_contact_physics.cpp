@@ -5,40 +5,14 @@
 #include <cmath>
 
 #include "ragdoll_sim/world.hpp"
+#include "scene_util.hpp"
 
 using namespace ragdoll_sim;
+using namespace ragdoll_sim::test;
 
 namespace {
 constexpr double kDt = 1e-3;
 constexpr double kG = 9.81;
-
-Mat3 boxInertia(const Vec3& half, double mass) {
-  const Vec3 s = 2.0 * half;
-  return (mass / 12.0 * Vec3(s.y() * s.y() + s.z() * s.z(), s.x() * s.x() + s.z() * s.z(),
-                             s.x() * s.x() + s.y() * s.y()))
-      .asDiagonal();
-}
-
-BodyId addStaticPlane(World& w, const Quat& q, const Material& m) {
-  BodyDef d;
-  d.type = BodyType::Static;
-  d.pose.q = q;
-  const BodyId g = w.createBody(d);
-  w.addShape(g, {Geometry::plane(Vec3::UnitZ(), 0.0), Transform(), m});
-  return g;
-}
-
-BodyId addBody(World& w, const Geometry& g, double mass, const Mat3& inertia, const Transform& pose,
-               const Material& m, const Vec3& v = Vec3::Zero()) {
-  BodyDef d;
-  d.pose = pose;
-  d.mass = mass;
-  d.inertia = inertia;
-  d.linear_velocity = v;
-  const BodyId b = w.createBody(d);
-  w.addShape(b, {g, Transform(), m});
-  return b;
-}
 
 Material friction(double mu_s, double mu_k) {
   Material m;
@@ -54,7 +28,7 @@ TEST_P(Slide, StopsAfterClosedFormDistance) {
   const double mu_k = GetParam(), v0 = 3.0;
   World w;
   const Material m = friction(mu_k + 0.1, mu_k);
-  addStaticPlane(w, Quat::Identity(), m);
+  addGround(w, m);
   const Vec3 half(0.2, 0.2, 0.1);
   const BodyId box = addBody(w, Geometry::box(half), 4.0, boxInertia(half, 4.0),
                              Transform(Vec3(0, 0, half.z()), Quat::Identity()), m, Vec3(v0, 0, 0));
@@ -74,7 +48,7 @@ TEST(Incline, StaysBelowAndSlidesAboveFrictionAngle) {
     World w;
     const Material m = friction(mu_s, mu_k);
     const Quat slope(Eigen::AngleAxisd(theta, Vec3::UnitY()));
-    addStaticPlane(w, slope, m);
+    addGround(w, m, slope);
     const Vec3 half(0.1, 0.1, 0.05);
     const BodyId box = addBody(w, Geometry::box(half), 1.0, boxInertia(half, 1.0),
                                Transform(slope * Vec3(0, 0, half.z()), slope), m);
@@ -98,7 +72,7 @@ TEST(Rolling, SphereAcceleratesAtFiveSeventhsGSinTheta) {
   World w;
   const Material m = friction(1.0, 1.0);
   const Quat slope(Eigen::AngleAxisd(theta, Vec3::UnitY()));
-  addStaticPlane(w, slope, m);
+  addGround(w, m, slope);
   const BodyId ball = addBody(w, Geometry::sphere(r), mass, Mat3::Identity() * 0.4 * mass * r * r,
                               Transform(slope * Vec3(0, 0, r), Quat::Identity()), m);
   for (int i = 0; i < 200; ++i) w.step(kDt);  // settle into rolling
@@ -140,7 +114,7 @@ TEST(FreeFlight, MomentumConservedAndMiddleAxisFlips) {
 // A body at rest falls asleep after time_to_sleep and wakes on an impulse.
 TEST(Sleep, RestingBoxSleepsAndWakesOnImpulse) {
   World w;
-  addStaticPlane(w, Quat::Identity(), Material());
+  addGround(w);
   const Vec3 half(0.2, 0.2, 0.1);
   const BodyId box = addBody(w, Geometry::box(half), 2.0, boxInertia(half, 2.0),
                              Transform(Vec3(0, 0, 0.2), Quat::Identity()), Material());
@@ -164,7 +138,7 @@ TEST(Sleep, RestingBoxSleepsAndWakesOnImpulse) {
 // A compound body (two spheres on a bar, offsets from the COM) rests on both spheres.
 TEST(Compound, DumbbellRestsOnBothEnds) {
   World w;
-  addStaticPlane(w, Quat::Identity(), Material());
+  addGround(w);
   BodyDef d;
   d.pose = Transform(Vec3(0, 0, 0.5), quatFromRpy(0.0, 0.2, 0.0));
   d.mass = 2.0;
@@ -187,7 +161,7 @@ TEST(Compound, DumbbellRestsOnBothEnds) {
 // pushed out and stays put; it never rises above its resting height.
 TEST(Penetration, PushOutAddsNoEnergy) {
   World w;
-  addStaticPlane(w, Quat::Identity(), Material());
+  addGround(w);
   const Vec3 half(0.2, 0.2, 0.1);
   const BodyId box = addBody(w, Geometry::box(half), 2.0, boxInertia(half, 2.0),
                              Transform(Vec3(0, 0, half.z() - 0.03), Quat::Identity()), Material());

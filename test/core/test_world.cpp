@@ -5,43 +5,13 @@
 
 #include "joint_angles.hpp"
 #include "ragdoll_sim/world.hpp"
+#include "scene_util.hpp"
 
 using namespace ragdoll_sim;
+using namespace ragdoll_sim::test;
 
 namespace {
 constexpr double kDt = 1e-3;
-
-BodyId addGround(World& w, const Material& mat = Material()) {
-  BodyDef d;
-  d.type = BodyType::Static;
-  const BodyId g = w.createBody(d);
-  w.addShape(g, {Geometry::plane(Vec3::UnitZ(), 0.0), Transform(), mat});
-  return g;
-}
-
-BodyId addBox(World& w, const Vec3& half, double mass, const Vec3& pos,
-              const Material& mat = Material()) {
-  BodyDef d;
-  d.pose.p = pos;
-  d.mass = mass;
-  const Vec3 s = 2.0 * half;
-  d.inertia = (mass / 12.0 * Vec3(s.y() * s.y() + s.z() * s.z(), s.x() * s.x() + s.z() * s.z(),
-                                  s.x() * s.x() + s.y() * s.y()))
-                  .asDiagonal();
-  const BodyId b = w.createBody(d);
-  w.addShape(b, {Geometry::box(half), Transform(), mat});
-  return b;
-}
-
-BodyId addSphere(World& w, double r, double mass, const Vec3& pos, const Material& mat = Material()) {
-  BodyDef d;
-  d.pose.p = pos;
-  d.mass = mass;
-  d.inertia = Mat3::Identity() * 0.4 * mass * r * r;
-  const BodyId b = w.createBody(d);
-  w.addShape(b, {Geometry::sphere(r), Transform(), mat});
-  return b;
-}
 }  // namespace
 
 TEST(World, BoxComesToRestOnGround) {

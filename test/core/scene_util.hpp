@@ -1,0 +1,50 @@
+// Small scene builders shared by the core tests.
+#pragma once
+
+#include "ragdoll_sim/world.hpp"
+
+namespace ragdoll_sim {
+namespace test {
+
+inline Mat3 boxInertia(const Vec3& half, double mass) {
+  const Vec3 s = 2.0 * half;
+  return (mass / 12.0 * Vec3(s.y() * s.y() + s.z() * s.z(), s.x() * s.x() + s.z() * s.z(),
+                             s.x() * s.x() + s.y() * s.y()))
+      .asDiagonal();
+}
+
+// Static plane through the origin with normal q * z (a slope when q tilts it).
+inline BodyId addGround(World& w, const Material& m = Material(), const Quat& q = Quat::Identity()) {
+  BodyDef d;
+  d.type = BodyType::Static;
+  d.pose.q = q;
+  const BodyId g = w.createBody(d);
+  w.addShape(g, {Geometry::plane(Vec3::UnitZ(), 0.0), Transform(), m});
+  return g;
+}
+
+inline BodyId addBody(World& w, const Geometry& g, double mass, const Mat3& inertia,
+                      const Transform& pose, const Material& m = Material(),
+                      const Vec3& v = Vec3::Zero()) {
+  BodyDef d;
+  d.pose = pose;
+  d.mass = mass;
+  d.inertia = inertia;
+  d.linear_velocity = v;
+  const BodyId b = w.createBody(d);
+  w.addShape(b, {g, Transform(), m});
+  return b;
+}
+
+inline BodyId addBox(World& w, const Vec3& half, double mass, const Vec3& pos,
+                     const Material& m = Material()) {
+  return addBody(w, Geometry::box(half), mass, boxInertia(half, mass), Transform(pos, Quat::Identity()), m);
+}
+
+inline BodyId addSphere(World& w, double r, double mass, const Vec3& pos, const Material& m = Material()) {
+  return addBody(w, Geometry::sphere(r), mass, Mat3::Identity() * 0.4 * mass * r * r,
+                 Transform(pos, Quat::Identity()), m);
+}
+
+}  // namespace test
+}  // namespace ragdoll_sim
