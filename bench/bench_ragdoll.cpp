@@ -2,6 +2,8 @@
 //   a: 1 ragdoll standing, pelvis at 1.5 m, 10 000 steps
 //   b: 32 ragdolls standing on a 4 x 8 grid, 1.5 m pitch, 3 000 steps
 //   c: 8 ragdolls prone (pitch 90 deg), yaw k*45 deg, pelvis at 1.5 + 0.6 k, 5 000 steps
+//   p: pile, 64 ragdolls dropped prone in 16 layers of 4 into a 3 m x 3 m pit, 8 000 steps;
+//      also prints the cost per step in the first and the last second (the pile asleep)
 // dt = 1 ms, gravity -9.81 z, ground z = 0, friction 0.8. Only World::step is timed. The
 // metrics are computed here from link poses and the URDF joint data alone (anchor error,
 // ground penetration of the analytic shapes, joint angles vs limits, rest state at 3 s).
@@ -23,10 +25,11 @@ struct Scene {
   char id;
   int steps;
   std::vector<Transform> roots;
+  std::vector<std::pair<Vec3, Vec3>> walls;  // static boxes: centre, half extents
 };
 
 Scene makeScene(char id) {
-  Scene s{id, 0, {}};
+  Scene s{id, 0, {}, {}};
   if (id == 'a') {
     s.steps = 10000;
     s.roots.push_back({Vec3(0, 0, 1.5), Quat::Identity()});
@@ -37,8 +40,23 @@ Scene makeScene(char id) {
   } else if (id == 'c') {
     s.steps = 5000;
     for (int k = 0; k < 8; ++k) s.roots.push_back({Vec3(0, 0, 1.5 + 0.6 * k), quatFromRpy(0, M_PI / 2, k * M_PI / 4)});
+  } else if (id == 'p') {
+    s.steps = 8000;
+    for (int k = 0; k < 16; ++k)
+      for (int i = 0; i < 4; ++i) {
+        const double off = (i - 1.5) * 0.7, yaw = (k % 2) * M_PI / 2 + (i % 2) * M_PI;
+        const Vec3 p = k % 2 ? Vec3(off, 0.0, 0.6 + 0.45 * k) : Vec3(0.0, off, 0.6 + 0.45 * k);
+        s.roots.push_back({p, quatFromRpy(0, M_PI / 2, yaw)});
+      }
+    for (int side = 0; side < 4; ++side) {
+      const double sign = side % 2 ? 1.0 : -1.0;
+      const bool along_x = side < 2;
+      const Vec3 c = along_x ? Vec3(sign * 1.6, 0, 1.5) : Vec3(0, sign * 1.6, 1.5);
+      const Vec3 h = along_x ? Vec3(0.1, 1.7, 1.5) : Vec3(1.7, 0.1, 1.5);
+      s.walls.emplace_back(c, h);
+    }
   } else {
-    std::fprintf(stderr, "scenario must be a, b or c\n");
+    std::fprintf(stderr, "scenario must be a, b, c or p\n");
     std::exit(2);
   }
   return s;
@@ -163,9 +181,9 @@ int main(int argc, char** argv) {
       }
     }
     else if (s == "--no-metrics") metrics = false;
-    else if (s.size() == 1 && s[0] >= 'a' && s[0] <= 'c') scenario = s[0];
+    else if (s == "a" || s == "b" || s == "c" || s == "p") scenario = s[0];
     else {
-      std::fprintf(stderr, "usage: %s a|b|c [--steps N] [--urdf F] [--no-metrics] [--opt substeps=4,joint_hertz=240,contact_hertz=240,sleep=1,...]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s a|b|c|p [--steps N] [--urdf F] [--no-metrics] [--opt substeps=4,joint_hertz=240,contact_hertz=240,sleep=1,...]\n", argv[0]);
       return 2;
     }
   }
@@ -188,15 +206,25 @@ int main(int argc, char** argv) {
   world.addShape(world.createBody(ground), {Geometry::plane(Vec3::UnitZ(), 0.0), Transform(), mat});
   std::vector<Ragdoll> ragdolls;
   for (const Transform& root : sc.roots) ragdolls.push_back(spawnRagdoll(world, def, root, &mat));
+  for (const auto& [centre, half] : sc.walls) {
+    BodyDef wall;
+    wall.type = BodyType::Static;
+    wall.pose.p = centre;
+    world.addShape(world.createBody(wall), {Geometry::box(half), Transform(), mat});
+  }
 
   Metrics m;
   std::vector<Transform> poses(n * def.links.size());
-  double wall = 0.0;
+  double wall = 0.0, wall_first = 0.0, wall_last = 0.0;
+  const int window = std::min(1000, steps);
   const auto loop0 = std::chrono::steady_clock::now();
   for (int step = 1; step <= steps; ++step) {
     const auto t0 = std::chrono::steady_clock::now();
     world.step(dt);
-    wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double dt_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    wall += dt_wall;
+    if (step <= window) wall_first += dt_wall;
+    if (step > steps - window) wall_last += dt_wall;
     if (metrics || step == 2999 || step == 3000) {
       for (int r = 0; r < n; ++r)
         for (size_t i = 0; i < def.links.size(); ++i)
@@ -212,10 +240,12 @@ int main(int argc, char** argv) {
       "body_steps_per_s=%.0f us_per_body_step=%.3f max_anchor_err_m=%.3g max_ground_pen_m=%.4f "
       "max_limit_viol_rad=%.3g pelvis_z_3s_mean=%.4f pelvis_z_3s_min=%.4f pelvis_z_3s_max=%.4f "
       "ground_pen_3s_m=%.4f anchor_err_3s_m=%.3g vmax_3s=%.3g worst_limit=%s@%d nan=%d "
-      "loop_wall_s=%.3f substeps=%d joint_hertz=%g contact_hertz=%g sleep=%d max_contacts=%zu\n",
+      "loop_wall_s=%.3f substeps=%d joint_hertz=%g contact_hertz=%g sleep=%d max_contacts=%zu "
+      "us_per_step_first_1s=%.1f us_per_step_last_1s=%.1f awake_bodies_end=%d\n",
       sc.id, n, bodies, steps, wall, sps, sps * bodies, 1e6 * wall / (steps * double(bodies)),
       m.max_anchor, m.max_pen, m.max_limit, m.pel_mean, m.pel_min, m.pel_max, m.pen3, m.anchor3,
       m.vmax3, m.worst_joint.c_str(), m.worst_step, m.nan ? 1 : 0, loop_wall, wd.substeps,
-      wd.joint_hertz, wd.contact_hertz, wd.enable_sleep ? 1 : 0, world.contacts().size());
+      wd.joint_hertz, wd.contact_hertz, wd.enable_sleep ? 1 : 0, world.contacts().size(),
+      1e6 * wall_first / window, 1e6 * wall_last / window, world.awakeBodyCount());
   return 0;
 }

@@ -17,6 +17,7 @@ namespace ragdoll_sim {
 struct WorldDef {
   Vec3 gravity = Vec3(0, 0, -9.81);
   int substeps = 4;                     // solver substeps per step (soft step)
+  int contact_relax_iterations = 4;     // relax sweeps over the contacts per substep
   double contact_hertz = 240.0;         // contact softness (capped at a quarter of the substep rate)
   double contact_damping_ratio = 10.0;
   double joint_hertz = 1000.0;          // joint position-error softness

@@ -5,7 +5,9 @@
 //      impulses carried over by feature id (warm starting);
 //   2. prepare joints and contacts; substep h = dt / substeps;
 //   3. per substep: integrate velocities (gravity, forces, damping),
-//      warm start, solve with bias (soft), integrate positions, relax without bias;
+//      warm start, solve with bias (soft), integrate positions, relax without bias (contacts
+//      several sweeps: Gauss-Seidel over a manifold's points needs them to take back all of
+//      the push-out velocity, see contact_solver.cpp);
 //   4. restitution, store impulses, write the deltas back to the bodies, clear forces;
 //   5. islands (island.hpp) that stayed slow long enough go to sleep. Sleeping bodies are
 //      identity solver bodies: not integrated, and pairs of them are not collided or solved.
@@ -371,7 +373,7 @@ void World::step(double dt) {
     w.contact_solver.solve(ctx, true);
     w.integratePositions(ctx.h);
     for (Joint* j : w.active_joints) solveJoint(*j, ctx, false);
-    w.contact_solver.solve(ctx, false);
+    for (int k = 0; k < w.def.contact_relax_iterations; ++k) w.contact_solver.solve(ctx, false);
   }
   w.contact_solver.applyRestitution(ctx);
   w.contact_solver.storeImpulses(w.contacts);

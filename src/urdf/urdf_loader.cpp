@@ -348,6 +348,16 @@ class Loader {
         for (size_t b = a + 1; b < jd.axes.size(); ++b)
           if (std::abs(jd.axes[a].dot(jd.axes[b])) > kOrthogonal)
             throw LoadError(where + ": axes are not orthogonal, cannot form a ball joint");
+      // The Euler decomposition of the chain is singular where the middle angle reaches
+      // +-pi/2; keep its range clear of that (the solver cannot hold a limit through it).
+      const double kMiddleMax = M_PI / 2 - 0.05;
+      if (jd.axes.size() == 3 && (jd.lower[1] < -kMiddleMax || jd.upper[1] > kMiddleMax)) {
+        jd.lower[1] = std::max(jd.lower[1], -kMiddleMax);
+        jd.upper[1] = std::min(jd.upper[1], kMiddleMax);
+        jd.limited = true;
+        def_.notes.push_back(where + ": middle axis range clamped to +-" + std::to_string(kMiddleMax) +
+                             " rad (the chain is singular at +-pi/2)");
+      }
       if (chain.size() == 2) {
         jd.axes.push_back(jd.axes[0].cross(jd.axes[1]).normalized());
         jd.lower.push_back(0.0);

@@ -141,22 +141,24 @@ TEST(Broadphase, ThousandBodiesCandidatePairsMatchOverlaps) {
 }
 
 // Overlapping bodies are separated by impulses, so the correction splits by inverse mass
-// (the light box moves 3x as far as the 3x heavier one) and momentum stays zero. The soft push
-// leaves a small separating speed behind in free space (bounded by max_push_velocity); with
-// gravity, a penetrating body never rises above its rest height (Penetration.PushOutAddsNoEnergy).
-TEST(Penetration, CorrectionSplitsByInverseMass) {
+// (the light box moves 3x as far as the 3x heavier one), momentum stays zero, and the relax
+// sweeps take the push-out velocity back: no kinetic energy is added.
+TEST(Penetration, CorrectionSplitsByInverseMassWithoutEnergy) {
   WorldDef def;
   def.gravity.setZero();
   World w(def);
   const Vec3 half(0.1, 0.1, 0.1);
   const BodyId light = addBox(w, half, 1.0, Vec3(-0.09, 0, 0));
   const BodyId heavy = addBox(w, half, 3.0, Vec3(0.09, 0, 0));  // 2 cm overlap
-  for (int i = 0; i < 20; ++i) w.step(kDt);
+  double max_ke = 0.0;
+  for (int i = 0; i < 20; ++i) {
+    w.step(kDt);
+    max_ke = std::max(max_ke, w.kineticEnergy());
+  }
   const double dl = -0.09 - w.comPosition(light).x(), dh = w.comPosition(heavy).x() - 0.09;
   EXPECT_NEAR(dl / dh, 3.0, 0.03);
   EXPECT_LT(w.linearMomentum().norm(), 1e-12);
-  const double v_sep = w.bodyState(heavy).linear_velocity.x() - w.bodyState(light).linear_velocity.x();
-  EXPECT_LT(v_sep, 0.2);
-  std::printf("[ split    ] moved light %.4f m, heavy %.4f m (ratio %.3f), separating speed %.3f m/s, KE %.1e J\n",
-              dl, dh, dl / dh, v_sep, w.kineticEnergy());
+  EXPECT_LT(max_ke, 1e-6);
+  std::printf("[ split    ] moved light %.4f m, heavy %.4f m (ratio %.3f), max KE %.1e J\n", dl, dh,
+              dl / dh, max_ke);
 }
