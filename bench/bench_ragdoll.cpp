@@ -3,7 +3,8 @@
 //   b: 32 ragdolls standing on a 4 x 8 grid, 1.5 m pitch, 3 000 steps
 //   c: 8 ragdolls prone (pitch 90 deg), yaw k*45 deg, pelvis at 1.5 + 0.6 k, 5 000 steps
 //   p: pile, 64 ragdolls dropped prone in 16 layers of 4 into a 3 m x 3 m pit, 8 000 steps;
-//      also prints the cost per step in the first and the last second (the pile asleep)
+//   s: sleep check, a 4 x 4 x 3 pile of 0.4 m boxes, 3 000 steps
+//   Every line also gives the cost per step in the first and the last second (p, s: asleep).
 // dt = 1 ms, gravity -9.81 z, ground z = 0, friction 0.8. Only World::step is timed. The
 // metrics are computed here from link poses and the URDF joint data alone (anchor error,
 // ground penetration of the analytic shapes, joint angles vs limits, rest state at 3 s).
@@ -26,10 +27,11 @@ struct Scene {
   int steps;
   std::vector<Transform> roots;
   std::vector<std::pair<Vec3, Vec3>> walls;  // static boxes: centre, half extents
+  std::vector<Vec3> boxes;                   // dynamic 0.4 m boxes, 1 kg: centres
 };
 
 Scene makeScene(char id) {
-  Scene s{id, 0, {}, {}};
+  Scene s{id, 0, {}, {}, {}};
   if (id == 'a') {
     s.steps = 10000;
     s.roots.push_back({Vec3(0, 0, 1.5), Quat::Identity()});
@@ -55,8 +57,13 @@ Scene makeScene(char id) {
       const Vec3 h = along_x ? Vec3(0.1, 1.7, 1.5) : Vec3(1.7, 0.1, 1.5);
       s.walls.emplace_back(c, h);
     }
+  } else if (id == 's') {
+    s.steps = 3000;
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j)
+        for (int k = 0; k < 3; ++k) s.boxes.emplace_back(i * 0.45, j * 0.45, 0.2 + 0.45 * k);
   } else {
-    std::fprintf(stderr, "scenario must be a, b, c or p\n");
+    std::fprintf(stderr, "scenario must be a, b, c, p or s\n");
     std::exit(2);
   }
   return s;
@@ -181,9 +188,9 @@ int main(int argc, char** argv) {
       }
     }
     else if (s == "--no-metrics") metrics = false;
-    else if (s == "a" || s == "b" || s == "c" || s == "p") scenario = s[0];
+    else if (s == "a" || s == "b" || s == "c" || s == "p" || s == "s") scenario = s[0];
     else {
-      std::fprintf(stderr, "usage: %s a|b|c|p [--steps N] [--urdf F] [--no-metrics] [--opt substeps=4,joint_hertz=240,contact_hertz=240,sleep=1,...]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s a|b|c|p|s [--steps N] [--urdf F] [--no-metrics] [--opt substeps=4,joint_hertz=240,contact_hertz=240,sleep=1,...]\n", argv[0]);
       return 2;
     }
   }
@@ -212,6 +219,12 @@ int main(int argc, char** argv) {
     wall.pose.p = centre;
     world.addShape(world.createBody(wall), {Geometry::box(half), Transform(), mat});
   }
+  for (const Vec3& c : sc.boxes) {
+    BodyDef box;
+    box.pose.p = c;
+    box.inertia = Mat3::Identity() * (1.0 / 6.0) * 0.4 * 0.4;
+    world.addShape(world.createBody(box), {Geometry::box(Vec3::Constant(0.2)), Transform(), mat});
+  }
 
   Metrics m;
   std::vector<Transform> poses(n * def.links.size());
@@ -233,7 +246,7 @@ int main(int argc, char** argv) {
     }
   }
   const double loop_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop0).count();
-  const long bodies = long(n) * long(def.links.size());
+  const long bodies = long(n) * long(def.links.size()) + long(sc.boxes.size());
   const double sps = steps / wall;
   std::printf(
       "engine=ragdoll_sim scenario=%c ragdolls=%d bodies=%ld steps=%d wall_s=%.4f steps_per_s=%.1f "
