@@ -18,6 +18,31 @@ struct JointId {
 
 enum class JointType : uint8_t { Ball, Hinge };
 
+// Optional elasticity of a joint's anchor (seed section 4.3): with stiffness > 0 the anchors
+// are held by a Hooke spring F = -k x - c v instead of rigidly. The joint breaks (and stays
+// broken: the bodies fly apart with their momentum) once the force in it passes break_force:
+// k |x| for a spring, the constraint force for a rigid anchor.
+struct JointSpring {
+  double stiffness = 0.0;  // N/m, 0 = rigid
+  double damping = 0.0;    // N s/m
+  double break_force = std::numeric_limits<double>::infinity();  // N
+};
+
+// Joint motor on each angle: drives it towards `target` (rad) as a soft constraint of natural
+// frequency `hertz` and damping ratio `damping_ratio`, or, with hertz = 0, its rate towards
+// `target_velocity` (rad/s); the torque is capped at max_torque (N m). Joint friction is a
+// velocity motor with target 0 and max_torque = the friction torque; viscous damping is the
+// `damping` term, applied implicitly.
+struct JointMotor {
+  bool enabled = false;
+  double target = 0.0;
+  double target_velocity = 0.0;
+  double hertz = 0.0;
+  double damping_ratio = 1.0;
+  double max_torque = 0.0;
+  double damping = 0.0;  // N m s/rad, viscous joint damping (applied even when !enabled)
+};
+
 // Ball joint: anchors coincide. Optional limits on the Euler angles of B's joint frame relative
 // to A's, decomposed about three orthonormal joint-frame axes in the order given (the meaning
 // of a chain of three revolute joints with coincident origins: R = R(a0,t0) R(a1,t1) R(a2,t2)).
@@ -28,6 +53,8 @@ struct BallJointDef {
   bool enable_limits = false;
   std::array<double, 3> lower = {0, 0, 0};
   std::array<double, 3> upper = {0, 0, 0};
+  std::array<JointMotor, 3> motors;  // one per Euler axis
+  JointSpring spring;
   bool collide_connected = false;
 };
 
@@ -39,6 +66,8 @@ struct HingeJointDef {
   Vec3 axis = Vec3::UnitZ();
   bool enable_limit = false;
   double lower = 0.0, upper = 0.0;
+  JointMotor motor;
+  JointSpring spring;
   bool collide_connected = false;
 };
 

@@ -94,6 +94,12 @@ class World {
   double hingeAngle(JointId joint) const;
   std::array<double, 3> ballAngles(JointId joint) const;  // Euler angles about the def's axes
   Vec3 jointAnchorError(JointId joint) const;             // world anchor B - anchor A
+  double jointForce(JointId joint) const;                 // N, in the anchor, last substep
+  bool isJointBroken(JointId joint) const;
+  // Joints broken since the last call, in the order they broke (for events).
+  std::vector<JointId> takeBrokenJoints();
+  // Motor of one joint angle (hinge: axis 0; ball: Euler axes 0..2).
+  void setJointMotor(JointId joint, int axis, const JointMotor& motor);
 
   Vec3 linearMomentum() const;
   Vec3 angularMomentum(const Vec3& about) const;

@@ -1,4 +1,5 @@
-// Ball joint = point part + (optional) one angle-limit part per Euler axis
+// Ball joint = anchor (point part or spring) + optional angle-motor and angle-limit parts per
+// Euler axis
 // (joint_angles.hpp has the angle decomposition and its Jacobian).
 #include "joint.hpp"
 
@@ -24,26 +25,32 @@ void prepareBallJoint(Joint& j, const StepContext& ctx) {
 void warmStartBallJoint(Joint& j, const StepContext& ctx) {
   auto& s = *ctx.bodies;
   SolverBody &A = s[j.a], &B = s[j.b];
-  if (j.limits_enabled) {
+  if (j.angleRowsNeeded()) {
     Vec3 t;
     std::array<Vec3, 3> rows;
     if (ballLimitRows(j, ctx, t, rows))
-      for (int i = 0; i < 3; ++i) j.limits3[i].warmStart(A, B, rows[i]);
+      for (int i = 0; i < 3; ++i) {
+        j.motor_parts[i].warmStart(A, B, rows[i]);
+        if (j.limits_enabled) j.limits3[i].warmStart(A, B, rows[i]);
+      }
   }
-  j.point.warmStart(A, B);
+  warmStartAnchor(j, A, B);
 }
 
 void solveBallJoint(Joint& j, const StepContext& ctx, bool use_bias) {
   auto& s = *ctx.bodies;
   SolverBody &A = s[j.a], &B = s[j.b];
-  if (j.limits_enabled) {
+  if (j.angleRowsNeeded()) {
     Vec3 t;
     std::array<Vec3, 3> rows;
     if (ballLimitRows(j, ctx, t, rows))
-      for (int i = 0; i < 3; ++i)
-        j.limits3[i].solve(A, B, rows[i], t[i], j.lower3[i], j.upper3[i], ctx, use_bias);
+      for (int i = 0; i < 3; ++i) {
+        j.motor_parts[i].solve(A, B, rows[i], t[i], j.motors[i], ctx, use_bias);
+        if (j.limits_enabled)
+          j.limits3[i].solve(A, B, rows[i], t[i], j.lower3[i], j.upper3[i], ctx, use_bias);
+      }
   }
-  j.point.solve(A, B, ctx.joint_softness, use_bias);
+  solveAnchor(j, A, B, ctx, use_bias);
 }
 
 }  // namespace ragdoll_sim

@@ -1,4 +1,5 @@
-// Hinge joint = point part + hinge-axis part (2 angular rows) + (optional) angle-limit part.
+// Hinge joint = anchor (point part or spring) + hinge-axis part (2 angular rows) + optional
+// angle-motor and angle-limit parts on the hinge angle.
 #include "joint.hpp"
 
 namespace ragdoll_sim {
@@ -23,27 +24,29 @@ void prepareHingeJoint(Joint& j, const StepContext& ctx) {
 void warmStartHingeJoint(Joint& j, const StepContext& ctx) {
   auto& s = *ctx.bodies;
   SolverBody &A = s[j.a], &B = s[j.b];
-  if (j.limits_enabled) {
+  if (j.angleRowsNeeded()) {
     Vec3 axis;
     double theta;
     hingeLimitRow(j, ctx, axis, theta);
-    j.limit.warmStart(A, B, axis);
+    j.motor_parts[0].warmStart(A, B, axis);
+    if (j.limits_enabled) j.limit.warmStart(A, B, axis);
   }
   j.hinge_axis.warmStart(A, B);
-  j.point.warmStart(A, B);
+  warmStartAnchor(j, A, B);
 }
 
 void solveHingeJoint(Joint& j, const StepContext& ctx, bool use_bias) {
   auto& s = *ctx.bodies;
   SolverBody &A = s[j.a], &B = s[j.b];
-  if (j.limits_enabled) {
+  if (j.angleRowsNeeded()) {
     Vec3 axis;
     double theta;
     hingeLimitRow(j, ctx, axis, theta);
-    j.limit.solve(A, B, axis, theta, j.lower, j.upper, ctx, use_bias);
+    j.motor_parts[0].solve(A, B, axis, theta, j.motors[0], ctx, use_bias);
+    if (j.limits_enabled) j.limit.solve(A, B, axis, theta, j.lower, j.upper, ctx, use_bias);
   }
   j.hinge_axis.solve(A, B, ctx.joint_softness, use_bias);
-  j.point.solve(A, B, ctx.joint_softness, use_bias);
+  solveAnchor(j, A, B, ctx, use_bias);
 }
 
 }  // namespace ragdoll_sim

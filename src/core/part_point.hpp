@@ -8,6 +8,8 @@
 // rotated by the delta rotation and the centres moved by the delta positions.
 #pragma once
 
+#include <limits>
+
 #include "solver_context.hpp"
 
 namespace ragdoll_sim {
@@ -28,11 +30,31 @@ struct PointPart {
     applyPairImpulse(A, B, impulse, A.dq * rA0, B.dq * rB0);
   }
 
+  // Hooke spring F = -k x - c v between the anchors instead of the rigid row, implicit over
+  // the substep (Catto's soft constraints): gamma = 1 / (h (c + h k)), beta = k / (c + h k),
+  //   lambda = -(K + gamma I)^-1 (Cdot + beta C);  for one body on a fixed anchor this is
+  // exactly implicit Euler of m x'' = -k x - c x'. Returns the spring force k |C|.
+  double solveSpring(SolverBody& A, SolverBody& B, double k, double c, double h) {
+    const Vec3 rA = A.dq * rA0, rB = B.dq * rB0;
+    const Vec3 C = (B.dp - A.dp) + (rB - rA) + delta_center;
+    const Vec3 cdot = B.v + B.w.cross(rB) - A.v - A.w.cross(rA);
+    const Mat3 sA = skew(rA), sB = skew(rB);
+    const double gamma = 1.0 / (h * (c + h * k)), beta = k / (c + h * k);
+    const Mat3 K = (A.inv_mass + B.inv_mass + gamma) * Mat3::Identity() - sA * A.inv_inertia * sA -
+                   sB * B.inv_inertia * sB;
+    const Vec3 lambda = -K.ldlt().solve(cdot + beta * C);
+    applyPairImpulse(A, B, lambda, rA, rB);
+    return k * C.norm();
+  }
+
   Vec3 error(const SolverBody& A, const SolverBody& B) const {
     return (B.dp - A.dp) + (B.dq * rB0 - A.dq * rA0) + delta_center;
   }
 
-  void solve(SolverBody& A, SolverBody& B, const Softness& soft, bool use_bias) {
+  // max_impulse caps |accumulated impulse| (a breakable joint transmits at most its
+  // strength); returns true when the cap was reached.
+  bool solve(SolverBody& A, SolverBody& B, const Softness& soft, bool use_bias,
+             double max_impulse = std::numeric_limits<double>::infinity()) {
     const Vec3 rA = A.dq * rA0, rB = B.dq * rB0;
     const Vec3 cdot = B.v + B.w.cross(rB) - A.v - A.w.cross(rA);
     Vec3 bias = Vec3::Zero();
@@ -45,9 +67,13 @@ struct PointPart {
     const Mat3 sA = skew(rA), sB = skew(rB);
     Mat3 K = (A.inv_mass + B.inv_mass) * Mat3::Identity() - sA * A.inv_inertia * sA -
              sB * B.inv_inertia * sB;
-    const Vec3 lambda = -mass_scale * K.ldlt().solve(cdot + bias) - impulse_scale * impulse;
-    impulse += lambda;
-    applyPairImpulse(A, B, lambda, rA, rB);
+    Vec3 next = impulse - mass_scale * K.ldlt().solve(cdot + bias) - impulse_scale * impulse;
+    const double n = next.norm();
+    const bool saturated = n > max_impulse;
+    if (saturated) next *= max_impulse / n;
+    applyPairImpulse(A, B, next - impulse, rA, rB);
+    impulse = next;
+    return saturated;
   }
 };
 

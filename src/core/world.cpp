@@ -58,6 +58,7 @@ struct World::Impl {
   std::vector<std::pair<int, int>> pairs;
   std::vector<double> island_slow;
   std::vector<Joint*> active_joints;
+  std::vector<JointId> broken_events;
 
   const ShapeDef& shapeDef(int s) const { return bodies[shapes[s].body].shapes[shapes[s].index]; }
   Transform shapePose(int s) const {
@@ -79,6 +80,7 @@ struct World::Impl {
   void integratePositions(double h);
   void finishStep();
   void buildIslands();
+  void breakJoints(double h);
   void updateSleep(double dt);
   Joint& addJoint(JointType type, BodyId a, BodyId b, const Transform& fa, const Transform& fb,
                   bool collide_connected);
@@ -195,10 +197,27 @@ void World::Impl::finishStep() {
   }
 }
 
+// A joint whose anchor force reached its limit breaks now (a rigid anchor never transmits
+// more than break_force: its impulse is capped at break_force h): it is dropped from the
+// solver, the bodies keep their momentum and the pair collides again.
+void World::Impl::breakJoints(double h) {
+  bool any = false;
+  for (Joint* j : active_joints) {
+    if (j->broken || !(j->overloaded || j->force > j->spring.break_force)) continue;
+    j->broken = any = true;
+    disabled.erase(bodyPairKey(j->a, j->b));
+    broken_events.push_back(JointId{int32_t(j - joints.data())});
+  }
+  if (any)
+    active_joints.erase(std::remove_if(active_joints.begin(), active_joints.end(),
+                                       [](const Joint* j) { return j->broken; }),
+                        active_joints.end());
+}
+
 void World::Impl::buildIslands() {
   islands.reset(int(bodies.size()));
   for (const Joint& j : joints)
-    if (isDynamic(j.a) && isDynamic(j.b)) islands.unite(j.a, j.b);
+    if (!j.broken && isDynamic(j.a) && isDynamic(j.b)) islands.unite(j.a, j.b);
   for (const Contact& c : contacts)
     if (c.manifold.count > 0 && isDynamic(c.body_a) && isDynamic(c.body_b))
       islands.unite(c.body_a, c.body_b);
@@ -303,6 +322,8 @@ JointId World::createBallJoint(const BallJointDef& def) {
   j.limits_enabled = def.enable_limits;
   j.lower3 = def.lower;
   j.upper3 = def.upper;
+  j.motors = def.motors;
+  j.spring = def.spring;
   return JointId{int32_t(impl_->joints.size() - 1)};
 }
 
@@ -313,6 +334,8 @@ JointId World::createHingeJoint(const HingeJointDef& def) {
   j.limits_enabled = def.enable_limit;
   j.lower = def.lower;
   j.upper = def.upper;
+  j.motors[0] = def.motor;
+  j.spring = def.spring;
   return JointId{int32_t(impl_->joints.size() - 1)};
 }
 
@@ -359,7 +382,7 @@ void World::step(double dt) {
 
   w.active_joints.clear();
   for (Joint& j : w.joints)
-    if (w.motions[j.a].awake || w.motions[j.b].awake) {
+    if (!j.broken && (w.motions[j.a].awake || w.motions[j.b].awake)) {
       prepareJoint(j, ctx);
       w.active_joints.push_back(&j);
     }
@@ -374,6 +397,7 @@ void World::step(double dt) {
     w.integratePositions(ctx.h);
     for (Joint* j : w.active_joints) solveJoint(*j, ctx, false);
     for (int k = 0; k < w.def.contact_relax_iterations; ++k) w.contact_solver.solve(ctx, false);
+    w.breakJoints(ctx.h);
   }
   w.contact_solver.applyRestitution(ctx);
   w.contact_solver.storeImpulses(w.contacts);
@@ -512,6 +536,22 @@ Vec3 World::jointAnchorError(JointId id) const {
   const Joint& j = impl_->joints.at(id.index);
   const auto& m = impl_->motions;
   return m[j.b].linkPose().apply(j.frame_b.p) - m[j.a].linkPose().apply(j.frame_a.p);
+}
+
+double World::jointForce(JointId id) const { return impl_->joints.at(id.index).force; }
+bool World::isJointBroken(JointId id) const { return impl_->joints.at(id.index).broken; }
+
+std::vector<JointId> World::takeBrokenJoints() {
+  std::vector<JointId> out;
+  out.swap(impl_->broken_events);
+  return out;
+}
+
+void World::setJointMotor(JointId id, int axis, const JointMotor& motor) {
+  Joint& j = impl_->joints.at(id.index);
+  j.motors.at(axis) = motor;
+  impl_->wake(j.a);
+  impl_->wake(j.b);
 }
 
 Vec3 World::linearMomentum() const {
