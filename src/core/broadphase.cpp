@@ -10,7 +10,8 @@ void Broadphase::findPairs(const std::vector<Aabb>& aabbs, const std::vector<cha
   pairs.clear();
   const int n = int(aabbs.size());
   // Keep the previous order, drop stale or unbounded ids, append new ones.
-  std::vector<char> seen(n, 0);
+  std::vector<char>& seen = seen_;
+  seen.assign(n, 0);
   int w = 0;
   for (int id : order_)
     if (id < n && !unbounded[id]) {

@@ -26,6 +26,7 @@ class Broadphase {
 
  private:
   std::vector<int> order_;
+  std::vector<char> seen_;  // scratch, kept to avoid a per-step allocation
 };
 
 }  // namespace ragdoll_sim
