@@ -1,13 +1,22 @@
-// Dispatch on joint type, and the anchor shared by all types (rigid or spring).
+// Joint solve shared by all types: angle motors and limits on the joint's angles, type-specific
+// angular rows (hinge axis), then the anchor (rigid point part or spring).
 #include "joint.hpp"
 
 namespace ragdoll_sim {
+
+namespace {
+void updateAngles(Joint& j, const StepContext& ctx) {
+  if (!j.angleRowsNeeded()) j.angle_count = 0;
+  else if (j.type == JointType::Ball) updateBallAngles(j, ctx);
+  else updateHingeAngles(j, ctx);
+}
 
 void warmStartAnchor(Joint& j, SolverBody& A, SolverBody& B) {
   if (j.spring.stiffness > 0.0) return;
   j.point.warmStart(A, B);
 }
 
+// The anchor: rigid point part, or a Hooke spring (solved once per substep, in the biased pass).
 void solveAnchor(Joint& j, SolverBody& A, SolverBody& B, const StepContext& ctx, bool use_bias) {
   if (j.spring.stiffness > 0.0) {
     if (use_bias) j.force = j.point.solveSpring(A, B, j.spring.stiffness, j.spring.damping, ctx.h);
@@ -17,6 +26,7 @@ void solveAnchor(Joint& j, SolverBody& A, SolverBody& B, const StepContext& ctx,
   if (j.point.solve(A, B, ctx.joint_softness, use_bias, max_impulse)) j.overloaded = true;
   j.force = j.point.impulse.norm() * ctx.inv_h;
 }
+}  // namespace
 
 void prepareJoint(Joint& j, const StepContext& ctx) {
   if (j.type == JointType::Ball) prepareBallJoint(j, ctx);
@@ -24,13 +34,29 @@ void prepareJoint(Joint& j, const StepContext& ctx) {
 }
 
 void warmStartJoint(Joint& j, const StepContext& ctx) {
-  if (j.type == JointType::Ball) warmStartBallJoint(j, ctx);
-  else warmStartHingeJoint(j, ctx);
+  auto& s = *ctx.bodies;
+  SolverBody &A = s[j.a], &B = s[j.b];
+  updateAngles(j, ctx);
+  for (int i = 0; i < j.angle_count; ++i) {
+    j.motor_parts[i].warmStart(A, B, j.angle_rows[i]);
+    if (j.limits_enabled) j.limits[i].warmStart(A, B, j.angle_rows[i]);
+  }
+  if (j.type == JointType::Hinge) j.hinge_axis.warmStart(A, B);
+  warmStartAnchor(j, A, B);
 }
 
 void solveJoint(Joint& j, const StepContext& ctx, bool use_bias) {
-  if (j.type == JointType::Ball) solveBallJoint(j, ctx, use_bias);
-  else solveHingeJoint(j, ctx, use_bias);
+  auto& s = *ctx.bodies;
+  SolverBody &A = s[j.a], &B = s[j.b];
+  if (!use_bias) updateAngles(j, ctx);  // positions moved since the warm start
+  for (int i = 0; i < j.angle_count; ++i) {
+    const Vec3& row = j.angle_rows[i];
+    j.motor_parts[i].solve(A, B, row, j.angles[i], j.motors[i], ctx, use_bias);
+    if (j.limits_enabled)
+      j.limits[i].solve(A, B, row, j.angles[i], j.lower[i], j.upper[i], ctx, use_bias);
+  }
+  if (j.type == JointType::Hinge) j.hinge_axis.solve(A, B, ctx.joint_softness, use_bias);
+  solveAnchor(j, A, B, ctx, use_bias);
 }
 
 }  // namespace ragdoll_sim

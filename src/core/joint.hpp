@@ -26,16 +26,21 @@ struct Joint {
   std::array<JointMotor, 3> motors;       // hinge: [0]; ball: per Euler axis
   std::array<AngleMotorPart, 3> motor_parts;
 
-  // Hinge: axis in the joint frame; limit on its angle.
+  // Hinge: axis in the joint frame. Ball: Euler basis.
   Vec3 axis = Vec3::UnitZ();
-  double lower = 0.0, upper = 0.0;
   HingeAxisPart hinge_axis;
-  AngleLimitPart limit;
-
-  // Ball: Euler basis and per-axis limits.
   EulerBasis euler;
-  std::array<double, 3> lower3{}, upper3{};
-  std::array<AngleLimitPart, 3> limits3;
+
+  // Joint angles (hinge: 1, ball: 3 Euler angles) with their limits and motors.
+  std::array<double, 3> lower{}, upper{};
+  std::array<AngleLimitPart, 3> limits;
+
+  // Angles and their world Jacobian rows at the current substep poses (count 0: none, or a
+  // ball near gimbal lock). Computed at warm start, reused by the biased solve (the poses
+  // have not moved in between), recomputed for the relax pass.
+  int angle_count = 0;
+  std::array<double, 3> angles{};
+  std::array<Vec3, 3> angle_rows;
 
   bool angleRowsNeeded() const {
     bool motor = false;
@@ -47,17 +52,13 @@ struct Joint {
 };
 
 void prepareJoint(Joint& j, const StepContext& ctx);
-// The anchor: rigid point part, or a Hooke spring (solved once per substep, in the biased pass).
-void warmStartAnchor(Joint& j, SolverBody& A, SolverBody& B);
-void solveAnchor(Joint& j, SolverBody& A, SolverBody& B, const StepContext& ctx, bool use_bias);
+// Type-specific: fill angle_count / angles / angle_rows for the current poses.
+void updateBallAngles(Joint& j, const StepContext& ctx);
+void updateHingeAngles(Joint& j, const StepContext& ctx);
 void warmStartJoint(Joint& j, const StepContext& ctx);
 void solveJoint(Joint& j, const StepContext& ctx, bool use_bias);
 
 void prepareBallJoint(Joint& j, const StepContext& ctx);
-void warmStartBallJoint(Joint& j, const StepContext& ctx);
-void solveBallJoint(Joint& j, const StepContext& ctx, bool use_bias);
 void prepareHingeJoint(Joint& j, const StepContext& ctx);
-void warmStartHingeJoint(Joint& j, const StepContext& ctx);
-void solveHingeJoint(Joint& j, const StepContext& ctx, bool use_bias);
 
 }  // namespace ragdoll_sim

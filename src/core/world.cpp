@@ -320,8 +320,8 @@ JointId World::createBallJoint(const BallJointDef& def) {
                              def.collide_connected);
   j.euler = EulerBasis(def.axes);
   j.limits_enabled = def.enable_limits;
-  j.lower3 = def.lower;
-  j.upper3 = def.upper;
+  j.lower = def.lower;
+  j.upper = def.upper;
   j.motors = def.motors;
   j.spring = def.spring;
   return JointId{int32_t(impl_->joints.size() - 1)};
@@ -332,8 +332,8 @@ JointId World::createHingeJoint(const HingeJointDef& def) {
                              def.collide_connected);
   j.axis = def.axis.normalized();
   j.limits_enabled = def.enable_limit;
-  j.lower = def.lower;
-  j.upper = def.upper;
+  j.lower[0] = def.lower;
+  j.upper[0] = def.upper;
   j.motors[0] = def.motor;
   j.spring = def.spring;
   return JointId{int32_t(impl_->joints.size() - 1)};
