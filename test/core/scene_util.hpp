@@ -46,5 +46,25 @@ inline BodyId addSphere(World& w, double r, double mass, const Vec3& pos, const 
                  Transform(pos, Quat::Identity()), m);
 }
 
+// Period of an oscillating value: steps the world `steps` times and averages the time between
+// downward zero crossings (linearly interpolated). Returns -1 with fewer than 3 crossings.
+template <class Value>
+double oscillationPeriod(World& w, double dt, int steps, Value value) {
+  double prev = value(), t_first = -1.0, t_last = -1.0;
+  int crossings = 0;
+  for (int i = 0; i < steps; ++i) {
+    w.step(dt);
+    const double x = value();
+    if (prev > 0 && x <= 0) {
+      const double t = w.time() - dt * x / (x - prev);
+      if (t_first < 0) t_first = t;
+      t_last = t;
+      ++crossings;
+    }
+    prev = x;
+  }
+  return crossings >= 3 ? (t_last - t_first) / (crossings - 1) : -1.0;
+}
+
 }  // namespace test
 }  // namespace ragdoll_sim
