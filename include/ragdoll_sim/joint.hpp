@@ -16,7 +16,7 @@ struct JointId {
   bool operator==(JointId o) const { return index == o.index; }
 };
 
-enum class JointType : uint8_t { Ball, Hinge };
+enum class JointType : uint8_t { Ball, Hinge, Fixed, Prismatic };
 
 // Optional elasticity of a joint's anchor (seed section 4.3): with stiffness > 0 the anchors
 // are held by a Hooke spring F = -k x - c v instead of rigidly. The joint breaks (and stays
@@ -43,16 +43,29 @@ struct JointMotor {
   double damping = 0.0;  // N m s/rad, viscous joint damping (applied even when !enabled)
 };
 
+// How a ball joint's limits (enable_limits) are expressed.
+enum class BallLimitMode : uint8_t {
+  Euler,      // lower / upper on the three Euler angles about `axes`
+  SwingTwist  // a cone around the twist axis axes[0] and a range of twist about it
+};
+
 // Ball joint: anchors coincide. Optional limits on the Euler angles of B's joint frame relative
 // to A's, decomposed about three orthonormal joint-frame axes in the order given (the meaning
-// of a chain of three revolute joints with coincident origins: R = R(a0,t0) R(a1,t1) R(a2,t2)).
+// of a chain of three revolute joints with coincident origins: R = R(a0,t0) R(a1,t1) R(a2,t2)),
+// or, with limit_mode SwingTwist, on the swing-twist decomposition R = R_swing R(t, twist):
+// t = axes[0] (joint frame) is the twist axis, swing is the angle between t carried by frame A
+// and t carried by frame B, held within swing_cone_angle (> 0), and twist (about t, in
+// (-pi, pi]) within [twist_lower, twist_upper]. Motors stay on the Euler angles in both modes.
 struct BallJointDef {
   BodyId body_a, body_b;
   Transform frame_a, frame_b;
   std::array<Vec3, 3> axes = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
   bool enable_limits = false;
-  std::array<double, 3> lower = {0, 0, 0};
+  BallLimitMode limit_mode = BallLimitMode::Euler;
+  std::array<double, 3> lower = {0, 0, 0};  // Euler mode
   std::array<double, 3> upper = {0, 0, 0};
+  double swing_cone_angle = 0.0;            // SwingTwist mode, rad (half-angle of the cone)
+  double twist_lower = 0.0, twist_upper = 0.0;  // SwingTwist mode, rad
   std::array<JointMotor, 3> motors;  // one per Euler axis
   JointSpring spring;
   bool collide_connected = false;
@@ -66,6 +79,32 @@ struct HingeJointDef {
   Vec3 axis = Vec3::UnitZ();
   bool enable_limit = false;
   double lower = 0.0, upper = 0.0;
+  JointMotor motor;
+  JointSpring spring;
+  bool collide_connected = false;
+};
+
+// Fixed (weld): anchors coincide and the joint frames keep the same orientation. The spring
+// acts on the anchor only (stiffness > 0: Hooke spring, the rotation stays locked rigidly);
+// break_force caps the anchor force (the rotation lock has no torque limit).
+struct FixedJointDef {
+  BodyId body_a, body_b;
+  Transform frame_a, frame_b;
+  JointSpring spring;
+  bool collide_connected = false;
+};
+
+// Prismatic (slider): the joint frames keep the same orientation and anchor B moves only along
+// `axis` (joint frame of A, unit). The position is s = axis . (anchor B - anchor A), 0 when the
+// frames coincide. The motor is read as linear: target (m), target_velocity (m/s), max_torque
+// is the force cap (N), damping is N s/m. Only spring.break_force is used (off-axis force
+// plus axial limit / motor force); a spring stiffness is rejected.
+struct PrismaticJointDef {
+  BodyId body_a, body_b;
+  Transform frame_a, frame_b;
+  Vec3 axis = Vec3::UnitX();
+  bool enable_limit = false;
+  double lower = 0.0, upper = 0.0;  // m
   JointMotor motor;
   JointSpring spring;
   bool collide_connected = false;

@@ -33,6 +33,9 @@ struct WorldDef {
   double time_to_sleep = 0.5;           // s an island must stay slow before it sleeps
   double sleep_speed = 0.05;            // m/s, |v| + extent |w| below this counts as slow
   MaterialTable materials;              // pair coefficients and the combine rules
+  // Islands are solved in parallel on this many threads (0: all cores). The result does not
+  // depend on it: islands share no bodies and each is solved in the same order.
+  int threads = 0;
 };
 
 // A contact point for display and tests.
@@ -56,6 +59,8 @@ class World {
   void addShape(BodyId body, const ShapeDef& def);
   JointId createBallJoint(const BallJointDef& def);
   JointId createHingeJoint(const HingeJointDef& def);
+  JointId createFixedJoint(const FixedJointDef& def);
+  JointId createPrismaticJoint(const PrismaticJointDef& def);
   // The pair never collides (joints also disable their pair unless collide_connected).
   void disableCollision(BodyId a, BodyId b);
 
@@ -93,12 +98,16 @@ class World {
   JointType jointType(JointId joint) const;
   double hingeAngle(JointId joint) const;
   std::array<double, 3> ballAngles(JointId joint) const;  // Euler angles about the def's axes
-  Vec3 jointAnchorError(JointId joint) const;             // world anchor B - anchor A
+  // Ball: {swing, twist} (rad) about the twist axis axes[0], whatever the limit mode.
+  std::array<double, 2> ballSwingTwist(JointId joint) const;
+  double prismaticPosition(JointId joint) const;  // m along the axis (0 for other types)
+  // World anchor B - anchor A (prismatic: its part off the axis).
+  Vec3 jointAnchorError(JointId joint) const;
   double jointForce(JointId joint) const;                 // N, in the anchor, last substep
   bool isJointBroken(JointId joint) const;
   // Joints broken since the last call, in the order they broke (for events).
   std::vector<JointId> takeBrokenJoints();
-  // Motor of one joint angle (hinge: axis 0; ball: Euler axes 0..2).
+  // Motor of one joint angle (hinge: axis 0; ball: Euler axes 0..2; prismatic: axis 0, linear).
   void setJointMotor(JointId joint, int axis, const JointMotor& motor);
 
   Vec3 linearMomentum() const;

@@ -26,11 +26,25 @@
 namespace ragdoll_sim {
 
 namespace {
-double rowMass(const SolverBody& A, const SolverBody& B, const Vec3& rA, const Vec3& rB,
-               const Vec3& d) {
-  const Vec3 ra = rA.cross(d), rb = rB.cross(d);
-  const double k = A.inv_mass + B.inv_mass + ra.dot(A.inv_inertia * ra) + rb.dot(B.inv_inertia * rb);
-  return k > 0.0 ? 1.0 / k : 0.0;
+ContactRow makeRow(const SolverBody& A, const SolverBody& B, const Vec3& rA, const Vec3& rB,
+                   const Vec3& d) {
+  ContactRow r;
+  r.angA = rA.cross(d);
+  r.angB = rB.cross(d);
+  r.iangA = A.inv_inertia * r.angA;
+  r.iangB = B.inv_inertia * r.angB;
+  const double k = A.inv_mass + B.inv_mass + r.angA.dot(r.iangA) + r.angB.dot(r.iangB);
+  r.mass = k > 0.0 ? 1.0 / k : 0.0;
+  return r;
+}
+double rowVelocity(const SolverBody& A, const SolverBody& B, const ContactRow& r, const Vec3& d) {
+  return d.dot(B.v - A.v) + B.w.dot(r.angB) - A.w.dot(r.angA);
+}
+void applyRow(SolverBody& A, SolverBody& B, const ContactRow& r, const Vec3& d, double lambda) {
+  A.v -= (A.inv_mass * lambda) * d;
+  A.w -= lambda * r.iangA;
+  B.v += (B.inv_mass * lambda) * d;
+  B.w += lambda * r.iangB;
 }
 Vec3 relativeVelocity(const SolverBody& A, const SolverBody& B, const Vec3& rA, const Vec3& rB) {
   return B.v + B.w.cross(rB) - A.v - A.w.cross(rA);
@@ -69,14 +83,14 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
       p.rA = mp.point - xA;
       p.rB = mp.point - xB;
       p.base_separation = mp.separation - (p.rB - p.rA).dot(cc.normal);
-      p.normal_mass = rowMass(A, B, p.rA, p.rB, cc.normal);
+      p.normal_row = makeRow(A, B, p.rA, p.rB, cc.normal);
       const Vec3 dv = relativeVelocity(A, B, p.rA, p.rB);
       p.relative_velocity = dv.dot(cc.normal);
       max_slip = std::max(max_slip, (dv - p.relative_velocity * cc.normal).norm());
       p.normal_impulse = c.normal_impulse[i];
       p.max_normal_impulse = 0.0;
       for (int k = 0; k < 2; ++k) {
-        p.tangent_mass[k] = rowMass(A, B, p.rA, p.rB, cc.tangent[k]);
+        p.tangent_row[k] = makeRow(A, B, p.rA, p.rB, cc.tangent[k]);
         p.tangent_impulse[k] = c.friction_impulse[i].dot(cc.tangent[k]);
       }
     }
@@ -85,29 +99,33 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
   }
 }
 
-void ContactSolver::warmStart(const StepContext& ctx) {
+void ContactSolver::warmStart(const StepContext& ctx, int begin, int end) {
   auto& bodies = *ctx.bodies;
-  for (ContactConstraint& cc : constraints_) {
+  for (int k = begin; k < end; ++k) {
+    ContactConstraint& cc = constraints_[k];
     SolverBody &A = bodies[cc.a], &B = bodies[cc.b];
     for (int i = 0; i < cc.count; ++i) {
       const ContactConstraintPoint& p = cc.points[i];
-      const Vec3 P = p.normal_impulse * cc.normal + p.tangent_impulse[0] * cc.tangent[0] +
-                     p.tangent_impulse[1] * cc.tangent[1];
-      applyPairImpulse(A, B, P, p.rA, p.rB);
+      applyRow(A, B, p.normal_row, cc.normal, p.normal_impulse);
+      applyRow(A, B, p.tangent_row[0], cc.tangent[0], p.tangent_impulse[0]);
+      applyRow(A, B, p.tangent_row[1], cc.tangent[1], p.tangent_impulse[1]);
     }
   }
 }
 
-void ContactSolver::solve(const StepContext& ctx, bool use_bias) {
+void ContactSolver::solve(const StepContext& ctx, bool use_bias, int begin, int end) {
   auto& bodies = *ctx.bodies;
   const WorldDef& def = *ctx.def;
   const Softness& soft = ctx.contact_softness;
-  for (ContactConstraint& cc : constraints_) {
+  for (int k = begin; k < end; ++k) {
+    ContactConstraint& cc = constraints_[k];
     SolverBody &A = bodies[cc.a], &B = bodies[cc.b];
-    const Vec3 dp = B.dp - A.dp;
+    // s = (dpB - dpA).n + (dqB rB).n - (dqA rA).n + base: rotate n back once per manifold.
+    const double dpn = (B.dp - A.dp).dot(cc.normal);
+    const Vec3 nA = A.dq.conjugate() * cc.normal, nB = B.dq.conjugate() * cc.normal;
     for (int i = 0; i < cc.count; ++i) {
       ContactConstraintPoint& p = cc.points[i];
-      const double s = (dp + B.dq * p.rB - A.dq * p.rA).dot(cc.normal) + p.base_separation;
+      const double s = dpn + p.rB.dot(nB) - p.rA.dot(nA) + p.base_separation;
       double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
       if (s > 0.0) {
         bias = s * ctx.inv_h;
@@ -116,20 +134,19 @@ void ContactSolver::solve(const StepContext& ctx, bool use_bias) {
         mass_scale = soft.mass_scale;
         impulse_scale = soft.impulse_scale;
       }
-      const double vn = relativeVelocity(A, B, p.rA, p.rB).dot(cc.normal);
-      double lambda = -p.normal_mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
+      const double vn = rowVelocity(A, B, p.normal_row, cc.normal);
+      double lambda = -p.normal_row.mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
       const double next = std::max(p.normal_impulse + lambda, 0.0);
       lambda = next - p.normal_impulse;
       p.normal_impulse = next;
       p.max_normal_impulse = std::max(p.max_normal_impulse, lambda);
-      applyPairImpulse(A, B, lambda * cc.normal, p.rA, p.rB);
+      applyRow(A, B, p.normal_row, cc.normal, lambda);
     }
     for (int i = 0; i < cc.count; ++i) {
       ContactConstraintPoint& p = cc.points[i];
-      const Vec3 dv = relativeVelocity(A, B, p.rA, p.rB);
       const double old0 = p.tangent_impulse[0], old1 = p.tangent_impulse[1];
-      double t0 = old0 - p.tangent_mass[0] * dv.dot(cc.tangent[0]);
-      double t1 = old1 - p.tangent_mass[1] * dv.dot(cc.tangent[1]);
+      double t0 = old0 - p.tangent_row[0].mass * rowVelocity(A, B, p.tangent_row[0], cc.tangent[0]);
+      double t1 = old1 - p.tangent_row[1].mass * rowVelocity(A, B, p.tangent_row[1], cc.tangent[1]);
       const double limit = cc.friction * p.normal_impulse;
       const double mag = std::sqrt(t0 * t0 + t1 * t1);
       if (mag > limit) {
@@ -139,7 +156,8 @@ void ContactSolver::solve(const StepContext& ctx, bool use_bias) {
       }
       p.tangent_impulse[0] = t0;
       p.tangent_impulse[1] = t1;
-      applyPairImpulse(A, B, (t0 - old0) * cc.tangent[0] + (t1 - old1) * cc.tangent[1], p.rA, p.rB);
+      applyRow(A, B, p.tangent_row[0], cc.tangent[0], t0 - old0);
+      applyRow(A, B, p.tangent_row[1], cc.tangent[1], t1 - old1);
     }
   }
 }
@@ -153,12 +171,12 @@ void ContactSolver::applyRestitution(const StepContext& ctx) {
     for (int i = 0; i < cc.count; ++i) {
       ContactConstraintPoint& p = cc.points[i];
       if (p.relative_velocity > -threshold || p.max_normal_impulse == 0.0) continue;
-      const double vn = relativeVelocity(A, B, p.rA, p.rB).dot(cc.normal);
-      double lambda = -p.normal_mass * (vn + cc.restitution * p.relative_velocity);
+      const double vn = rowVelocity(A, B, p.normal_row, cc.normal);
+      double lambda = -p.normal_row.mass * (vn + cc.restitution * p.relative_velocity);
       const double next = std::max(p.normal_impulse + lambda, 0.0);
       lambda = next - p.normal_impulse;
       p.normal_impulse = next;
-      applyPairImpulse(A, B, lambda * cc.normal, p.rA, p.rB);
+      applyRow(A, B, p.normal_row, cc.normal, lambda);
     }
   }
 }

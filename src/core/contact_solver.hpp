@@ -8,10 +8,19 @@
 
 namespace ragdoll_sim {
 
+// One Jacobian row along a unit direction d: J = [-d, -(rA x d), d, rB x d], with the
+// angular parts premultiplied by the inverse inertias (frozen for the step) so that the
+// loops do no matrix work: Cdot = d.(vB - vA) + wB.angB - wA.angA.
+struct ContactRow {
+  Vec3 angA, angB;    // rA x d, rB x d
+  Vec3 iangA, iangB;  // IA^-1 angA, IB^-1 angB
+  double mass;        // 1 / (J M^-1 J^T)
+};
+
 struct ContactConstraintPoint {
   Vec3 rA, rB;                  // from the COMs at step start (world)
   double base_separation;       // separation - (rB - rA).n, so s = (d + rB' - rA').n + base
-  double normal_mass, tangent_mass[2];
+  ContactRow normal_row, tangent_row[2];
   double normal_impulse, tangent_impulse[2];
   double max_normal_impulse;
   double relative_velocity;     // normal approach speed before the step (for restitution)
@@ -25,13 +34,16 @@ struct ContactConstraint {
   ContactConstraintPoint points[Manifold::kMaxPoints];
 };
 
+// Constraints are stored grouped by island (World sorts them after prepare); the per-substep
+// calls take the range [begin, end) of one island, so islands can be solved in parallel.
 class ContactSolver {
  public:
   void prepare(const std::vector<Contact>& contacts, const StepContext& ctx);
-  void warmStart(const StepContext& ctx);
-  void solve(const StepContext& ctx, bool use_bias);
+  void warmStart(const StepContext& ctx, int begin, int end);
+  void solve(const StepContext& ctx, bool use_bias, int begin, int end);
   void applyRestitution(const StepContext& ctx);
   void storeImpulses(std::vector<Contact>& contacts) const;
+  std::vector<ContactConstraint>& constraints() { return constraints_; }
 
  private:
   std::vector<ContactConstraint> constraints_;

@@ -1,14 +1,15 @@
 // Joint solve shared by all types: angle motors and limits on the joint's angles, type-specific
-// angular rows (hinge axis), then the anchor (rigid point part or spring).
+// angular rows (hinge axis, swing-twist limits, rotation lock), then the anchor (rigid point
+// part or spring). Prismatic joints have no anchor point: joint_prismatic.cpp solves them.
 #include "joint.hpp"
 
 namespace ragdoll_sim {
 
 namespace {
 void updateAngles(Joint& j, const StepContext& ctx) {
-  if (!j.angleRowsNeeded()) j.angle_count = 0;
-  else if (j.type == JointType::Ball) updateBallAngles(j, ctx);
-  else updateHingeAngles(j, ctx);
+  j.angle_count = 0;
+  if (j.type == JointType::Ball) updateBallAngles(j, ctx);  // also the swing-twist rows
+  else if (j.type == JointType::Hinge && j.angleRowsNeeded()) updateHingeAngles(j, ctx);
 }
 
 void warmStartAnchor(Joint& j, SolverBody& A, SolverBody& B) {
@@ -29,25 +30,33 @@ void solveAnchor(Joint& j, SolverBody& A, SolverBody& B, const StepContext& ctx,
 }  // namespace
 
 void prepareJoint(Joint& j, const StepContext& ctx) {
-  if (j.type == JointType::Ball) prepareBallJoint(j, ctx);
-  else prepareHingeJoint(j, ctx);
+  switch (j.type) {
+    case JointType::Ball: prepareBallJoint(j, ctx); break;
+    case JointType::Hinge: prepareHingeJoint(j, ctx); break;
+    case JointType::Fixed: prepareFixedJoint(j, ctx); break;
+    case JointType::Prismatic: preparePrismaticJoint(j, ctx); break;
+  }
 }
 
 void warmStartJoint(Joint& j, const StepContext& ctx) {
   auto& s = *ctx.bodies;
   SolverBody &A = s[j.a], &B = s[j.b];
+  if (j.type == JointType::Prismatic) return warmStartPrismaticJoint(j, A, B);
   updateAngles(j, ctx);
   for (int i = 0; i < j.angle_count; ++i) {
     j.motor_parts[i].warmStart(A, B, j.angle_rows[i]);
     if (j.limits_enabled) j.limits[i].warmStart(A, B, j.angle_rows[i]);
   }
   if (j.type == JointType::Hinge) j.hinge_axis.warmStart(A, B);
+  if (j.swing_twist_limits) j.swing_twist.warmStart(A, B);
+  if (j.type == JointType::Fixed) j.angle_lock.warmStart(A, B);
   warmStartAnchor(j, A, B);
 }
 
 void solveJoint(Joint& j, const StepContext& ctx, bool use_bias) {
   auto& s = *ctx.bodies;
   SolverBody &A = s[j.a], &B = s[j.b];
+  if (j.type == JointType::Prismatic) return solvePrismaticJoint(j, A, B, ctx, use_bias);
   if (!use_bias) updateAngles(j, ctx);  // positions moved since the warm start
   for (int i = 0; i < j.angle_count; ++i) {
     const Vec3& row = j.angle_rows[i];
@@ -56,6 +65,9 @@ void solveJoint(Joint& j, const StepContext& ctx, bool use_bias) {
       j.limits[i].solve(A, B, row, j.angles[i], j.lower[i], j.upper[i], ctx, use_bias);
   }
   if (j.type == JointType::Hinge) j.hinge_axis.solve(A, B, ctx.joint_softness, use_bias);
+  if (j.swing_twist_limits)
+    j.swing_twist.solve(A, B, j.swing_cone, j.twist_lower, j.twist_upper, ctx, use_bias);
+  if (j.type == JointType::Fixed) j.angle_lock.solve(A, B, ctx.joint_softness, use_bias);
   solveAnchor(j, A, B, ctx, use_bias);
 }
 

@@ -1,14 +1,21 @@
-// Joint storage and the per-type solve functions (joint_ball.cpp, joint_hinge.cpp).
-// Every joint is composed from constraint parts (part_*.hpp) that hold the math.
+// Joint storage and the per-type solve functions (joint_ball.cpp, joint_hinge.cpp,
+// joint_fixed.cpp, joint_prismatic.cpp). Every joint is composed from constraint parts
+// (part_*.hpp) that hold the math.
 #pragma once
 
 #include <array>
 
 #include "joint_angles.hpp"
 #include "part_angle_limit.hpp"
+#include "part_angle_lock.hpp"
 #include "part_angle_motor.hpp"
 #include "part_hinge_axis.hpp"
+#include "part_linear_limit.hpp"
+#include "part_linear_motor.hpp"
 #include "part_point.hpp"
+#include "part_point_on_line.hpp"
+#include "part_slider_frame.hpp"
+#include "part_swing_twist.hpp"
 #include "ragdoll_sim/joint.hpp"
 
 namespace ragdoll_sim {
@@ -17,23 +24,39 @@ struct Joint {
   JointType type = JointType::Ball;
   int a = -1, b = -1;              // body / solver-body indices
   Transform frame_a, frame_b;      // joint frames in the link frames
-  bool limits_enabled = false;
+  bool limits_enabled = false;     // hinge / ball Euler angles; prismatic: the slide
   PointPart point;
   JointSpring spring;
   bool broken = false;
   bool overloaded = false;  // the anchor reached break_force in this substep
   double force = 0.0;  // N in the anchor during the last substep
-  std::array<JointMotor, 3> motors;       // hinge: [0]; ball: per Euler axis
+  std::array<JointMotor, 3> motors;       // hinge, prismatic: [0]; ball: per Euler axis
   std::array<AngleMotorPart, 3> motor_parts;
 
-  // Hinge: axis in the joint frame. Ball: Euler basis.
+  // Hinge, prismatic: axis in the joint frame. Ball: Euler basis.
   Vec3 axis = Vec3::UnitZ();
   HingeAxisPart hinge_axis;
   EulerBasis euler;
 
-  // Joint angles (hinge: 1, ball: 3 Euler angles) with their limits and motors.
+  // Joint angles (hinge: 1, ball: 3 Euler angles) with their limits and motors; prismatic:
+  // lower[0] / upper[0] bound the slide (m).
   std::array<double, 3> lower{}, upper{};
   std::array<AngleLimitPart, 3> limits;
+
+  // Ball, limit_mode SwingTwist: cone about twist_axis (joint frame) and twist range.
+  bool swing_twist_limits = false;
+  Vec3 twist_axis = Vec3::UnitX();
+  double swing_cone = 0.0, twist_lower = 0.0, twist_upper = 0.0;
+  SwingTwistPart swing_twist;
+
+  // Fixed, prismatic: relative rotation locked.
+  AngleLockPart angle_lock;
+
+  // Prismatic: slider geometry, off-axis rows, limit and motor (motors[0]) along the axis.
+  SliderFrame slider;
+  PointOnLinePart line;
+  LinearLimitPart linear_limit;
+  LinearMotorPart linear_motor;
 
   // Angles and their world Jacobian rows at the current substep poses (count 0: none, or a
   // ball near gimbal lock). Computed at warm start, reused by the biased solve (the poses
@@ -60,5 +83,11 @@ void solveJoint(Joint& j, const StepContext& ctx, bool use_bias);
 
 void prepareBallJoint(Joint& j, const StepContext& ctx);
 void prepareHingeJoint(Joint& j, const StepContext& ctx);
+void prepareFixedJoint(Joint& j, const StepContext& ctx);
+void preparePrismaticJoint(Joint& j, const StepContext& ctx);
+// Prismatic joints solve all their rows (off-axis, lock, limit, motor) here.
+void warmStartPrismaticJoint(Joint& j, SolverBody& A, SolverBody& B);
+void solvePrismaticJoint(Joint& j, SolverBody& A, SolverBody& B, const StepContext& ctx,
+                         bool use_bias);
 
 }  // namespace ragdoll_sim

@@ -9,6 +9,15 @@
 // Rates: w' = t0_dot ex + t1_dot Rx(t0) ey + (s t2)_dot Rx(t0) Ry(t1) ez = M(t) t_dot, with
 //   M = [ (1,0,0), (0,c0,s0), (s1,-s0 c1,c0 c1) ],  det M = cos t1 (gimbal lock at t1 = +-pi/2).
 // So t_dot = diag(1,1,s) M^-1 P^T R_JA^T (wB - wA): each row is one limit's Jacobian.
+//
+// Ball (swing-twist): q_rel = qA^-1 qB = q_swing q_twist, q_twist about the twist axis t (joint
+// frame), q_swing the shortest arc carrying t to q_rel t. With tA = qA t, tB = qB t (world):
+//   swing = angle(tA, tB) in [0, pi];  d/dt(tA . tB) = -(wB - wA) . (tA x tB), so
+//     swing_dot = (wB - wA) . s,  s = (tA x tB) / |tA x tB|  (undefined at swing = 0);
+//   twist: q_rel.w = cos(swing/2) cos(twist/2), q_rel.vec . t = cos(swing/2) sin(twist/2), so
+//     twist = 2 atan2(q_rel.vec . t, q_rel.w) wrapped to (-pi, pi];
+//   the shortest arc's own angular velocity is perpendicular to t + b (b = q_swing t), so
+//     twist_dot = (wB - wA) . (tA + tB) / (1 + tA . tB)  (undefined at swing = pi).
 #pragma once
 
 #include <array>
@@ -61,5 +70,28 @@ struct EulerBasis {
     return true;
   }
 };
+
+struct SwingTwist {
+  double swing = 0.0, twist = 0.0;
+  Vec3 swing_row = Vec3::Zero(), twist_row = Vec3::Zero();  // world rate rows
+  bool swing_valid = false, twist_valid = false;             // rows defined
+};
+
+// Swing-twist angles of frame_b relative to frame_a about the unit twist axis (joint frame).
+inline SwingTwist swingTwist(const Quat& frame_a, const Quat& frame_b, const Vec3& axis) {
+  SwingTwist r;
+  const Vec3 tA = frame_a * axis, tB = frame_b * axis;
+  const Vec3 c = tA.cross(tB);
+  const double sn = c.norm(), cs = tA.dot(tB);
+  r.swing = std::atan2(sn, cs);
+  r.swing_valid = sn > 1e-9;
+  if (r.swing_valid) r.swing_row = c / sn;
+  const Quat q = frame_a.conjugate() * frame_b;
+  const double tw = 2.0 * std::atan2(q.vec().dot(axis), q.w());  // (-2 pi, 2 pi]
+  r.twist = tw > M_PI ? tw - 2.0 * M_PI : (tw <= -M_PI ? tw + 2.0 * M_PI : tw);
+  r.twist_valid = 1.0 + cs > 1e-6;
+  if (r.twist_valid) r.twist_row = (tA + tB) / (1.0 + cs);
+  return r;
+}
 
 }  // namespace ragdoll_sim

@@ -18,6 +18,9 @@
 #include <algorithm>
 #include <stdexcept>
 #include <unordered_set>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "body.hpp"
 #include "broadphase.hpp"
@@ -57,9 +60,28 @@ struct World::Impl {
   std::vector<PlaneProxy> planes;
   std::vector<std::pair<int, int>> pairs;
   std::vector<double> island_slow;
-  std::vector<Joint*> active_joints;
+  std::vector<Joint*> active_joints;  // grouped by island after partitionIslands()
   std::vector<JointId> broken_events;
+  // This step's awake islands: ranges into island_bodies, active_joints and the contact
+  // solver's constraints.
+  struct IslandRange {
+    int body_begin = 0, body_end = 0, joint_begin = 0, joint_end = 0;
+    int contact_begin = 0, contact_end = 0;
+  };
+  std::vector<IslandRange> island_ranges;
+  std::vector<int> island_order;  // biggest first, for load balance
+  std::vector<int> island_bodies, island_of_body, group_offsets;
+  std::vector<Joint*> joint_scratch;
+  std::vector<ContactConstraint> contact_scratch;
+  std::vector<int> old_contact;
 
+  int threadCount() const {
+#ifdef _OPENMP
+    return def.threads > 0 ? def.threads : omp_get_max_threads();
+#else
+    return 1;
+#endif
+  }
   const ShapeDef& shapeDef(int s) const { return bodies[shapes[s].body].shapes[shapes[s].index]; }
   Transform shapePose(int s) const {
     return motions[shapes[s].body].linkPose() * shapeDef(s).local;
@@ -76,11 +98,13 @@ struct World::Impl {
   }
 
   void collide(double dt);
-  void integrateVelocities(double h);
-  void integratePositions(double h);
+  void partitionIslands();
+  void solveIsland(const IslandRange& r, const StepContext& ctx, int substeps);
+  void integrateVelocities(double h, int begin, int end);
+  void integratePositions(double h, int begin, int end);
   void finishStep();
   void buildIslands();
-  void breakJoints(double h);
+  void breakJoints();
   void updateSleep(double dt);
   Joint& addJoint(JointType type, BodyId a, BodyId b, const Transform& fa, const Transform& fb,
                   bool collide_connected);
@@ -128,12 +152,21 @@ void World::Impl::collide(double dt) {
   std::sort(next_contacts.begin(), next_contacts.end(),
             [](const Contact& x, const Contact& y) { return x.key < y.key; });
 
+  // Merge with last step's contacts (both sorted by key), then run the narrowphase on each
+  // pair independently (in parallel; each writes only its own contact).
+  old_contact.assign(next_contacts.size(), -1);
   size_t old = 0;
-  for (Contact& c : next_contacts) {
-    while (old < contacts.size() && contacts[old].key < c.key) ++old;
-    const bool have_old = old < contacts.size() && contacts[old].key == c.key;
+  for (size_t i = 0; i < next_contacts.size(); ++i) {
+    while (old < contacts.size() && contacts[old].key < next_contacts[i].key) ++old;
+    if (old < contacts.size() && contacts[old].key == next_contacts[i].key) old_contact[i] = int(old);
+  }
+  const int count = int(next_contacts.size());
+#pragma omp parallel for schedule(static) num_threads(threadCount()) if (count > 64)
+  for (int i = 0; i < count; ++i) {
+    Contact& c = next_contacts[i];
+    const int o = old_contact[i];
     if (!motions[c.body_a].awake && !motions[c.body_b].awake) {
-      if (have_old) c = contacts[old];  // asleep: the manifold and impulses stay as they were
+      if (o >= 0) c = contacts[o];  // asleep: the manifold and impulses stay as they were
       continue;
     }
     const ShapeDef &da = shapeDef(c.shape_a), &db = shapeDef(c.shape_b);
@@ -143,14 +176,14 @@ void World::Impl::collide(double dt) {
     c.static_friction = pair.static_friction;
     c.kinetic_friction = pair.kinetic_friction;
     c.restitution = pair.restitution;
-    matchImpulses(have_old ? contacts[old] : Contact(), c);
+    matchImpulses(o >= 0 ? contacts[o] : Contact(), c);
   }
   contacts.swap(next_contacts);
 }
 
-void World::Impl::integrateVelocities(double h) {
-  for (size_t i = 0; i < bodies.size(); ++i) {
-    if (!motions[i].awake) continue;
+void World::Impl::integrateVelocities(double h, int begin, int end) {
+  for (int k = begin; k < end; ++k) {
+    const int i = island_bodies[k];
     const BodyMotion& m = motions[i];
     SolverBody& s = solver[i];
     const Vec3 a = m.gravity_scale * def.gravity + m.inv_mass * m.force;
@@ -162,10 +195,10 @@ void World::Impl::integrateVelocities(double h) {
 // The rotation advances with w; then w is recomputed from the world angular momentum
 // L = R I R^T w, which free rotation conserves: w' = R' I^-1 R'^T L. This is the gyroscopic
 // term (precession, the middle-axis flip) and keeps L exact in free flight.
-void World::Impl::integratePositions(double h) {
-  for (size_t i = 0; i < bodies.size(); ++i) {
+void World::Impl::integratePositions(double h, int begin, int end) {
+  for (int k = begin; k < end; ++k) {
+    const int i = island_bodies[k];
     const BodyMotion& m = motions[i];
-    if (!m.awake) continue;
     SolverBody& s = solver[i];
     s.dp += h * s.v;
     const Quat q0 = s.dq * m.q;
@@ -197,14 +230,15 @@ void World::Impl::finishStep() {
   }
 }
 
-// A joint whose anchor force reached its limit breaks now (a rigid anchor never transmits
-// more than break_force: its impulse is capped at break_force h): it is dropped from the
-// solver, the bodies keep their momentum and the pair collides again.
-void World::Impl::breakJoints(double h) {
+// A joint whose anchor force reached its limit breaks (a rigid anchor never transmits more
+// than break_force: its impulse is capped at break_force h). solveIsland marks it broken at
+// the end of the substep, which drops it from the solver; here, after the islands, the pair
+// collides again and the event is recorded. The bodies keep their momentum.
+void World::Impl::breakJoints() {
   bool any = false;
   for (Joint* j : active_joints) {
-    if (j->broken || !(j->overloaded || j->force > j->spring.break_force)) continue;
-    j->broken = any = true;
+    if (!j->broken) continue;
+    any = true;
     disabled.erase(bodyPairKey(j->a, j->b));
     broken_events.push_back(JointId{int32_t(j - joints.data())});
   }
@@ -212,6 +246,96 @@ void World::Impl::breakJoints(double h) {
     active_joints.erase(std::remove_if(active_joints.begin(), active_joints.end(),
                                        [](const Joint* j) { return j->broken; }),
                         active_joints.end());
+}
+
+namespace {
+// Stable counting sort of items into groups (key(item) in [0, groups)); offsets gets the
+// group boundaries (size groups + 1).
+template <class T, class Key>
+void groupBy(std::vector<T>& items, int groups, Key key, std::vector<T>& scratch,
+             std::vector<int>& offsets) {
+  offsets.assign(groups + 1, 0);
+  for (const T& t : items) ++offsets[key(t) + 1];
+  for (int g = 0; g < groups; ++g) offsets[g + 1] += offsets[g];
+  scratch.resize(items.size());
+  std::vector<int> next(offsets.begin(), offsets.end() - 1);
+  for (T& t : items) scratch[next[key(t)]++] = std::move(t);
+  items.swap(scratch);
+}
+}  // namespace
+
+// Numbers the awake islands by their first body and groups bodies, joints and contact
+// constraints by island, so each island is a contiguous range of each.
+void World::Impl::partitionIslands() {
+  const int n = int(bodies.size());
+  island_of_body.assign(n, -1);
+  std::vector<int>& slot = group_offsets;  // island root -> island index (reused below)
+  slot.assign(n, -1);
+  int count = 0;
+  island_bodies.clear();
+  for (int i = 0; i < n; ++i) {
+    if (!isDynamic(i) || !motions[i].awake) continue;
+    int& k = slot[islands.find(i)];
+    if (k < 0) k = count++;
+    island_of_body[i] = k;
+    island_bodies.push_back(i);
+  }
+  island_ranges.assign(count, IslandRange());
+  std::vector<int> scratch_bodies;
+  const auto bodyIsland = [&](int b) { return island_of_body[b]; };
+  groupBy(island_bodies, count, bodyIsland, scratch_bodies, group_offsets);
+  for (int k = 0; k < count; ++k) {
+    island_ranges[k].body_begin = group_offsets[k];
+    island_ranges[k].body_end = group_offsets[k + 1];
+  }
+  const auto pairIsland = [&](int a, int b) {
+    return island_of_body[a] >= 0 ? island_of_body[a] : island_of_body[b];
+  };
+  groupBy(active_joints, count, [&](const Joint* j) { return pairIsland(j->a, j->b); },
+          joint_scratch, group_offsets);
+  for (int k = 0; k < count; ++k) {
+    island_ranges[k].joint_begin = group_offsets[k];
+    island_ranges[k].joint_end = group_offsets[k + 1];
+  }
+  groupBy(contact_solver.constraints(), count,
+          [&](const ContactConstraint& c) { return pairIsland(c.a, c.b); }, contact_scratch,
+          group_offsets);
+  for (int k = 0; k < count; ++k) {
+    island_ranges[k].contact_begin = group_offsets[k];
+    island_ranges[k].contact_end = group_offsets[k + 1];
+  }
+  island_order.resize(count);
+  for (int k = 0; k < count; ++k) island_order[k] = k;
+  const auto size = [&](int k) {
+    const IslandRange& r = island_ranges[k];
+    return (r.body_end - r.body_begin) + (r.joint_end - r.joint_begin) +
+           (r.contact_end - r.contact_begin);
+  };
+  std::stable_sort(island_order.begin(), island_order.end(),
+                   [&](int x, int y) { return size(x) > size(y); });
+}
+
+// The substep loop for one island; touches only the island's bodies and constraints.
+void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int substeps) {
+  Joint* const* js = active_joints.data();
+  for (int sub = 0; sub < substeps; ++sub) {
+    integrateVelocities(ctx.h, r.body_begin, r.body_end);
+    for (int k = r.joint_begin; k < r.joint_end; ++k)
+      if (!js[k]->broken) warmStartJoint(*js[k], ctx);
+    contact_solver.warmStart(ctx, r.contact_begin, r.contact_end);
+    for (int k = r.joint_begin; k < r.joint_end; ++k)
+      if (!js[k]->broken) solveJoint(*js[k], ctx, true);
+    contact_solver.solve(ctx, true, r.contact_begin, r.contact_end);
+    integratePositions(ctx.h, r.body_begin, r.body_end);
+    for (int k = r.joint_begin; k < r.joint_end; ++k)
+      if (!js[k]->broken) solveJoint(*js[k], ctx, false);
+    for (int it = 0; it < def.contact_relax_iterations; ++it)
+      contact_solver.solve(ctx, false, r.contact_begin, r.contact_end);
+    for (int k = r.joint_begin; k < r.joint_end; ++k) {
+      Joint& j = *js[k];
+      if (!j.broken && (j.overloaded || j.force > j.spring.break_force)) j.broken = true;
+    }
+  }
 }
 
 void World::Impl::buildIslands() {
@@ -319,7 +443,13 @@ JointId World::createBallJoint(const BallJointDef& def) {
   Joint& j = impl_->addJoint(JointType::Ball, def.body_a, def.body_b, def.frame_a, def.frame_b,
                              def.collide_connected);
   j.euler = EulerBasis(def.axes);
-  j.limits_enabled = def.enable_limits;
+  const bool swing_twist = def.limit_mode == BallLimitMode::SwingTwist;
+  j.limits_enabled = def.enable_limits && !swing_twist;
+  j.swing_twist_limits = def.enable_limits && swing_twist;
+  j.twist_axis = def.axes[0].normalized();
+  j.swing_cone = def.swing_cone_angle;
+  j.twist_lower = def.twist_lower;
+  j.twist_upper = def.twist_upper;
   j.lower = def.lower;
   j.upper = def.upper;
   j.motors = def.motors;
@@ -330,6 +460,27 @@ JointId World::createBallJoint(const BallJointDef& def) {
 JointId World::createHingeJoint(const HingeJointDef& def) {
   Joint& j = impl_->addJoint(JointType::Hinge, def.body_a, def.body_b, def.frame_a, def.frame_b,
                              def.collide_connected);
+  j.axis = def.axis.normalized();
+  j.limits_enabled = def.enable_limit;
+  j.lower[0] = def.lower;
+  j.upper[0] = def.upper;
+  j.motors[0] = def.motor;
+  j.spring = def.spring;
+  return JointId{int32_t(impl_->joints.size() - 1)};
+}
+
+JointId World::createFixedJoint(const FixedJointDef& def) {
+  Joint& j = impl_->addJoint(JointType::Fixed, def.body_a, def.body_b, def.frame_a, def.frame_b,
+                             def.collide_connected);
+  j.spring = def.spring;
+  return JointId{int32_t(impl_->joints.size() - 1)};
+}
+
+JointId World::createPrismaticJoint(const PrismaticJointDef& def) {
+  if (def.spring.stiffness > 0.0 || !(def.axis.norm() > 0.0))
+    throw std::invalid_argument("ragdoll_sim: a prismatic joint needs an axis and no stiffness");
+  Joint& j = impl_->addJoint(JointType::Prismatic, def.body_a, def.body_b, def.frame_a,
+                             def.frame_b, def.collide_connected);
   j.axis = def.axis.normalized();
   j.limits_enabled = def.enable_limit;
   j.lower[0] = def.lower;
@@ -387,18 +538,12 @@ void World::step(double dt) {
       w.active_joints.push_back(&j);
     }
   w.contact_solver.prepare(w.contacts, ctx);
+  w.partitionIslands();
 
-  for (int sub = 0; sub < substeps; ++sub) {
-    w.integrateVelocities(ctx.h);
-    for (Joint* j : w.active_joints) warmStartJoint(*j, ctx);
-    w.contact_solver.warmStart(ctx);
-    for (Joint* j : w.active_joints) solveJoint(*j, ctx, true);
-    w.contact_solver.solve(ctx, true);
-    w.integratePositions(ctx.h);
-    for (Joint* j : w.active_joints) solveJoint(*j, ctx, false);
-    for (int k = 0; k < w.def.contact_relax_iterations; ++k) w.contact_solver.solve(ctx, false);
-    w.breakJoints(ctx.h);
-  }
+  const int islands = int(w.island_ranges.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(w.threadCount()) if (islands > 1)
+  for (int k = 0; k < islands; ++k) w.solveIsland(w.island_ranges[w.island_order[k]], ctx, substeps);
+  w.breakJoints();
   w.contact_solver.applyRestitution(ctx);
   w.contact_solver.storeImpulses(w.contacts);
   w.finishStep();
@@ -532,10 +677,29 @@ std::array<double, 3> World::ballAngles(JointId id) const {
   return {t[0], t[1], t[2]};
 }
 
+std::array<double, 2> World::ballSwingTwist(JointId id) const {
+  const Joint& j = impl_->joints.at(id.index);
+  if (j.type != JointType::Ball) return {0, 0};
+  const SwingTwist st = swingTwist(j.frameRotationA(impl_->motions[j.a].q),
+                                   j.frameRotationB(impl_->motions[j.b].q), j.twist_axis);
+  return {st.swing, st.twist};
+}
+
+double World::prismaticPosition(JointId id) const {
+  const Joint& j = impl_->joints.at(id.index);
+  if (j.type != JointType::Prismatic) return 0.0;
+  const auto& m = impl_->motions;
+  const Vec3 d = m[j.b].linkPose().apply(j.frame_b.p) - m[j.a].linkPose().apply(j.frame_a.p);
+  return (j.frameRotationA(m[j.a].q) * j.axis).dot(d);
+}
+
 Vec3 World::jointAnchorError(JointId id) const {
   const Joint& j = impl_->joints.at(id.index);
   const auto& m = impl_->motions;
-  return m[j.b].linkPose().apply(j.frame_b.p) - m[j.a].linkPose().apply(j.frame_a.p);
+  const Vec3 e = m[j.b].linkPose().apply(j.frame_b.p) - m[j.a].linkPose().apply(j.frame_a.p);
+  if (j.type != JointType::Prismatic) return e;
+  const Vec3 a = j.frameRotationA(m[j.a].q) * j.axis;
+  return e - a.dot(e) * a;
 }
 
 double World::jointForce(JointId id) const { return impl_->joints.at(id.index).force; }

@@ -1,0 +1,52 @@
+// Angle lock part: joint frame B keeps the orientation of joint frame A (3 angular rows).
+//   q_err = qB qA^-1 (world rotation from frame A to frame B), sign-corrected to w >= 0 so the
+//   error is the short way round;
+//   C    = 2 vec(q_err)           (= the world rotation vector of the error to first order)
+//   Cdot = wB - wA,  J = [0 -I 0 I]
+//   K    = IA^-1 + IB^-1
+//   lambda = -mass_scale K^-1 (Cdot + bias_rate C) - impulse_scale lambda_acc   (softness.hpp),
+//   angular impulse lambda on B, minus on A (a pure couple: momentum and angular momentum kept).
+// The frames are tracked through the substeps with the bodies' delta rotations.
+#pragma once
+
+#include <Eigen/Dense>
+
+#include "solver_context.hpp"
+
+namespace ragdoll_sim {
+
+struct AngleLockPart {
+  Quat qa0 = Quat::Identity(), qb0 = Quat::Identity();  // world joint frames at step start
+  Vec3 impulse = Vec3::Zero();
+
+  void prepare(const Quat& frame_a_world, const Quat& frame_b_world) {
+    qa0 = frame_a_world;
+    qb0 = frame_b_world;
+  }
+
+  Vec3 error(const SolverBody& A, const SolverBody& B) const {
+    Quat e = (B.dq * qb0) * (A.dq * qa0).conjugate();
+    if (e.w() < 0.0) e.coeffs() = -e.coeffs();
+    return 2.0 * e.vec();
+  }
+
+  void warmStart(SolverBody& A, SolverBody& B) const { applyPairAngularImpulse(A, B, impulse); }
+
+  void solve(SolverBody& A, SolverBody& B, const Softness& soft, bool use_bias) {
+    Vec3 bias = Vec3::Zero();
+    double mass_scale = 1.0, impulse_scale = 0.0;
+    if (use_bias) {
+      bias = soft.bias_rate * error(A, B);
+      mass_scale = soft.mass_scale;
+      impulse_scale = soft.impulse_scale;
+    }
+    const Mat3 K = A.inv_inertia + B.inv_inertia;
+    if (!(K.trace() > 1e-300)) return;  // both bodies static or asleep
+    const Vec3 lambda =
+        -mass_scale * K.ldlt().solve(B.w - A.w + bias) - impulse_scale * impulse;
+    impulse += lambda;
+    applyPairAngularImpulse(A, B, lambda);
+  }
+};
+
+}  // namespace ragdoll_sim

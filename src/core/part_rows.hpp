@@ -1,0 +1,114 @@
+// One-dimensional constraint rows, shared by the limit and motor parts (angular and linear).
+//   angular row j:        Cdot = j . (wB - wA),
+//                         k = j^T (IA^-1 + IB^-1) j
+//   linear row n, lever arms lA (from A's COM) and rB (from B's):
+//                         Cdot = n . (vB - vA) + (rB x n) . wB - (lA x n) . wA,
+//                         k = 1/mA + 1/mB + (lA x n)^T IA^-1 (lA x n) + (rB x n)^T IB^-1 (rB x n)
+//   (k = J M^-1 J^T); an impulse lambda acts along +J on B and -J on A.
+//
+// solveInequalityRow: C >= 0, accumulated impulse clamped to >= 0. C > 0 is a speculative row
+// (Box2D v3): bias = C / h lets the row reach 0 in this substep but not cross it, so nothing is
+// applied until it would be violated. C <= 0 uses the soft bias while pushing out and is rigid
+// in the relax pass.
+//
+// solveMotorRow: drives the row's position x (rate Cdot), m_eff = 1 / k:
+//   position target (hertz > 0): soft row on C = x - target (softness.hpp),
+//     lambda = -mass_scale m_eff (Cdot + bias_rate C) - impulse_scale lambda_acc;
+//   velocity target (hertz = 0): lambda = -m_eff (Cdot - target_velocity);
+//   the accumulated impulse is clamped to +-max_torque h (a motor has finite strength);
+//   viscous damping c (force -c Cdot), implicit over the substep, biased pass only:
+//     lambda = -Cdot / (1/m_eff + 1/(h c)).
+#pragma once
+
+#include <algorithm>
+
+#include "ragdoll_sim/joint.hpp"
+#include "solver_context.hpp"
+
+namespace ragdoll_sim {
+
+struct AngularRow {
+  Vec3 j;
+  double k;
+  AngularRow(const Vec3& j_, const SolverBody& A, const SolverBody& B)
+      : j(j_), k(j_.dot((A.inv_inertia + B.inv_inertia) * j_)) {}
+  double rate(const SolverBody& A, const SolverBody& B) const { return j.dot(B.w - A.w); }
+  void apply(SolverBody& A, SolverBody& B, double lambda) const {
+    applyPairAngularImpulse(A, B, lambda * j);
+  }
+  AngularRow negated() const {
+    AngularRow r = *this;
+    r.j = -j;
+    return r;
+  }
+};
+
+struct LinearRow {
+  Vec3 n, jA, jB;  // direction, angular parts lA x n and rB x n
+  double k;
+  LinearRow(const Vec3& n_, const Vec3& lA, const Vec3& rB, const SolverBody& A,
+            const SolverBody& B)
+      : n(n_), jA(lA.cross(n_)), jB(rB.cross(n_)) {
+    k = A.inv_mass + B.inv_mass + jA.dot(A.inv_inertia * jA) + jB.dot(B.inv_inertia * jB);
+  }
+  double rate(const SolverBody& A, const SolverBody& B) const {
+    return n.dot(B.v - A.v) + jB.dot(B.w) - jA.dot(A.w);
+  }
+  void apply(SolverBody& A, SolverBody& B, double lambda) const {
+    A.v -= (A.inv_mass * lambda) * n;
+    A.w -= A.inv_inertia * (lambda * jA);
+    B.v += (B.inv_mass * lambda) * n;
+    B.w += B.inv_inertia * (lambda * jB);
+  }
+  LinearRow negated() const {
+    LinearRow r = *this;
+    r.n = -n;
+    r.jA = -jA;
+    r.jB = -jB;
+    return r;
+  }
+};
+
+template <class Row>
+void solveInequalityRow(SolverBody& A, SolverBody& B, const Row& row, double C, double& acc,
+                        const StepContext& ctx, bool use_bias) {
+  if (!(row.k > 1e-300)) return;
+  double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
+  if (C > 0.0) {
+    bias = C * ctx.inv_h;
+  } else if (use_bias) {
+    bias = ctx.joint_softness.bias_rate * C;
+    mass_scale = ctx.joint_softness.mass_scale;
+    impulse_scale = ctx.joint_softness.impulse_scale;
+  }
+  double lambda = -mass_scale / row.k * (row.rate(A, B) + bias) - impulse_scale * acc;
+  const double next = std::max(acc + lambda, 0.0);
+  lambda = next - acc;
+  acc = next;
+  row.apply(A, B, lambda);
+}
+
+template <class Row>
+void solveMotorRow(SolverBody& A, SolverBody& B, const Row& row, double position,
+                   const JointMotor& motor, double& acc, const StepContext& ctx, bool use_bias) {
+  if (!(row.k > 1e-300)) return;
+  if (motor.damping > 0.0 && use_bias)
+    row.apply(A, B, -row.rate(A, B) / (row.k + 1.0 / (ctx.h * motor.damping)));
+  if (!motor.enabled) return;
+  const double m = 1.0 / row.k, rate = row.rate(A, B);
+  double lambda;
+  if (motor.hertz > 0.0) {
+    const Softness soft = Softness::make(motor.hertz, motor.damping_ratio, ctx.h);
+    lambda = -soft.mass_scale * m * (rate + soft.bias_rate * (position - motor.target)) -
+             soft.impulse_scale * acc;
+  } else {
+    lambda = -m * (rate - motor.target_velocity);
+  }
+  const double max_impulse = motor.max_torque * ctx.h;
+  const double next = std::clamp(acc + lambda, -max_impulse, max_impulse);
+  lambda = next - acc;
+  acc = next;
+  row.apply(A, B, lambda);
+}
+
+}  // namespace ragdoll_sim

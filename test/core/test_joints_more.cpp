@@ -1,0 +1,594 @@
+// Fixed, prismatic and swing-twist ball joints: closed-form checks (pose held, breaking load,
+// g sin(theta) on a slider, limits, motors, cone / twist limits, momentum of free pairs).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "joint_angles.hpp"
+#include "ragdoll_sim/world.hpp"
+#include "scene_util.hpp"
+
+using namespace ragdoll_sim;
+
+namespace {
+constexpr double kDt = 1e-3;
+constexpr double kG = 9.81;
+
+BodyId addStatic(World& w, const Transform& pose = Transform()) {
+  BodyDef d;
+  d.type = BodyType::Static;
+  d.pose = pose;
+  return w.createBody(d);
+}
+
+BodyId addDynamic(World& w, double mass, const Mat3& inertia, const Transform& pose,
+                  const Vec3& com = Vec3::Zero(), const Vec3& v = Vec3::Zero(),
+                  const Vec3& omega = Vec3::Zero()) {
+  BodyDef d;
+  d.mass = mass;
+  d.inertia = inertia;
+  d.pose = pose;
+  d.com = com;
+  d.linear_velocity = v;
+  d.angular_velocity = omega;
+  return w.createBody(d);
+}
+
+Mat3 diag(double x, double y, double z) { return Vec3(x, y, z).asDiagonal(); }
+
+double angleBetween(const Quat& a, const Quat& b) { return a.angularDistance(b); }
+
+WorldDef zeroG() {
+  WorldDef d;
+  d.gravity.setZero();
+  return d;
+}
+
+// Settling is measured on the solver alone: a body that went to sleep would hold still anyway.
+WorldDef noSleep() {
+  WorldDef d;
+  d.enable_sleep = false;
+  return d;
+}
+
+// The frame of the joint in each body's link frame, given its world pose at creation.
+Transform local(World& w, BodyId b, const Transform& world_frame) {
+  return w.bodyPose(b).inverse() * world_frame;
+}
+}  // namespace
+
+// ------------------------------------------------------------------------------ fixed joint
+
+// A 2 kg bar welded at one end to a static body, COM 0.5 m out: the weld carries m g and the
+// couple m g L; the bar must keep its pose.
+TEST(FixedJoint, CantileverHoldsPoseUnderGravity) {
+  World w;
+  const BodyId base = addStatic(w, Transform(Vec3(0.1, -0.2, 0.3), quatFromRpy(0.1, 0.0, 0.4)));
+  const Quat q0 = quatFromRpy(0.3, -0.2, 0.5);
+  const Transform pose0(Vec3(0, 0, 1), q0);
+  const double m = 2.0;
+  const BodyId bar = addDynamic(w, m, diag(0.002, 0.045, 0.045), pose0, Vec3(0.5, 0, 0));
+  const Transform joint_world(Vec3(0, 0, 1), q0 * quatFromRpy(0.0, 0.7, -0.3));
+  FixedJointDef f;
+  f.body_a = base;
+  f.body_b = bar;
+  f.frame_a = local(w, base, joint_world);
+  f.frame_b = local(w, bar, joint_world);
+  const JointId j = w.createFixedJoint(f);
+  EXPECT_EQ(w.jointType(j), JointType::Fixed);
+  double worst_rot = 0.0, worst_anchor = 0.0;
+  for (int i = 0; i < 2000; ++i) {
+    w.step(kDt);
+    worst_rot = std::max(worst_rot, angleBetween(w.bodyPose(bar).q, q0));
+    worst_anchor = std::max(worst_anchor, w.jointAnchorError(j).norm());
+  }
+  const double rot = angleBetween(w.bodyPose(bar).q, q0);
+  const double anchor = w.jointAnchorError(j).norm();
+  EXPECT_LT(rot, 1e-3);
+  EXPECT_LT(anchor, 1e-3);
+  EXPECT_LT(worst_rot, 1e-3);
+  EXPECT_LT(worst_anchor, 1e-3);
+  EXPECT_NEAR(w.jointForce(j), m * kG, 0.01 * m * kG);  // the anchor carries the weight
+  std::printf(
+      "[ fixed    ] after 2 s: rotation error %.3g rad (max %.3g), anchor error %.3g m "
+      "(max %.3g), force %.4f N (m g = %.4f N)\n",
+      rot, worst_rot, anchor, worst_anchor, w.jointForce(j), m * kG);
+}
+
+// A mass hanging from a breakable weld: the joint breaks iff m g passes break_force, and then
+// the mass falls freely.
+TEST(FixedJoint, BreaksIffHangingLoadPassesLimit) {
+  const double m = 2.0, weight = m * kG;
+  for (const double factor : {0.9, 0.97, 1.03, 1.1}) {
+    World w;
+    const BodyId base = addStatic(w);
+    const BodyId bob = addDynamic(w, m, diag(0.02, 0.02, 0.005),
+                                  Transform(Vec3(0, 0, 1), Quat::Identity()), Vec3(0.0, 0.0, -0.3));
+    FixedJointDef f;
+    f.body_a = base;
+    f.body_b = bob;
+    f.frame_a.p = Vec3(0, 0, 1);
+    f.spring.break_force = factor * weight;
+    const JointId j = w.createFixedJoint(f);
+    double max_force = 0.0, broke_at = -1.0;
+    for (int i = 0; i < 1000 && broke_at < 0; ++i) {
+      w.step(kDt);
+      if (w.isJointBroken(j))
+        broke_at = w.time();
+      else
+        max_force = std::max(max_force, w.jointForce(j));
+    }
+    const bool should_break = weight > f.spring.break_force;
+    EXPECT_EQ(w.isJointBroken(j), should_break) << "factor " << factor;
+    if (should_break) {
+      // free fall after breaking: dv = g dt exactly
+      const double v0 = w.bodyState(bob).linear_velocity.z();
+      for (int i = 0; i < 100; ++i) w.step(kDt);
+      EXPECT_NEAR(w.bodyState(bob).linear_velocity.z() - v0, -kG * 0.1, 1e-9);
+    } else {
+      EXPECT_LE(max_force, f.spring.break_force);
+      EXPECT_NEAR(w.jointForce(j), weight, 1e-3 * weight);
+    }
+    if (should_break)
+      std::printf("[ fixed    ] break_force %.2f m g: broke at t = %.4f s\n", factor, broke_at);
+    else
+      std::printf("[ fixed    ] break_force %.2f m g: held 1 s, max force %.4f N = %.5f m g\n",
+                  factor, max_force, max_force / weight);
+  }
+}
+
+// With stiffness the weld's anchor is a Hooke spring (rotation still locked): a mass on it
+// oscillates with period 2 pi sqrt(m / k) without turning.
+TEST(FixedJoint, SpringAnchorPeriod) {
+  World w(zeroG());
+  const double m = 2.0, k = 800.0;
+  const BodyId base = addStatic(w);
+  const BodyId bob = addDynamic(w, m, diag(0.02, 0.03, 0.01),
+                                Transform(Vec3(0.05, 0, 0), Quat::Identity()), Vec3(0.1, 0, -0.2));
+  FixedJointDef f;
+  f.body_a = base;
+  f.body_b = bob;
+  f.spring.stiffness = k;
+  const JointId j = w.createFixedJoint(f);
+  const double T =
+      test::oscillationPeriod(w, kDt, 3000, [&] { return w.comPosition(bob).x() - 0.1; });
+  const double expected = 2 * M_PI * std::sqrt(m / k);
+  ASSERT_GT(T, 0.0);
+  EXPECT_NEAR(T, expected, 0.01 * expected);
+  const double rot = angleBetween(w.bodyPose(bob).q, Quat::Identity());
+  EXPECT_LT(rot, 1e-3);  // the lock is soft (joint_hertz) against the spring's couple
+  EXPECT_LT(w.jointForce(j), k * 0.051);
+  std::printf("[ fixed    ] spring anchor: period %.5f s (closed form %.5f s), rotation %.3g rad\n",
+              T, expected, rot);
+}
+
+// A weld with break_force 1.5 m g holding a hanging mass pulled down by F = k t breaks when
+// m g + k t passes break_force: t = 0.5 m g / k.
+TEST(FixedJoint, BreaksWhenRisingLoadPassesLimit) {
+  const double m = 2.0, weight = m * kG, k = 20.0;  // N/s
+  World w;
+  const BodyId base = addStatic(w);
+  const BodyId bob = addDynamic(w, m, diag(0.02, 0.02, 0.005),
+                                Transform(Vec3(0, 0, 1), Quat::Identity()), Vec3(0.2, 0.0, -0.3));
+  FixedJointDef f;
+  f.body_a = base;
+  f.body_b = bob;
+  f.frame_a.p = Vec3(0, 0, 1);
+  f.spring.break_force = 1.5 * weight;
+  const JointId j = w.createFixedJoint(f);
+  double broke_at = -1.0, last_force = 0.0;
+  for (int i = 0; i < 2000 && broke_at < 0; ++i) {
+    w.applyForce(bob, Vec3(0, 0, -k * w.time()), w.comPosition(bob));
+    w.step(kDt);
+    if (w.isJointBroken(j))
+      broke_at = w.time();
+    else
+      last_force = w.jointForce(j);
+  }
+  const double expected = 0.5 * weight / k;
+  ASSERT_GT(broke_at, 0.0);
+  EXPECT_NEAR(broke_at, expected, 2 * kDt);
+  EXPECT_LE(last_force, f.spring.break_force);
+  EXPECT_NEAR(last_force, f.spring.break_force, k * 2 * kDt);
+  std::printf(
+      "[ fixed    ] rising load: broke at t = %.4f s (closed form %.4f s), last force "
+      "held %.4f N (limit %.4f N)\n",
+      broke_at, expected, last_force, f.spring.break_force);
+}
+
+// ------------------------------------------------------------------------- prismatic joint
+
+namespace {
+// A slider on a static rail inclined at theta, the axis pointing downhill; the slider's COM
+// hangs 0.1 m below the rail, so the rotation lock and the off-axis rows carry a couple.
+struct Incline {
+  World w;
+  BodyId rail, slider;
+  JointId joint;
+  double theta;
+  Incline(double theta_, const PrismaticJointDef& extra, const WorldDef& def = WorldDef())
+      : w(def), theta(theta_) {
+    rail = addStatic(w);
+    slider = addDynamic(w, 3.0, diag(0.01, 0.02, 0.015), Transform(Vec3(0, 0, 1), Quat::Identity()),
+                        Vec3(0, 0, -0.1));
+    PrismaticJointDef p = extra;
+    p.body_a = rail;
+    p.body_b = slider;
+    p.frame_a = Transform(Vec3(0, 0, 1), Quat(Eigen::AngleAxisd(theta, Vec3::UnitY())));
+    p.frame_b = Transform(Vec3::Zero(), p.frame_a.q);
+    p.axis = Vec3::UnitX();  // R_y(theta) x = (cos theta, 0, -sin theta): downhill
+    joint = w.createPrismaticJoint(p);
+  }
+  double rotationError() const { return angleBetween(w.bodyPose(slider).q, Quat::Identity()); }
+};
+}  // namespace
+
+TEST(PrismaticJoint, InclinedSlideAcceleratesAtGSinTheta) {
+  const double theta = M_PI / 6;
+  Incline s(theta, PrismaticJointDef());
+  EXPECT_EQ(s.w.jointType(s.joint), JointType::Prismatic);
+  double drift = 0.0, rot = 0.0;
+  for (int i = 0; i < 1000; ++i) {
+    s.w.step(kDt);
+    drift = std::max(drift, s.w.jointAnchorError(s.joint).norm());
+    rot = std::max(rot, s.rotationError());
+  }
+  const double a = kG * std::sin(theta);
+  const Vec3 axis(std::cos(theta), 0, -std::sin(theta));
+  const double v = s.w.bodyState(s.slider).linear_velocity.dot(axis);
+  const double x = s.w.prismaticPosition(s.joint);
+  EXPECT_NEAR(v / 1.0, a, 0.01 * a);
+  EXPECT_NEAR(2.0 * x / (1.0 * 1.0), a, 0.01 * a);
+  EXPECT_LT(drift, 1e-3);
+  EXPECT_LT(rot, 1e-3);
+  std::printf(
+      "[ slider   ] t = 1 s: a from v %.5f, from x %.5f (g sin theta = %.5f), off-axis "
+      "drift max %.3g m, rotation max %.3g rad\n",
+      v, 2.0 * x, a, drift, rot);
+}
+
+TEST(PrismaticJoint, LimitStopsSlideAtUpper) {
+  PrismaticJointDef p;
+  p.enable_limit = true;
+  p.lower = -1.0;
+  p.upper = 0.5;
+  Incline s(M_PI / 6, p, noSleep());
+  double max_x = -1e9, drift = 0.0, lo = 1e9, hi = -1e9;
+  for (int i = 0; i < 3000; ++i) {
+    s.w.step(kDt);
+    const double x = s.w.prismaticPosition(s.joint);
+    max_x = std::max(max_x, x);
+    drift = std::max(drift, s.w.jointAnchorError(s.joint).norm());
+    if (s.w.time() > 2.0) {
+      lo = std::min(lo, x);
+      hi = std::max(hi, x);
+    }
+  }
+  const double x = s.w.prismaticPosition(s.joint);
+  EXPECT_LT(max_x - p.upper, 2e-3);
+  EXPECT_NEAR(x, p.upper, 2e-3);
+  EXPECT_LT(hi - lo, 1e-3);
+  EXPECT_LT(drift, 1e-3);
+  // resting on the limit, the joint carries the weight: |F| = m g
+  EXPECT_NEAR(s.w.jointForce(s.joint), 3.0 * kG, 0.01 * 3.0 * kG);
+  std::printf(
+      "[ slider   ] limit 0.5 m: max %.6f m, final %.6f m, t > 2 s range %.3g m, off-axis "
+      "drift max %.3g m, force %.3f N (m g %.3f N)\n",
+      max_x, x, hi - lo, drift, s.w.jointForce(s.joint), 3.0 * kG);
+}
+
+// Horizontal rail, gravity across the axis: the velocity motor accelerates at its force cap
+// F / m until it reaches the target speed.
+TEST(PrismaticJoint, VelocityMotorReachesTargetSpeed) {
+  PrismaticJointDef p;
+  p.motor.enabled = true;
+  p.motor.target_velocity = 1.5;
+  p.motor.max_torque = 6.0;  // N on 3 kg: 2 m/s^2, target reached at t = 0.75 s
+  Incline s(0.0, p);
+  double drift = 0.0, v_quarter = 0.0;
+  for (int i = 0; i < 1500; ++i) {
+    s.w.step(kDt);
+    drift = std::max(drift, s.w.jointAnchorError(s.joint).norm());
+    if (i == 249) v_quarter = s.w.bodyState(s.slider).linear_velocity.x();
+  }
+  const double v = s.w.bodyState(s.slider).linear_velocity.x();
+  EXPECT_NEAR(v_quarter, 0.5, 0.005);
+  EXPECT_NEAR(v, 1.5, 1e-4);
+  EXPECT_LT(drift, 1e-3);
+  std::printf(
+      "[ slider   ] motor: v(0.25 s) %.5f m/s (F/m t = 0.5), v(1.5 s) %.7f m/s (target "
+      "1.5), off-axis drift max %.3g m\n",
+      v_quarter, v, drift);
+}
+
+TEST(PrismaticJoint, PositionMotorReachesTarget) {
+  PrismaticJointDef p;
+  p.motor.enabled = true;
+  p.motor.target = 0.2;
+  p.motor.hertz = 4.0;
+  p.motor.damping_ratio = 1.0;
+  p.motor.max_torque = 100.0;
+  Incline s(0.0, p, zeroG());
+  for (int i = 0; i < 3000; ++i) s.w.step(kDt);
+  const double x = s.w.prismaticPosition(s.joint);
+  EXPECT_NEAR(x, 0.2, 1e-4);
+  std::printf("[ slider   ] position motor: x(3 s) %.6f m (target 0.2)\n", x);
+}
+
+// Horizontal rail, gravity across the axis: a breakable slider breaks iff m g passes its limit.
+TEST(PrismaticJoint, BreaksIffLoadPassesLimit) {
+  const double weight = 3.0 * kG;
+  for (const double factor : {0.95, 1.05}) {
+    PrismaticJointDef p;
+    p.spring.break_force = factor * weight;
+    Incline s(0.0, p);
+    double max_force = 0.0;
+    for (int i = 0; i < 1000 && !s.w.isJointBroken(s.joint); ++i) {
+      s.w.step(kDt);
+      if (!s.w.isJointBroken(s.joint)) max_force = std::max(max_force, s.w.jointForce(s.joint));
+    }
+    EXPECT_EQ(s.w.isJointBroken(s.joint), factor < 1.0) << "factor " << factor;
+    if (factor > 1.0) {
+      EXPECT_NEAR(max_force, weight, 1e-3 * weight);
+      std::printf("[ slider   ] break_force %.2f m g: held 1 s, max force %.4f N (m g %.4f N)\n",
+                  factor, max_force, weight);
+    } else {
+      std::printf("[ slider   ] break_force %.2f m g: broke at t = %.4f s\n", factor, s.w.time());
+    }
+  }
+}
+
+// ---------------------------------------------------------------- ball joint, swing-twist
+
+// The decomposition recovers known swing / twist angles, and its rows match finite differences.
+TEST(SwingTwist, DecompositionAndRates) {
+  const Vec3 t = Vec3(1, 2, -0.5).normalized();
+  const Vec3 u = anyPerpendicular(t);
+  const Quat fa = quatFromRpy(0.4, 0.2, -0.9);
+  const double swing = 1.1, twist = -0.6;
+  const Quat fb = fa * Quat(Eigen::AngleAxisd(swing, u)) * Quat(Eigen::AngleAxisd(twist, t));
+  const SwingTwist st = swingTwist(fa, fb, t);
+  EXPECT_NEAR(st.swing, swing, 1e-12);
+  EXPECT_NEAR(st.twist, twist, 1e-12);
+  ASSERT_TRUE(st.swing_valid && st.twist_valid);
+  const Vec3 wrel(0.3, -0.2, 0.5);
+  const double eps = 1e-7;
+  const Quat fb2 =
+      (Quat(Eigen::AngleAxisd(eps * wrel.norm(), wrel.normalized())) * fb).normalized();
+  const SwingTwist st2 = swingTwist(fa, fb2, t);
+  const double swing_rate = (st2.swing - st.swing) / eps, twist_rate = (st2.twist - st.twist) / eps;
+  EXPECT_NEAR(st.swing_row.dot(wrel), swing_rate, 1e-5);
+  EXPECT_NEAR(st.twist_row.dot(wrel), twist_rate, 1e-5);
+  std::printf("[ swingtw  ] rates: swing %.7f vs fd %.7f, twist %.7f vs fd %.7f\n",
+              st.swing_row.dot(wrel), swing_rate, st.twist_row.dot(wrel), twist_rate);
+}
+
+namespace {
+struct Pendulum {
+  World w;
+  BodyId bob;
+  JointId joint;
+  Pendulum(const BallJointDef& extra, const WorldDef& def, const Vec3& omega = Vec3::Zero())
+      : w(def) {
+    const BodyId base = addStatic(w);
+    bob = addDynamic(w, 1.0, diag(0.002, 0.02, 0.02), Transform(), Vec3(0.5, 0, 0), Vec3::Zero(),
+                     omega);
+    BallJointDef b = extra;
+    b.body_a = base;
+    b.body_b = bob;
+    b.enable_limits = true;
+    b.limit_mode = BallLimitMode::SwingTwist;  // twist axis axes[0] = x, along the bob
+    joint = w.createBallJoint(b);
+  }
+};
+}  // namespace
+
+// Released from horizontal along the twist axis, the pendulum falls into the 0.5 rad cone and
+// rests on its lowest line.
+TEST(SwingTwist, ConeStopsPendulumReleasedFromHorizontal) {
+  BallJointDef b;
+  b.swing_cone_angle = 0.5;
+  b.twist_lower = -0.3;
+  b.twist_upper = 0.3;
+  Pendulum p(b, noSleep());
+  double max_swing = 0.0, lo = 1e9, hi = -1e9, anchor = 0.0, t_hit = -1.0;
+  for (int i = 0; i < 3000; ++i) {
+    p.w.step(kDt);
+    const double swing = p.w.ballSwingTwist(p.joint)[0];
+    max_swing = std::max(max_swing, swing);
+    if (t_hit < 0 && swing > 0.5 - 1e-3) t_hit = p.w.time();
+    anchor = std::max(anchor, p.w.jointAnchorError(p.joint).norm());
+    if (p.w.time() > 2.0) {
+      lo = std::min(lo, swing);
+      hi = std::max(hi, swing);
+    }
+  }
+  const auto st = p.w.ballSwingTwist(p.joint);
+  EXPECT_LT(max_swing - 0.5, 0.02);
+  EXPECT_NEAR(st[0], 0.5, 0.01);
+  EXPECT_LT(hi - lo, 0.01);
+  EXPECT_LT(std::abs(st[1]), 1e-3);  // no twist load
+  EXPECT_LT(anchor, 1e-3);
+  // the bob rests at the cone's lowest line: COM at 0.5 (cos 0.5, 0, -sin 0.5)
+  EXPECT_LT((p.w.comPosition(p.bob) - 0.5 * Vec3(std::cos(0.5), 0, -std::sin(0.5))).norm(), 5e-3);
+  std::printf(
+      "[ swingtw  ] cone 0.5: hit at t = %.3f s, max swing %.5f, final %.5f, t > 2 s range "
+      "%.3g, twist %.3g, anchor max %.3g m\n",
+      t_hit, max_swing, st[0], hi - lo, st[1], anchor);
+}
+
+// Thrown with a tumbling spin, the bob stays within the cone and the twist range.
+TEST(SwingTwist, ConeAndTwistHoldUnderTumblingSpin) {
+  BallJointDef b;
+  b.swing_cone_angle = 0.5;
+  b.twist_lower = -0.3;
+  b.twist_upper = 0.4;
+  Pendulum p(b, WorldDef(), Vec3(4.0, 3.0, -5.0));
+  double worst_cone = -1e9, worst_twist = -1e9;
+  for (int i = 0; i < 3000; ++i) {
+    p.w.step(kDt);
+    const auto st = p.w.ballSwingTwist(p.joint);
+    worst_cone = std::max(worst_cone, st[0] - 0.5);
+    worst_twist = std::max({worst_twist, b.twist_lower - st[1], st[1] - b.twist_upper});
+  }
+  EXPECT_LT(worst_cone, 0.02);
+  EXPECT_LT(worst_twist, 0.02);
+  EXPECT_LT(p.w.jointAnchorError(p.joint).norm(), 1e-3);
+  std::printf("[ swingtw  ] tumbling: worst cone excess %.4f rad, worst twist excess %.4f rad\n",
+              worst_cone, worst_twist);
+}
+
+// A torque about the twist axis turns the bob freely (theta = tau t^2 / (2 I)) until the twist
+// limit, which then holds it; reversed, it holds at the lower limit.
+TEST(SwingTwist, TwistLimitsHoldAgainstTorque) {
+  BallJointDef b;
+  b.swing_cone_angle = 0.5;
+  b.twist_lower = -0.3;
+  b.twist_upper = 0.4;
+  Pendulum p(b, zeroG());
+  const double tau = 2.0, I = 0.002;
+  double twist_20ms = 0.0, max_twist = -1e9, min_twist = 1e9, max_swing = 0.0;
+  for (int i = 0; i < 1000; ++i) {
+    p.w.applyTorque(p.bob, Vec3(tau, 0, 0));
+    p.w.step(kDt);
+    const auto st = p.w.ballSwingTwist(p.joint);
+    if (i == 19) twist_20ms = st[1];
+    max_twist = std::max(max_twist, st[1]);
+    max_swing = std::max(max_swing, st[0]);
+  }
+  const double held_upper = p.w.ballSwingTwist(p.joint)[1];
+  const double w_upper = p.w.bodyState(p.bob).angular_velocity.norm();
+  for (int i = 0; i < 1000; ++i) {
+    p.w.applyTorque(p.bob, Vec3(-tau, 0, 0));
+    p.w.step(kDt);
+    const auto st = p.w.ballSwingTwist(p.joint);
+    min_twist = std::min(min_twist, st[1]);
+    max_swing = std::max(max_swing, st[0]);
+  }
+  const double held_lower = p.w.ballSwingTwist(p.joint)[1];
+  // semi-implicit Euler over n substeps of h: theta_n = a h^2 n (n + 1) / 2 (0.5 a t^2 = 0.2)
+  const int n = 20 * p.w.def().substeps;
+  const double h = kDt / p.w.def().substeps;
+  const double expected_20ms = 0.5 * tau / I * h * h * n * (n + 1);  // limit reached at ~28 ms
+  EXPECT_NEAR(twist_20ms, expected_20ms, 0.01 * expected_20ms);
+  EXPECT_LT(max_twist - 0.4, 0.01);
+  EXPECT_NEAR(held_upper, 0.4, 0.005);
+  EXPECT_LT(w_upper, 1e-3);
+  EXPECT_LT(-0.3 - min_twist, 0.01);
+  EXPECT_NEAR(held_lower, -0.3, 0.005);
+  EXPECT_LT(max_swing, 1e-3);
+  std::printf(
+      "[ swingtw  ] twist(20 ms) %.5f (closed form %.5f); upper: max %.5f held %.5f "
+      "(|w| %.2g); lower: min %.5f held %.5f; max swing %.2g\n",
+      twist_20ms, expected_20ms, max_twist, held_upper, w_upper, min_twist, held_lower, max_swing);
+}
+
+// ---------------------------------------------------------------- momentum of free pairs
+
+namespace {
+struct FreePair {
+  World w;
+  BodyId a, b;
+  FreePair() : w(zeroG()) {
+    a = addDynamic(w, 3.0, diag(0.03, 0.05, 0.04),
+                   Transform(Vec3(0, 0, 0), quatFromRpy(0.2, 0.1, 0)), Vec3(0.05, 0, 0),
+                   Vec3(0.5, -0.2, 0.1), Vec3(0.4, -1.0, 2.0));
+    b = addDynamic(w, 1.2, diag(0.01, 0.012, 0.008),
+                   Transform(Vec3(0.4, 0.1, 0.0), quatFromRpy(-0.3, 0.2, 0.6)), Vec3(0.1, 0, 0.02),
+                   Vec3(-1.0, 0.5, 0.3), Vec3(-2.0, 1.5, 0.5));
+  }
+  Transform jointWorld() const {
+    return Transform(Vec3(0.2, 0.05, 0.0), quatFromRpy(0.1, -0.2, 0.3));
+  }
+  // Returns the relative change of the angular momentum.
+  double check(const char* name, const JointId j) {
+    const Vec3 p0 = w.linearMomentum();
+    const Vec3 c0 = Vec3(0.1, 0.2, -0.1);
+    const Vec3 L0 = w.angularMomentum(c0);
+    double anchor = 0.0;
+    for (int i = 0; i < 2000; ++i) {
+      w.step(kDt);
+      anchor = std::max(anchor, w.jointAnchorError(j).norm());
+    }
+    const double dp = (w.linearMomentum() - p0).norm() / p0.norm();
+    const double dL = (w.angularMomentum(c0) - L0).norm() / L0.norm();
+    EXPECT_LT(dp, 1e-9) << name;
+    EXPECT_LT(anchor, 1e-3) << name;
+    std::printf(
+        "[ momentum ] %-24s relative change: linear %.3g, angular %.3g; anchor max %.3g m\n", name,
+        dp, dL, anchor);
+    return dL;
+  }
+};
+}  // namespace
+
+// Angular momentum is not exact for any joint: impulses change w through the inverse inertia
+// frozen at the step start while the bodies rotate within the step (an O(h) drift shared with
+// the existing joints). The new joints must not do worse than a plain ball joint on the pair.
+double ballBaselineAngularDrift() {
+  static const double drift = [] {
+    FreePair f;
+    BallJointDef d;
+    d.body_a = f.a;
+    d.body_b = f.b;
+    d.frame_a = local(f.w, f.a, f.jointWorld());
+    d.frame_b = local(f.w, f.b, f.jointWorld());
+    return f.check("ball (baseline)", f.w.createBallJoint(d));
+  }();
+  return drift;
+}
+
+TEST(JointMomentum, FixedPairConservesMomentum) {
+  FreePair f;
+  FixedJointDef d;
+  d.body_a = f.a;
+  d.body_b = f.b;
+  d.frame_a = local(f.w, f.a, f.jointWorld());
+  d.frame_b = local(f.w, f.b, f.jointWorld());
+  const double dL = f.check("fixed", f.w.createFixedJoint(d));
+  EXPECT_LT(dL, 2.0 * ballBaselineAngularDrift());
+}
+
+TEST(JointMomentum, PrismaticPairConservesMomentum) {
+  FreePair f;
+  PrismaticJointDef d;
+  d.body_a = f.a;
+  d.body_b = f.b;
+  d.frame_a = local(f.w, f.a, f.jointWorld());
+  d.frame_b = local(f.w, f.b, f.jointWorld());
+  d.axis = Vec3(1, 1, 0).normalized();
+  d.enable_limit = true;
+  d.lower = -0.05;
+  d.upper = 0.08;
+  d.motor.enabled = true;
+  d.motor.target_velocity = 0.3;
+  d.motor.max_torque = 2.0;
+  const JointId j = f.w.createPrismaticJoint(d);
+  const double dL = f.check("prismatic (limit+motor)", j);
+  EXPECT_LT(dL, 2.0 * ballBaselineAngularDrift());
+  const double x = f.w.prismaticPosition(j);
+  EXPECT_GT(x, d.lower - 2e-3);
+  EXPECT_LT(x, d.upper + 2e-3);
+}
+
+TEST(JointMomentum, SwingTwistBallPairConservesMomentum) {
+  FreePair f;
+  BallJointDef d;
+  d.body_a = f.a;
+  d.body_b = f.b;
+  d.frame_a = local(f.w, f.a, f.jointWorld());
+  d.frame_b = local(f.w, f.b, f.jointWorld());
+  d.enable_limits = true;
+  d.limit_mode = BallLimitMode::SwingTwist;
+  d.swing_cone_angle = 0.3;
+  d.twist_lower = -0.2;
+  d.twist_upper = 0.2;
+  const JointId j = f.w.createBallJoint(d);
+  const double dL = f.check("ball swing-twist", j);
+  EXPECT_LT(dL, 2.0 * ballBaselineAngularDrift());
+  const auto st = f.w.ballSwingTwist(j);
+  EXPECT_LT(st[0], 0.3 + 0.02);
+  EXPECT_LT(std::abs(st[1]), 0.2 + 0.02);
+}
