@@ -17,6 +17,11 @@ struct Contact {
   double normal_impulse[Manifold::kMaxPoints] = {};
   Vec3 friction_impulse[Manifold::kMaxPoints] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};  // world, re-projected on new tangents
   double static_friction = 0.0, kinetic_friction = 0.0, restitution = 0.0;
+  // Separating-axis cache: the last narrowphase found the shapes apart along this world axis
+  // (A to B). While their projections on it stay farther apart than the speculative
+  // distance, the pair is skipped (a projection gap is a lower bound on the distance).
+  Vec3 sep_axis = Vec3::Zero();
+  bool sep_valid = false;
 };
 
 inline uint64_t pairKey(int shape_a, int shape_b) {

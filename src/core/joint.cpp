@@ -10,6 +10,19 @@ void updateAngles(Joint& j, const StepContext& ctx) {
   j.angle_count = 0;
   if (j.type == JointType::Ball) updateBallAngles(j, ctx);  // also the swing-twist rows
   else if (j.type == JointType::Hinge && j.angleRowsNeeded()) updateHingeAngles(j, ctx);
+  if (j.angle_count == 0) return;
+  const auto& s = *ctx.bodies;
+  const Mat3 I = s[j.a].inv_inertia + s[j.b].inv_inertia;
+  for (int i = 0; i < j.angle_count; ++i) j.angle_k[i] = j.angle_rows[i].dot(I * j.angle_rows[i]);
+}
+
+// The relax pass comes right after the position update: the angles moved by h theta_dot
+// (first order; the rows are kept). Exact angles are recomputed at the next warm start.
+// Swing-twist limits recompute exactly (their rows turn with the swing plane).
+void advanceAngles(Joint& j, const SolverBody& A, const SolverBody& B, const StepContext& ctx) {
+  if (j.swing_twist_limits) return updateAngles(j, ctx);
+  const Vec3 dw = B.w - A.w;
+  for (int i = 0; i < j.angle_count; ++i) j.angles[i] += ctx.h * j.angle_rows[i].dot(dw);
 }
 
 void warmStartAnchor(Joint& j, SolverBody& A, SolverBody& B) {
@@ -36,6 +49,12 @@ void prepareJoint(Joint& j, const StepContext& ctx) {
     case JointType::Fixed: prepareFixedJoint(j, ctx); break;
     case JointType::Prismatic: preparePrismaticJoint(j, ctx); break;
   }
+  if (j.type != JointType::Prismatic) {
+    const auto& s = *ctx.bodies;
+    const double k = j.spring.stiffness;
+    j.point.prepareMass(s[j.a], s[j.b],
+                        k > 0.0 ? PointPart::springGamma(k, j.spring.damping, ctx.h) : 0.0);
+  }
 }
 
 void warmStartJoint(Joint& j, const StepContext& ctx) {
@@ -57,12 +76,13 @@ void solveJoint(Joint& j, const StepContext& ctx, bool use_bias) {
   auto& s = *ctx.bodies;
   SolverBody &A = s[j.a], &B = s[j.b];
   if (j.type == JointType::Prismatic) return solvePrismaticJoint(j, A, B, ctx, use_bias);
-  if (!use_bias) updateAngles(j, ctx);  // positions moved since the warm start
+  if (!use_bias) advanceAngles(j, A, B, ctx);  // positions moved since the warm start
   for (int i = 0; i < j.angle_count; ++i) {
     const Vec3& row = j.angle_rows[i];
-    j.motor_parts[i].solve(A, B, row, j.angles[i], j.motors[i], ctx, use_bias);
+    const double k = j.angle_k[i];
+    j.motor_parts[i].solve(A, B, row, k, j.angles[i], j.motors[i], ctx, use_bias);
     if (j.limits_enabled)
-      j.limits[i].solve(A, B, row, j.angles[i], j.lower[i], j.upper[i], ctx, use_bias);
+      j.limits[i].solve(A, B, row, k, j.angles[i], j.lower[i], j.upper[i], ctx, use_bias);
   }
   if (j.type == JointType::Hinge) j.hinge_axis.solve(A, B, ctx.joint_softness, use_bias);
   if (j.swing_twist_limits)

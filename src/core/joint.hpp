@@ -64,6 +64,7 @@ struct Joint {
   int angle_count = 0;
   std::array<double, 3> angles{};
   std::array<Vec3, 3> angle_rows;
+  std::array<double, 3> angle_k{};  // row^T (IA^-1 + IB^-1) row
 
   bool angleRowsNeeded() const {
     bool motor = false;

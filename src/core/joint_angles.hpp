@@ -62,9 +62,9 @@ struct EulerBasis {
     const double c0 = std::cos(t[0]), s0 = std::sin(t[0]);
     const double c1 = std::cos(t[1]), s1 = std::sin(t[1]);
     if (std::abs(c1) < 1e-3) return false;
-    Mat3 M;
-    M << 1, 0, s1, 0, c0, -s0 * c1, 0, s0, c0 * c1;
-    Mat3 rows = M.inverse() * P.transpose() * frame_a.toRotationMatrix().transpose();
+    Mat3 Minv;  // M^-1 in closed form (det M = c1)
+    Minv << 1, s1 * s0 / c1, -s1 * c0 / c1, 0, c0, s0, 0, -s0 / c1, c0 / c1;
+    Mat3 rows = Minv * P.transpose() * frame_a.toRotationMatrix().transpose();
     rows.row(2) *= s;
     for (int i = 0; i < 3; ++i) j[i] = rows.row(i).transpose();
     return true;

@@ -17,9 +17,10 @@ struct AngleLimitPart {
     applyPairAngularImpulse(A, B, (lower_impulse - upper_impulse) * j);
   }
 
-  void solve(SolverBody& A, SolverBody& B, const Vec3& j, double theta, double lower,
+  // k = j^T (IA^-1 + IB^-1) j, computed with the row.
+  void solve(SolverBody& A, SolverBody& B, const Vec3& j, double k, double theta, double lower,
              double upper, const StepContext& ctx, bool use_bias) {
-    const AngularRow row(j, A, B);
+    const AngularRow row(j, k);
     solveInequalityRow(A, B, row, theta - lower, lower_impulse, ctx, use_bias);
     solveInequalityRow(A, B, row.negated(), upper - theta, upper_impulse, ctx, use_bias);
   }

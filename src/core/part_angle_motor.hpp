@@ -17,9 +17,11 @@ struct AngleMotorPart {
     applyPairAngularImpulse(A, B, impulse * j);
   }
 
-  void solve(SolverBody& A, SolverBody& B, const Vec3& j, double theta, const JointMotor& motor,
-             const StepContext& ctx, bool use_bias) {
-    solveMotorRow(A, B, AngularRow(j, A, B), theta, motor, impulse, ctx, use_bias);
+  // k = j^T (IA^-1 + IB^-1) j, computed with the row.
+  void solve(SolverBody& A, SolverBody& B, const Vec3& j, double k, double theta,
+             const JointMotor& motor, const StepContext& ctx, bool use_bias) {
+    if (!motor.enabled && !(use_bias && motor.damping > 0.0)) return;
+    solveMotorRow(A, B, AngularRow(j, k), theta, motor, impulse, ctx, use_bias);
   }
 };
 

@@ -4,7 +4,7 @@
 //   Cdot = U^T (wB - wA),  U = [b2 x a1, c2 x a1]   (d/dt(a1.b2) = (wB - wA) . (b2 x a1))
 //   K    = U^T (IA^-1 + IB^-1) U                                   2x2
 //   lambda = -mass_scale K^-1 (Cdot + bias_rate C) - impulse_scale lambda_acc,
-//   angular impulse U lambda on B, minus on A.
+//   angular impulse U lambda on B, minus on A. K^-1 is formed once per step (prepareMass).
 #pragma once
 
 #include <Eigen/Dense>
@@ -17,6 +17,7 @@ struct HingeAxisPart {
   Vec3 a1_0 = Vec3::UnitZ(), a2_0 = Vec3::UnitZ();  // world at step start
   Vec3 b2_0 = Vec3::UnitX(), c2_0 = Vec3::UnitY();
   Eigen::Vector2d impulse = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d k_inv = Eigen::Matrix2d::Zero();
 
   // Axes given in each body's axes (link frame).
   void prepare(const BodyMotion& A, const BodyMotion& B, const Vec3& axis_in_a,
@@ -25,6 +26,15 @@ struct HingeAxisPart {
     a2_0 = B.q * axis_in_b;
     b2_0 = anyPerpendicular(a2_0);
     c2_0 = a2_0.cross(b2_0);
+  }
+
+  void prepareMass(const SolverBody& A, const SolverBody& B) {
+    const Vec3 u1 = b2_0.cross(a1_0), u2 = c2_0.cross(a1_0);
+    const Mat3 I = A.inv_inertia + B.inv_inertia;
+    const Vec3 Iu1 = I * u1, Iu2 = I * u2;
+    Eigen::Matrix2d K;
+    K << u1.dot(Iu1), u1.dot(Iu2), u2.dot(Iu1), u2.dot(Iu2);
+    k_inv = K.determinant() > 1e-300 ? Eigen::Matrix2d(K.inverse()) : Eigen::Matrix2d::Zero();
   }
 
   void jacobian(const SolverBody& A, const SolverBody& B, Vec3& a1, Vec3& u1, Vec3& u2,
@@ -56,14 +66,7 @@ struct HingeAxisPart {
       mass_scale = soft.mass_scale;
       impulse_scale = soft.impulse_scale;
     }
-    const Mat3 I = A.inv_inertia + B.inv_inertia;
-    const Vec3 Iu1 = I * u1, Iu2 = I * u2;
-    Eigen::Matrix2d K;
-    K << u1.dot(Iu1), u1.dot(Iu2), u2.dot(Iu1), u2.dot(Iu2);
-    const double det = K.determinant();
-    if (!(det > 1e-300)) return;
-    const Eigen::Vector2d lambda =
-        -mass_scale * K.inverse() * (cdot + bias) - impulse_scale * impulse;
+    const Eigen::Vector2d lambda = -mass_scale * (k_inv * (cdot + bias)) - impulse_scale * impulse;
     impulse += lambda;
     applyPairAngularImpulse(A, B, lambda.x() * u1 + lambda.y() * u2);
   }

@@ -5,7 +5,9 @@
 //   K    = J M^-1 J^T = (1/mA + 1/mB) I - skew(rA) IA^-1 skew(rA) - skew(rB) IB^-1 skew(rB)
 //   lambda = -mass_scale K^-1 (Cdot + bias_rate C) - impulse_scale lambda_acc   (softness.hpp)
 // C is tracked through the substeps from the bodies' accumulated deltas: the anchors are
-// rotated by the delta rotation and the centres moved by the delta positions.
+// rotated by the delta rotation and the centres moved by the delta positions. K^-1 is formed
+// once per step from the step-start anchors (as Jolt does): the rotation within one step
+// changes it little, and the bias still sees the exact C.
 #pragma once
 
 #include <limits>
@@ -18,12 +20,21 @@ struct PointPart {
   Vec3 rA0 = Vec3::Zero(), rB0 = Vec3::Zero();  // world anchors from the COMs at step start
   Vec3 delta_center = Vec3::Zero();             // xB - xA at step start
   Vec3 impulse = Vec3::Zero();                  // accumulated (per substep)
+  Mat3 k_inv = Mat3::Zero();                    // (K + gamma I)^-1, gamma = 0 when rigid
 
   void prepare(const BodyMotion& A, const BodyMotion& B, const Vec3& local_anchor_a,
                const Vec3& local_anchor_b) {
     rA0 = A.q * (local_anchor_a - A.local_com);
     rB0 = B.q * (local_anchor_b - B.local_com);
     delta_center = B.x - A.x;
+  }
+
+  // After prepare, with the step's inverse masses; gamma > 0 softens K for a spring.
+  void prepareMass(const SolverBody& A, const SolverBody& B, double gamma = 0.0) {
+    const Mat3 sA = skew(rA0), sB = skew(rB0);
+    const Mat3 K = (A.inv_mass + B.inv_mass + gamma) * Mat3::Identity() -
+                   sA * A.inv_inertia * sA - sB * B.inv_inertia * sB;
+    k_inv = K.determinant() > 1e-300 ? Mat3(K.inverse()) : Mat3::Zero();
   }
 
   void warmStart(SolverBody& A, SolverBody& B) const {
@@ -38,14 +49,13 @@ struct PointPart {
     const Vec3 rA = A.dq * rA0, rB = B.dq * rB0;
     const Vec3 C = (B.dp - A.dp) + (rB - rA) + delta_center;
     const Vec3 cdot = B.v + B.w.cross(rB) - A.v - A.w.cross(rA);
-    const Mat3 sA = skew(rA), sB = skew(rB);
-    const double gamma = 1.0 / (h * (c + h * k)), beta = k / (c + h * k);
-    const Mat3 K = (A.inv_mass + B.inv_mass + gamma) * Mat3::Identity() - sA * A.inv_inertia * sA -
-                   sB * B.inv_inertia * sB;
-    const Vec3 lambda = -K.ldlt().solve(cdot + beta * C);
+    const double beta = k / (c + h * k);  // gamma went into k_inv (springGamma)
+    const Vec3 lambda = -(k_inv * (cdot + beta * C));
     applyPairImpulse(A, B, lambda, rA, rB);
     return k * C.norm();
   }
+
+  static double springGamma(double k, double c, double h) { return 1.0 / (h * (c + h * k)); }
 
   Vec3 error(const SolverBody& A, const SolverBody& B) const {
     return (B.dp - A.dp) + (B.dq * rB0 - A.dq * rA0) + delta_center;
@@ -64,10 +74,7 @@ struct PointPart {
       mass_scale = soft.mass_scale;
       impulse_scale = soft.impulse_scale;
     }
-    const Mat3 sA = skew(rA), sB = skew(rB);
-    Mat3 K = (A.inv_mass + B.inv_mass) * Mat3::Identity() - sA * A.inv_inertia * sA -
-             sB * B.inv_inertia * sB;
-    Vec3 next = impulse - mass_scale * K.ldlt().solve(cdot + bias) - impulse_scale * impulse;
+    Vec3 next = impulse - mass_scale * (k_inv * (cdot + bias)) - impulse_scale * impulse;
     const double n = next.norm();
     const bool saturated = n > max_impulse;
     if (saturated) next *= max_impulse / n;

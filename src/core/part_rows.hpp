@@ -32,6 +32,7 @@ struct AngularRow {
   double k;
   AngularRow(const Vec3& j_, const SolverBody& A, const SolverBody& B)
       : j(j_), k(j_.dot((A.inv_inertia + B.inv_inertia) * j_)) {}
+  AngularRow(const Vec3& j_, double k_) : j(j_), k(k_) {}  // k computed once per substep
   double rate(const SolverBody& A, const SolverBody& B) const { return j.dot(B.w - A.w); }
   void apply(SolverBody& A, SolverBody& B, double lambda) const {
     applyPairAngularImpulse(A, B, lambda * j);
@@ -73,6 +74,9 @@ template <class Row>
 void solveInequalityRow(SolverBody& A, SolverBody& B, const Row& row, double C, double& acc,
                         const StepContext& ctx, bool use_bias) {
   if (!(row.k > 1e-300)) return;
+  const double rate = row.rate(A, B);
+  // Speculative row that stays open with nothing accumulated: lambda <= 0 clamps to 0.
+  if (C > 0.0 && acc == 0.0 && C + ctx.h * rate >= 0.0) return;
   double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
   if (C > 0.0) {
     bias = C * ctx.inv_h;
@@ -81,7 +85,7 @@ void solveInequalityRow(SolverBody& A, SolverBody& B, const Row& row, double C, 
     mass_scale = ctx.joint_softness.mass_scale;
     impulse_scale = ctx.joint_softness.impulse_scale;
   }
-  double lambda = -mass_scale / row.k * (row.rate(A, B) + bias) - impulse_scale * acc;
+  double lambda = -mass_scale / row.k * (rate + bias) - impulse_scale * acc;
   const double next = std::max(acc + lambda, 0.0);
   lambda = next - acc;
   acc = next;

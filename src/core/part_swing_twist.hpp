@@ -33,7 +33,8 @@ struct SwingTwistPart {
   void solve(SolverBody& A, SolverBody& B, double cone, double twist_lower, double twist_upper,
              const StepContext& ctx, bool use_bias) {
     if (angles.twist_valid)
-      twist.solve(A, B, angles.twist_row, angles.twist, twist_lower, twist_upper, ctx, use_bias);
+      twist.solve(A, B, angles.twist_row, AngularRow(angles.twist_row, A, B).k, angles.twist,
+                  twist_lower, twist_upper, ctx, use_bias);
     if (angles.swing_valid)
       solveInequalityRow(A, B, AngularRow(-angles.swing_row, A, B), cone - angles.swing,
                          cone_impulse, ctx, use_bias);

@@ -26,12 +26,17 @@
 #include "broadphase.hpp"
 #include "contact.hpp"
 #include "contact_solver.hpp"
+#include "gjk.hpp"
 #include "island.hpp"
 #include "joint.hpp"
 
 namespace ragdoll_sim {
 
 namespace {
+// Below this many pairs / awake bodies a step is too short to gain from waking other threads
+// (the fork-join costs microseconds, and much more when the cores are busy).
+constexpr int kParallelMin = 128;
+
 uint64_t bodyPairKey(int a, int b) { return pairKey(std::min(a, b), std::max(a, b)); }
 
 }  // namespace
@@ -161,7 +166,7 @@ void World::Impl::collide(double dt) {
     if (old < contacts.size() && contacts[old].key == next_contacts[i].key) old_contact[i] = int(old);
   }
   const int count = int(next_contacts.size());
-#pragma omp parallel for schedule(static) num_threads(threadCount()) if (count > 64)
+#pragma omp parallel for schedule(static) num_threads(threadCount()) if (count >= kParallelMin)
   for (int i = 0; i < count; ++i) {
     Contact& c = next_contacts[i];
     const int o = old_contact[i];
@@ -170,8 +175,22 @@ void World::Impl::collide(double dt) {
       continue;
     }
     const ShapeDef &da = shapeDef(c.shape_a), &db = shapeDef(c.shape_b);
-    ragdoll_sim::collide(da.geometry, shapePose(c.shape_a), db.geometry, shapePose(c.shape_b),
-                         spec, c.manifold);
+    const Transform xa = shapePose(c.shape_a), xb = shapePose(c.shape_b);
+    if (o >= 0 && contacts[o].sep_valid) {
+      const np::ConvexCore ca{&da.geometry, xa}, cb{&db.geometry, xb};
+      const Vec3& n = contacts[o].sep_axis;
+      const double gap = n.dot(cb.support(-n)) - cb.radius() - n.dot(ca.support(n)) - ca.radius();
+      if (gap > spec) {
+        c.sep_axis = n;
+        c.sep_valid = true;
+        c.manifold.count = 0;
+        continue;
+      }
+    }
+    ragdoll_sim::collide(da.geometry, xa, db.geometry, xb, spec, c.manifold);
+    // Cache the normal of a separated pair as its axis (not for planes: they are cheap).
+    c.sep_valid = c.manifold.count == 0 && !unbounded[c.shape_a] && !unbounded[c.shape_b];
+    c.sep_axis = c.manifold.normal;
     const Material pair = def.materials.resolve(da.material, db.material);
     c.static_friction = pair.static_friction;
     c.kinetic_friction = pair.kinetic_friction;
@@ -541,7 +560,8 @@ void World::step(double dt) {
   w.partitionIslands();
 
   const int islands = int(w.island_ranges.size());
-#pragma omp parallel for schedule(dynamic, 1) num_threads(w.threadCount()) if (islands > 1)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(w.threadCount()) \
+    if (islands > 1 && int(w.island_bodies.size()) >= kParallelMin)
   for (int k = 0; k < islands; ++k) w.solveIsland(w.island_ranges[w.island_order[k]], ctx, substeps);
   w.breakJoints();
   w.contact_solver.applyRestitution(ctx);
