@@ -18,6 +18,12 @@ struct WorldDef {
   Vec3 gravity = Vec3(0, 0, -9.81);
   int substeps = 4;                     // solver substeps per step (soft step)
   int contact_relax_iterations = 4;     // relax sweeps over the contacts per substep
+  int joint_relax_iterations = 2;       // of which the first this many also relax the joints
+  // Position (non-linear Gauss-Seidel) sweeps after the substeps over joint anchors and
+  // penetrating contacts: they remove the error left by hard hits without adding velocity.
+  int position_iterations = 2;
+  double position_factor = 0.5;         // share of a contact's penetration removed per sweep
+  double max_position_correction = 0.05;  // m, the most one projection sweep moves a point
   double contact_hertz = 240.0;         // contact softness (capped at a quarter of the substep rate)
   double contact_damping_ratio = 10.0;
   double joint_hertz = 1000.0;          // joint position-error softness

@@ -7,6 +7,8 @@
 //   s > 0 (speculative): bias = s / h, the gap may close in this substep but not overlap;
 //   s <= 0: soft push-out bias = max(bias_rate (s + slop), -max_push_velocity) with the
 //   contact softness, so penetration is removed as a damped spring, not by a velocity kick;
+//   a point still approaching (Cdot < 0) is solved rigidly (mass_scale 1, no impulse
+//   relaxation): softness shapes only the push-out, so a hard landing is stopped, not sunk in;
 //   the relax pass (no bias, rigid, WorldDef::contact_relax_iterations sweeps) then takes the
 //   push-out velocity back. Penetration is thus corrected by impulses (a soft Baumgarte push
 //   whose velocity is removed again: the effect of split impulses, without a second set of
@@ -16,6 +18,10 @@
 // Friction: two tangent rows, impulse clamped to the Coulomb disc |lambda_t| <= mu lambda_n,
 //   mu = static coefficient when the pair was sliding slower than static_friction_speed at the
 //   start of the step, kinetic otherwise.
+// Position projection (WorldDef::position_iterations, after the substeps): a point deeper than
+//   the slop is moved out by the position impulse m_n * min(s + slop, 0) * position_factor
+//   along n (non-linear Gauss-Seidel, Box2D v2's solvePositionConstraints): it removes depth
+//   left by a hard landing without giving the bodies any velocity.
 // Restitution: after the substeps, points that approached faster than the threshold get
 //   lambda = -m_n (vn + e vn_before), accumulated and clamped like the normal row.
 #include "contact_solver.hpp"
@@ -135,6 +141,7 @@ void ContactSolver::solve(const StepContext& ctx, bool use_bias, int begin, int 
         impulse_scale = soft.impulse_scale;
       }
       const double vn = rowVelocity(A, B, p.normal_row, cc.normal);
+      if (vn < 0.0) mass_scale = 1.0, impulse_scale = 0.0;  // approaching: rigid
       double lambda = -p.normal_row.mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
       const double next = std::max(p.normal_impulse + lambda, 0.0);
       lambda = next - p.normal_impulse;
@@ -158,6 +165,23 @@ void ContactSolver::solve(const StepContext& ctx, bool use_bias, int begin, int 
       p.tangent_impulse[1] = t1;
       applyRow(A, B, p.tangent_row[0], cc.tangent[0], t0 - old0);
       applyRow(A, B, p.tangent_row[1], cc.tangent[1], t1 - old1);
+    }
+  }
+}
+
+void ContactSolver::project(const StepContext& ctx, int begin, int end) {
+  auto& bodies = *ctx.bodies;
+  const WorldDef& def = *ctx.def;
+  for (int k = begin; k < end; ++k) {
+    ContactConstraint& cc = constraints_[k];
+    SolverBody &A = bodies[cc.a], &B = bodies[cc.b];
+    for (int i = 0; i < cc.count; ++i) {
+      const ContactConstraintPoint& p = cc.points[i];
+      const Vec3 rA = A.dq * p.rA, rB = B.dq * p.rB;
+      const double s = (B.dp - A.dp + rB - rA).dot(cc.normal) + p.base_separation;
+      const double C = std::max(def.position_factor * std::min(s + def.linear_slop, 0.0),
+                                -def.max_position_correction);
+      if (C < 0.0) applyPairPositionImpulse(A, B, (-p.normal_row.mass * C) * cc.normal, rA, rB);
     }
   }
 }

@@ -41,6 +41,8 @@ class ContactSolver {
   void prepare(const std::vector<Contact>& contacts, const StepContext& ctx);
   void warmStart(const StepContext& ctx, int begin, int end);
   void solve(const StepContext& ctx, bool use_bias, int begin, int end);
+  // Position projection of penetrations deeper than the slop (after the substeps).
+  void project(const StepContext& ctx, int begin, int end);
   void applyRestitution(const StepContext& ctx);
   void storeImpulses(std::vector<Contact>& contacts) const;
   std::vector<ContactConstraint>& constraints() { return constraints_; }

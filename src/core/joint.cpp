@@ -25,8 +25,10 @@ void advanceAngles(Joint& j, const SolverBody& A, const SolverBody& B, const Ste
   for (int i = 0; i < j.angle_count; ++i) j.angles[i] += ctx.h * j.angle_rows[i].dot(dw);
 }
 
-void warmStartAnchor(Joint& j, SolverBody& A, SolverBody& B) {
-  if (j.spring.stiffness > 0.0) return;
+void warmStartAnchor(Joint& j, SolverBody& A, SolverBody& B, const StepContext& ctx) {
+  const double k = j.spring.stiffness;
+  j.point.updateMass(A, B, k > 0.0 ? PointPart::springGamma(k, j.spring.damping, ctx.h) : 0.0);
+  if (k > 0.0) return;
   j.point.warmStart(A, B);
 }
 
@@ -49,12 +51,6 @@ void prepareJoint(Joint& j, const StepContext& ctx) {
     case JointType::Fixed: prepareFixedJoint(j, ctx); break;
     case JointType::Prismatic: preparePrismaticJoint(j, ctx); break;
   }
-  if (j.type != JointType::Prismatic) {
-    const auto& s = *ctx.bodies;
-    const double k = j.spring.stiffness;
-    j.point.prepareMass(s[j.a], s[j.b],
-                        k > 0.0 ? PointPart::springGamma(k, j.spring.damping, ctx.h) : 0.0);
-  }
 }
 
 void warmStartJoint(Joint& j, const StepContext& ctx) {
@@ -66,17 +62,19 @@ void warmStartJoint(Joint& j, const StepContext& ctx) {
     j.motor_parts[i].warmStart(A, B, j.angle_rows[i]);
     if (j.limits_enabled) j.limits[i].warmStart(A, B, j.angle_rows[i]);
   }
-  if (j.type == JointType::Hinge) j.hinge_axis.warmStart(A, B);
+  if (j.type == JointType::Hinge) {
+    j.hinge_axis.updateMass(A, B);
+    j.hinge_axis.warmStart(A, B);
+  }
   if (j.swing_twist_limits) j.swing_twist.warmStart(A, B);
   if (j.type == JointType::Fixed) j.angle_lock.warmStart(A, B);
-  warmStartAnchor(j, A, B);
+  warmStartAnchor(j, A, B, ctx);
 }
 
 void solveJoint(Joint& j, const StepContext& ctx, bool use_bias) {
   auto& s = *ctx.bodies;
   SolverBody &A = s[j.a], &B = s[j.b];
   if (j.type == JointType::Prismatic) return solvePrismaticJoint(j, A, B, ctx, use_bias);
-  if (!use_bias) advanceAngles(j, A, B, ctx);  // positions moved since the warm start
   for (int i = 0; i < j.angle_count; ++i) {
     const Vec3& row = j.angle_rows[i];
     const double k = j.angle_k[i];
@@ -89,6 +87,18 @@ void solveJoint(Joint& j, const StepContext& ctx, bool use_bias) {
     j.swing_twist.solve(A, B, j.swing_cone, j.twist_lower, j.twist_upper, ctx, use_bias);
   if (j.type == JointType::Fixed) j.angle_lock.solve(A, B, ctx.joint_softness, use_bias);
   solveAnchor(j, A, B, ctx, use_bias);
+}
+
+void advanceJoint(Joint& j, const StepContext& ctx) {
+  if (j.type == JointType::Prismatic) return;
+  auto& s = *ctx.bodies;
+  advanceAngles(j, s[j.a], s[j.b], ctx);
+}
+
+void projectJoint(Joint& j, const StepContext& ctx) {
+  if (j.type == JointType::Prismatic || j.spring.stiffness > 0.0 || j.broken) return;
+  auto& s = *ctx.bodies;
+  j.point.project(s[j.a], s[j.b], ctx.def->max_position_correction);
 }
 
 }  // namespace ragdoll_sim

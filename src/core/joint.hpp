@@ -81,6 +81,10 @@ void updateBallAngles(Joint& j, const StepContext& ctx);
 void updateHingeAngles(Joint& j, const StepContext& ctx);
 void warmStartJoint(Joint& j, const StepContext& ctx);
 void solveJoint(Joint& j, const StepContext& ctx, bool use_bias);
+// After the position update of a substep, before the relax sweeps: angles advance by h rate.
+void advanceJoint(Joint& j, const StepContext& ctx);
+// Position projection of the rigid anchor (part_point.hpp), after the substeps.
+void projectJoint(Joint& j, const StepContext& ctx);
 
 void prepareBallJoint(Joint& j, const StepContext& ctx);
 void prepareHingeJoint(Joint& j, const StepContext& ctx);

@@ -8,7 +8,6 @@ void prepareHingeJoint(Joint& j, const StepContext& ctx) {
   const auto& m = *ctx.motions;
   j.point.prepare(m[j.a], m[j.b], j.frame_a.p, j.frame_b.p);
   j.hinge_axis.prepare(m[j.a], m[j.b], j.frame_a.q * j.axis, j.frame_b.q * j.axis);
-  j.hinge_axis.prepareMass((*ctx.bodies)[j.a], (*ctx.bodies)[j.b]);
 }
 
 void updateHingeAngles(Joint& j, const StepContext& ctx) {

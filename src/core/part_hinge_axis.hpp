@@ -4,7 +4,7 @@
 //   Cdot = U^T (wB - wA),  U = [b2 x a1, c2 x a1]   (d/dt(a1.b2) = (wB - wA) . (b2 x a1))
 //   K    = U^T (IA^-1 + IB^-1) U                                   2x2
 //   lambda = -mass_scale K^-1 (Cdot + bias_rate C) - impulse_scale lambda_acc,
-//   angular impulse U lambda on B, minus on A. K^-1 is formed once per step (prepareMass).
+//   angular impulse U lambda on B, minus on A. K^-1 is formed once per substep (updateMass).
 #pragma once
 
 #include <Eigen/Dense>
@@ -28,8 +28,10 @@ struct HingeAxisPart {
     c2_0 = a2_0.cross(b2_0);
   }
 
-  void prepareMass(const SolverBody& A, const SolverBody& B) {
-    const Vec3 u1 = b2_0.cross(a1_0), u2 = c2_0.cross(a1_0);
+  void updateMass(const SolverBody& A, const SolverBody& B) {
+    Vec3 a1, u1, u2;
+    Eigen::Vector2d C;
+    jacobian(A, B, a1, u1, u2, C);
     const Mat3 I = A.inv_inertia + B.inv_inertia;
     const Vec3 Iu1 = I * u1, Iu2 = I * u2;
     Eigen::Matrix2d K;

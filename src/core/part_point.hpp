@@ -4,10 +4,13 @@
 //   J    = [ -I  skew(rA)  I  -skew(rB) ]
 //   K    = J M^-1 J^T = (1/mA + 1/mB) I - skew(rA) IA^-1 skew(rA) - skew(rB) IB^-1 skew(rB)
 //   lambda = -mass_scale K^-1 (Cdot + bias_rate C) - impulse_scale lambda_acc   (softness.hpp)
+// Position projection (after the substeps, WorldDef::position_iterations): P = -K^-1 C moves
+// and turns the bodies so that C -> 0 to first order, leaving the velocities alone (no energy
+// is added, unlike a velocity bias).
 // C is tracked through the substeps from the bodies' accumulated deltas: the anchors are
 // rotated by the delta rotation and the centres moved by the delta positions. K^-1 is formed
-// once per step from the step-start anchors (as Jolt does): the rotation within one step
-// changes it little, and the bias still sees the exact C.
+// once per substep (at the warm start) from the current anchors: a stale K from the step start
+// over-corrects once a body spins a good part of a radian per step, and Gauss-Seidel diverges.
 #pragma once
 
 #include <limits>
@@ -29,9 +32,9 @@ struct PointPart {
     delta_center = B.x - A.x;
   }
 
-  // After prepare, with the step's inverse masses; gamma > 0 softens K for a spring.
-  void prepareMass(const SolverBody& A, const SolverBody& B, double gamma = 0.0) {
-    const Mat3 sA = skew(rA0), sB = skew(rB0);
+  // K^-1 at the current anchors; gamma > 0 softens K for a spring.
+  void updateMass(const SolverBody& A, const SolverBody& B, double gamma = 0.0) {
+    const Mat3 sA = skew(A.dq * rA0), sB = skew(B.dq * rB0);
     const Mat3 K = (A.inv_mass + B.inv_mass + gamma) * Mat3::Identity() -
                    sA * A.inv_inertia * sA - sB * B.inv_inertia * sB;
     k_inv = K.determinant() > 1e-300 ? Mat3(K.inverse()) : Mat3::Zero();
@@ -53,6 +56,21 @@ struct PointPart {
     const Vec3 lambda = -(k_inv * (cdot + beta * C));
     applyPairImpulse(A, B, lambda, rA, rB);
     return k * C.norm();
+  }
+
+  // K from the current anchors (a fast spin turns them far within one step, and a stale K
+  // overshoots); the correction is capped so one sweep never jumps further than max_correction.
+  void project(SolverBody& A, SolverBody& B, double max_correction) const {
+    const Vec3 rA = A.dq * rA0, rB = B.dq * rB0;
+    Vec3 C = (B.dp - A.dp) + (rB - rA) + delta_center;
+    const double n = C.norm();
+    if (!(n > 0.0)) return;
+    if (n > max_correction) C *= max_correction / n;
+    const Mat3 sA = skew(rA), sB = skew(rB);
+    const Mat3 K = (A.inv_mass + B.inv_mass) * Mat3::Identity() - sA * A.inv_inertia * sA -
+                   sB * B.inv_inertia * sB;
+    if (!(K.determinant() > 1e-300)) return;
+    applyPairPositionImpulse(A, B, -(K.inverse() * C), rA, rB);
   }
 
   static double springGamma(double k, double c, double h) { return 1.0 / (h * (c + h * k)); }

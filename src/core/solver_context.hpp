@@ -29,6 +29,21 @@ inline void applyPairImpulse(SolverBody& A, SolverBody& B, const Vec3& P, const 
   B.w += B.inv_inertia * rB.cross(P);
 }
 
+// Position-level "impulse" (a displacement times mass): moves the centres and turns the
+// rotations instead of changing velocities (non-linear Gauss-Seidel, position_iterations).
+inline void rotateDelta(SolverBody& b, const Vec3& theta) {
+  Quat dq = b.dq;
+  dq.coeffs() += 0.5 * (Quat(0, theta.x(), theta.y(), theta.z()) * b.dq).coeffs();
+  b.dq = dq.normalized();
+}
+inline void applyPairPositionImpulse(SolverBody& A, SolverBody& B, const Vec3& P,
+                                     const Vec3& rA, const Vec3& rB) {
+  A.dp -= A.inv_mass * P;
+  rotateDelta(A, -(A.inv_inertia * rA.cross(P)));
+  B.dp += B.inv_mass * P;
+  rotateDelta(B, B.inv_inertia * rB.cross(P));
+}
+
 // Applies an angular impulse L to A (negative) and B (positive).
 inline void applyPairAngularImpulse(SolverBody& A, SolverBody& B, const Vec3& L) {
   A.w -= A.inv_inertia * L;

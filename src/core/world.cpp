@@ -1,16 +1,22 @@
 // World: storage and the step pipeline.
 //
 // step(dt) (Box2D v3 soft step, in 3D):
-//   1. collide: broadphase pairs -> narrowphase manifolds at the poses of the step start;
-//      impulses carried over by feature id (warm starting);
-//   2. prepare joints and contacts; substep h = dt / substeps;
-//   3. per substep: integrate velocities (gravity, forces, damping),
-//      warm start, solve with bias (soft), integrate positions, relax without bias (contacts
-//      several sweeps: Gauss-Seidel over a manifold's points needs them to take back all of
-//      the push-out velocity, see contact_solver.cpp);
+//   1. collide: broadphase pairs -> narrowphase manifolds at the poses of the step start
+//      (pairs in parallel, separated pairs skipped by their cached axis); impulses carried
+//      over by feature id (warm starting);
+//   2. islands (island.hpp): awake bodies, joints and contacts grouped per island; prepare
+//      joints and contacts; substep h = dt / substeps;
+//   3. per island (islands in parallel, WorldDef::threads; each island in a fixed order, so
+//      the result does not depend on the thread count), per substep: integrate velocities
+//      (gravity, forces, damping), warm start, solve with bias (soft), integrate positions,
+//      relax without bias (contacts several sweeps, the joints in the first sweeps: Gauss-
+//      Seidel over a manifold's points and along a limb needs them to take back the push-out
+//      velocity and to carry a landing's load up the chain, see contact_solver.cpp); then
+//      position_iterations sweeps of position projection (contacts, then joint anchors),
+//      which remove what error remains without touching velocities;
 //   4. restitution, store impulses, write the deltas back to the bodies, clear forces;
-//   5. islands (island.hpp) that stayed slow long enough go to sleep. Sleeping bodies are
-//      identity solver bodies: not integrated, and pairs of them are not collided or solved.
+//   5. islands that stayed slow long enough go to sleep. Sleeping bodies are identity solver
+//      bodies: not integrated, and pairs of them are not collided or solved.
 // Semi-implicit Euler: v += h a first, then x += h v with the new v (and the same for the
 // rotation, q += h/2 (0,w) q, renormalised, with the gyroscopic update in integratePositions).
 #include "ragdoll_sim/world.hpp"
@@ -347,13 +353,21 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int 
     contact_solver.solve(ctx, true, r.contact_begin, r.contact_end);
     integratePositions(ctx.h, r.body_begin, r.body_end);
     for (int k = r.joint_begin; k < r.joint_end; ++k)
-      if (!js[k]->broken) solveJoint(*js[k], ctx, false);
-    for (int it = 0; it < def.contact_relax_iterations; ++it)
+      if (!js[k]->broken) advanceJoint(*js[k], ctx);
+    for (int it = 0; it < def.contact_relax_iterations; ++it) {
+      if (it < def.joint_relax_iterations)
+        for (int k = r.joint_begin; k < r.joint_end; ++k)
+          if (!js[k]->broken) solveJoint(*js[k], ctx, false);
       contact_solver.solve(ctx, false, r.contact_begin, r.contact_end);
+    }
     for (int k = r.joint_begin; k < r.joint_end; ++k) {
       Joint& j = *js[k];
       if (!j.broken && (j.overloaded || j.force > j.spring.break_force)) j.broken = true;
     }
+  }
+  for (int it = 0; it < def.position_iterations; ++it) {
+    contact_solver.project(ctx, r.contact_begin, r.contact_end);
+    for (int k = r.joint_begin; k < r.joint_end; ++k) projectJoint(*js[k], ctx);
   }
 }
 
