@@ -26,8 +26,15 @@ run: deps build
 test: deps build
 	@scripts/test.sh
 
-# Release build of the core and bench/bench_ragdoll, run on the peer scenes a, b, c.
+# Debian packages only the benchmark needs (the peer engines and the plot); `make test` never
+# installs or builds any of it.
+BENCH_DEBS := libmujoco-dev libbullet-dev libode-dev libtinyxml2-dev liburdfdom-dev python3-matplotlib
+
+# Release build of bench/bench_ragdoll and of the peer benches (../shared/peers or PEERS_DIR),
+# ROUNDS (default 3) alternating rounds of scenes a, b, c, the scaling scene g and our p, s;
+# writes bench/results_raw.txt, bench/RESULTS.md and bench/scaling.png (scripts/bench.sh).
 bench: deps
+	@scripts/deps.sh $(BENCH_DEBS)
 	@scripts/bench.sh
 
 clean:

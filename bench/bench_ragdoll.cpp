@@ -2,7 +2,11 @@
 //   a: 1 ragdoll standing, pelvis at 1.5 m, 10 000 steps
 //   b: 32 ragdolls standing on a 4 x 8 grid, 1.5 m pitch, 3 000 steps
 //   c: 8 ragdolls prone (pitch 90 deg), yaw k*45 deg, pelvis at 1.5 + 0.6 k, 5 000 steps
-//   p: pile, 64 ragdolls dropped prone in 16 layers of 4 into a 3 m x 3 m pit, 8 000 steps;
+//   g: scaling, --ragdolls N (default 1) standing like b on a grid with 1.5 m pitch (ceil(sqrt N)
+//      columns, centred; scaling_grid.hpp, shared with bench/peers_scaling), 3 000 steps
+//   p: pile, 64 ragdolls dropped prone in 16 layers of 4 into a 3 m x 3 m pit (3 m walls), so
+//      they land on each other, 8 000 steps; its line adds pit_outside_end (pelvis outside the
+//      walls at the end) and pelvis_z_end_max (height of the pile);
 //   s: sleep check, a 4 x 4 x 3 pile of 0.4 m boxes, 3 000 steps
 //   Every line also gives the cost per step in the first and the last second (p, s: asleep).
 // dt = 1 ms, gravity -9.81 z, ground z = 0, friction 0.8. Only World::step is timed. The
@@ -17,6 +21,7 @@
 
 #include "joint_angles.hpp"
 #include "ragdoll_sim/urdf_loader.hpp"
+#include "scaling_grid.hpp"
 
 using namespace ragdoll_sim;
 
@@ -30,7 +35,7 @@ struct Scene {
   std::vector<Vec3> boxes;                   // dynamic 0.4 m boxes, 1 kg: centres
 };
 
-Scene makeScene(char id) {
+Scene makeScene(char id, int ragdolls) {
   Scene s{id, 0, {}, {}, {}};
   if (id == 'a') {
     s.steps = 10000;
@@ -42,6 +47,10 @@ Scene makeScene(char id) {
   } else if (id == 'c') {
     s.steps = 5000;
     for (int k = 0; k < 8; ++k) s.roots.push_back({Vec3(0, 0, 1.5 + 0.6 * k), quatFromRpy(0, M_PI / 2, k * M_PI / 4)});
+  } else if (id == 'g') {
+    s.steps = scaling::kDefaultSteps;
+    for (const auto& xyz : scaling::gridRoots(ragdolls))
+      s.roots.push_back({Vec3(xyz[0], xyz[1], xyz[2]), Quat::Identity()});
   } else if (id == 'p') {
     s.steps = 8000;
     for (int k = 0; k < 16; ++k)
@@ -63,7 +72,7 @@ Scene makeScene(char id) {
       for (int j = 0; j < 4; ++j)
         for (int k = 0; k < 3; ++k) s.boxes.emplace_back(i * 0.45, j * 0.45, 0.2 + 0.45 * k);
   } else {
-    std::fprintf(stderr, "scenario must be a, b, c, p or s\n");
+    std::fprintf(stderr, "scenario must be a, b, c, g, p or s\n");
     std::exit(2);
   }
   return s;
@@ -142,9 +151,11 @@ struct Metrics {
         mn = std::min(mn, z);
         mx = std::max(mx, z);
       }
-      pel_mean = s / n;
-      pel_min = mn;
-      pel_max = mx;
+      if (n > 0) {  // scene s has no ragdolls: the pelvis fields stay nan
+        pel_mean = s / n;
+        pel_min = mn;
+        pel_max = mx;
+      }
       vmax3 = 0;
       for (size_t i = 0; i < poses.size() && i < prev.size(); ++i)
         vmax3 = std::max(vmax3, (poses[i].p - prev[i]).norm() / dt);
@@ -156,13 +167,14 @@ struct Metrics {
 
 int main(int argc, char** argv) {
   char scenario = 'a';
-  int steps = -1;
+  int steps = -1, n_ragdolls = -1;
   WorldDef wd;
   bool metrics = true;
   std::string urdf = "../shared/peers/ragdoll15.urdf";
   for (int i = 1; i < argc; ++i) {
     const std::string s = argv[i];
     if (s == "--steps" && i + 1 < argc) steps = std::atoi(argv[++i]);
+    else if (s == "--ragdolls" && i + 1 < argc) n_ragdolls = std::atoi(argv[++i]);
     else if (s == "--urdf" && i + 1 < argc) urdf = argv[++i];
     else if (s == "--opt" && i + 1 < argc) {
       // comma-separated key=value solver settings
@@ -180,6 +192,10 @@ int main(int argc, char** argv) {
         else if (k == "contact_hertz") wd.contact_hertz = v;
         else if (k == "contact_zeta") wd.contact_damping_ratio = v;
         else if (k == "sleep") wd.enable_sleep = v != 0.0;
+        else if (k == "threads") wd.threads = int(v);
+        else if (k == "position_iterations") wd.position_iterations = int(v);
+        else if (k == "relax") wd.contact_relax_iterations = int(v);
+        else if (k == "joint_relax") wd.joint_relax_iterations = int(v);
         else {
           std::fprintf(stderr, "unknown option %s\n", k.c_str());
           return 2;
@@ -188,11 +204,20 @@ int main(int argc, char** argv) {
       }
     }
     else if (s == "--no-metrics") metrics = false;
-    else if (s == "a" || s == "b" || s == "c" || s == "p" || s == "s") scenario = s[0];
+    else if (s.size() == 1 && std::string("abcgps").find(s[0]) != std::string::npos) scenario = s[0];
     else {
-      std::fprintf(stderr, "usage: %s a|b|c|p|s [--steps N] [--urdf F] [--no-metrics] [--opt substeps=4,joint_hertz=240,contact_hertz=240,sleep=1,...]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s a|b|c|g|p|s [--ragdolls N (g only)] [--steps N] [--urdf F] [--no-metrics] [--opt substeps=4,joint_hertz=240,contact_hertz=240,sleep=1,...]\n", argv[0]);
       return 2;
     }
+  }
+  if (n_ragdolls >= 0 && scenario != 'g') {
+    std::fprintf(stderr, "bench_ragdoll: --ragdolls is only for scene g\n");
+    return 2;
+  }
+  if (scenario == 'g' && n_ragdolls < 0) n_ragdolls = 1;
+  if (scenario == 'g' && n_ragdolls < 1) {
+    std::fprintf(stderr, "bench_ragdoll: --ragdolls must be >= 1\n");
+    return 2;
   }
   const UrdfLoadResult loaded = loadUrdfFile(urdf);
   if (!loaded.ok) {
@@ -200,7 +225,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   const RagdollDef& def = loaded.def;
-  const Scene sc = makeScene(scenario);
+  const Scene sc = makeScene(scenario, n_ragdolls);
   if (steps < 0) steps = sc.steps;
   const int n = int(sc.roots.size());
   const double dt = 1e-3;
@@ -247,18 +272,33 @@ int main(int argc, char** argv) {
   }
   const double loop_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop0).count();
   const long bodies = long(n) * long(def.links.size()) + long(sc.boxes.size());
+  // Scene p: did every ragdoll end up inside the pit (pelvis within the walls' inner faces),
+  // and how high is the pile at the end?
+  std::string pit;
+  if (!sc.walls.empty()) {
+    int outside = 0;
+    double top = 0.0;
+    for (const Ragdoll& r : ragdolls) {
+      const Vec3 p = world.bodyPose(r.bodies[0]).p;
+      if (std::abs(p.x()) > 1.5 || std::abs(p.y()) > 1.5) ++outside;
+      top = std::max(top, p.z());
+    }
+    char buf[96];
+    std::snprintf(buf, sizeof buf, " pit_outside_end=%d pelvis_z_end_max=%.3f", outside, top);
+    pit = buf;
+  }
   const double sps = steps / wall;
   std::printf(
       "engine=ragdoll_sim scenario=%c ragdolls=%d bodies=%ld steps=%d wall_s=%.4f steps_per_s=%.1f "
       "body_steps_per_s=%.0f us_per_body_step=%.3f max_anchor_err_m=%.3g max_ground_pen_m=%.4f "
       "max_limit_viol_rad=%.3g pelvis_z_3s_mean=%.4f pelvis_z_3s_min=%.4f pelvis_z_3s_max=%.4f "
       "ground_pen_3s_m=%.4f anchor_err_3s_m=%.3g vmax_3s=%.3g worst_limit=%s@%d nan=%d "
-      "loop_wall_s=%.3f substeps=%d joint_hertz=%g contact_hertz=%g sleep=%d max_contacts=%zu "
-      "us_per_step_first_1s=%.1f us_per_step_last_1s=%.1f awake_bodies_end=%d\n",
+      "loop_wall_s=%.3f substeps=%d joint_hertz=%g contact_hertz=%g sleep=%d threads=%d max_contacts=%zu "
+      "us_per_step_first_1s=%.1f us_per_step_last_1s=%.1f awake_bodies_end=%d%s\n",
       sc.id, n, bodies, steps, wall, sps, sps * bodies, 1e6 * wall / (steps * double(bodies)),
       m.max_anchor, m.max_pen, m.max_limit, m.pel_mean, m.pel_min, m.pel_max, m.pen3, m.anchor3,
       m.vmax3, m.worst_joint.c_str(), m.worst_step, m.nan ? 1 : 0, loop_wall, wd.substeps,
-      wd.joint_hertz, wd.contact_hertz, wd.enable_sleep ? 1 : 0, world.contacts().size(),
-      1e6 * wall_first / window, 1e6 * wall_last / window, world.awakeBodyCount());
+      wd.joint_hertz, wd.contact_hertz, wd.enable_sleep ? 1 : 0, wd.threads, world.contacts().size(),
+      1e6 * wall_first / window, 1e6 * wall_last / window, world.awakeBodyCount(), pit.c_str());
   return 0;
 }

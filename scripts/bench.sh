@@ -1,10 +1,160 @@
 #!/usr/bin/env bash
-# Builds the ROS-free core and bench_ragdoll in Release and runs scenes a, b, c on the peers'
-# ragdoll15.urdf (../shared/peers, or PEERS_DIR). Result lines go to stdout.
+# make bench: our engine against the peers (MuJoCo, Bullet, ODE from ../shared/peers) in one sitting.
+#
+#  1. Builds the ROS-free core and bench/bench_ragdoll in Release with the peers' flags
+#     (-O2 -march=native) into .ws/bench.
+#  2. Builds the peer benches from $PEERS_DIR (bench_<engine>, unmodified sources) and their
+#     scaling drivers (bench/peers_scaling/scaling_<engine>.cpp: the same sources plus scene g)
+#     into .ws/bench/peers. Nothing is written to $PEERS_DIR.
+#  3. Runs ROUNDS rounds. In each round every scene is run by every engine back to back
+#     (round-robin, the engine order rotating from round to round), so all engines see the same
+#     machine load: scenes a, b, c; the scaling scene g with N = $SCALING_NS ragdolls; then our
+#     own scenes p and s (no peer has them).
+#  4. Raw result lines (plus round=R) go to bench/results_raw.txt, and scripts/bench_report.py
+#     turns them into bench/RESULTS.md and bench/scaling.png.
+#
+# Settings (environment):
+#   ROUNDS=3                 rounds (the report gives the median and min-max over them)
+#   PEERS_DIR=../shared/peers
+#   SCENES="a b c"           scenes that every engine runs
+#   OWN_SCENES="p s"         scenes that only bench_ragdoll has
+#   SCALING_NS="1 4 16 64 256"   ragdoll counts for scene g ("" skips scaling)
+#   SCALING_STEPS=           steps for scene g (default: the scene's 3000)
+#   ENGINES="ragdoll_sim mujoco bullet ode"
+#   RUN_TIMEOUT=1800         seconds before one run is killed (and reported as failed)
+#   OWN_THREADS=$(nproc)     threads our solver uses (WorldDef::threads: islands in parallel,
+#                            same result for any count); the peers are single-threaded.
+#   BENCH_THREADS=1          OMP_NUM_THREADS for every run (only matters for threads=0).
+#   BENCH_OUT=bench          folder for results_raw.txt, RESULTS.md, scaling.png
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
-PEERS_DIR="${PEERS_DIR:-$ROOT/../shared/peers}"
+PEERS_DIR="$(cd "${PEERS_DIR:-$ROOT/../shared/peers}" && pwd)"
+ROUNDS="${ROUNDS:-3}"
+SCENES="${SCENES-a b c}"
+OWN_SCENES="${OWN_SCENES-p s}"
+SCALING_NS="${SCALING_NS-1 4 16 64 256}"
+SCALING_STEPS="${SCALING_STEPS:-}"
+ENGINES="${ENGINES:-ragdoll_sim mujoco bullet ode}"
+RUN_TIMEOUT="${RUN_TIMEOUT:-1800}"
+BENCH_OUT="${BENCH_OUT:-$ROOT/bench}"
+OWN_THREADS="${OWN_THREADS:-$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)}"
+export OMP_NUM_THREADS="${BENCH_THREADS:-1}"
+URDF="$PEERS_DIR/ragdoll15.urdf"
 BUILD="$WS/bench"
-cmake -S "$ROOT" -B "$BUILD" -DRAGDOLL_SIM_CORE_ONLY=ON -DCMAKE_BUILD_TYPE=Release >/dev/null
+PEER_BUILD="$BUILD/peers"
+FLAGS="-O2 -march=native"
+mkdir -p "$PEER_BUILD" "$BENCH_OUT"
+LOG="$BUILD/bench_stderr.log"
+: >"$LOG"
+
+# ---- 1. our bench
+echo "bench: building bench_ragdoll (Release, $FLAGS) in $BUILD"
+cmake -S "$ROOT" -B "$BUILD" -DRAGDOLL_SIM_CORE_ONLY=ON -DCMAKE_BUILD_TYPE=Release \
+  "-DCMAKE_CXX_FLAGS_RELEASE=$FLAGS -DNDEBUG" >/dev/null
 cmake --build "$BUILD" -j2 --target bench_ragdoll >/dev/null
-for s in a b c; do "$BUILD/bench_ragdoll" "$s" --urdf "$PEERS_DIR/ragdoll15.urdf"; done
+
+# ---- 2. peer benches (a failed build drops that engine and is reported)
+RAW_TMP="$BENCH_OUT/results_raw.txt.partial"
+: >"$RAW_TMP"
+declare -A PEER_LIBS=(
+  [mujoco]="-lmujoco -ltinyxml2 -lurdfdom_model"
+  [bullet]="-I/usr/include/bullet -lBulletDynamics -lBulletCollision -lLinearMath -lurdfdom_model"
+  [ode]="-lode -lurdfdom_model"
+)
+engines=()
+for e in $ENGINES; do
+  if [[ "$e" == ragdoll_sim ]]; then engines+=("$e"); continue; fi
+  if [[ -z "${PEER_LIBS[$e]+x}" ]]; then echo "bench: unknown engine $e" >&2; exit 2; fi
+  echo "bench: building peer $e from $PEERS_DIR"
+  # shellcheck disable=SC2086  # PEER_LIBS holds several words
+  if g++ $FLAGS -std=c++17 -I"$PEERS_DIR" "$PEERS_DIR/bench_$e.cpp" -o "$PEER_BUILD/bench_$e" \
+       ${PEER_LIBS[$e]} 2>>"$LOG" &&
+     { [[ -z "$SCALING_NS" ]] ||
+       g++ $FLAGS -std=c++17 -I"$PEERS_DIR" "$ROOT/bench/peers_scaling/scaling_$e.cpp" \
+         -o "$PEER_BUILD/scaling_$e" ${PEER_LIBS[$e]} 2>>"$LOG"; }; then
+    engines+=("$e")
+  else
+    echo "bench: building peer $e failed (see $LOG); it is left out" >&2
+    echo "# FAILED engine=$e scenario=build ragdolls=0 round=0 rc=1 reason=build_failed" >>"$RAW_TMP"
+  fi
+done
+
+# ---- metadata for the report
+{
+  echo "# meta date=$(date -u +%Y-%m-%dT%H:%M:%SZ)"
+  echo "# meta commit=$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)"
+  if [[ -n "$(git -C "$ROOT" status --porcelain 2>/dev/null)" ]]; then
+    echo "# meta worktree=with_uncommitted_changes"
+  else
+    echo "# meta worktree=clean"
+  fi
+  # nproc honours OMP_NUM_THREADS, which is set above: ask it without
+  echo "# meta nproc=$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)"
+  echo "# meta cpu=$(grep -m1 '^model name' /proc/cpuinfo | sed 's/^[^:]*: *//')"
+  echo "# meta compiler=$(g++ -dumpfullversion 2>/dev/null || g++ -dumpversion)"
+  echo "# meta flags=$FLAGS"
+  echo "# meta rounds=$ROUNDS"
+  echo "# meta omp_num_threads=$OMP_NUM_THREADS"
+  echo "# meta own_threads=$OWN_THREADS"
+  echo "# meta loadavg_start=$(cut -d' ' -f1-3 /proc/loadavg)"
+  echo "# meta engines=${engines[*]}"
+  echo "# meta peers_dir=$PEERS_DIR"
+} >>"$RAW_TMP"
+
+# ---- 3. runs
+# run_one ROUND ENGINE SCENE [N]: one run; its line (with round=ROUND) or a "# FAILED" line.
+run_one() {
+  local r="$1" e="$2" s="$3" n="${4:-}" bin args=() out rc err
+  if [[ "$e" == ragdoll_sim ]]; then bin="$BUILD/bench_ragdoll"
+  elif [[ "$s" == g ]]; then bin="$PEER_BUILD/scaling_$e"
+  else bin="$PEER_BUILD/bench_$e"; fi
+  args=("$s" --urdf "$URDF")
+  if [[ "$e" == ragdoll_sim ]]; then args+=(--opt "threads=$OWN_THREADS"); fi
+  if [[ "$s" == g ]]; then
+    args+=(--ragdolls "$n")
+    if [[ -n "$SCALING_STEPS" ]]; then args+=(--steps "$SCALING_STEPS"); fi
+  fi
+  local errf="$BUILD/last_stderr.txt"
+  rc=0
+  out="$(cd "$BUILD" && timeout "$RUN_TIMEOUT" "$bin" "${args[@]}" 2>"$errf")" || rc=$?
+  { echo "### round=$r engine=$e scene=$s ${n:+ragdolls=$n }rc=$rc"; cat "$errf"; } >>"$LOG"
+  local line
+  line="$(grep -m1 '^engine=' <<<"$out" || true)"
+  if [[ "$rc" -eq 0 && -n "$line" ]]; then
+    echo "$line round=$r" | tee -a "$RAW_TMP"
+  else
+    err="$(grep -v '^$' "$errf" | tail -n1 | tr -s ' \t' '_' | cut -c1-160)"
+    [[ "$rc" -eq 124 ]] && err="timeout_after_${RUN_TIMEOUT}s"
+    echo "# FAILED engine=$e scenario=$s ragdolls=${n:-0} round=$r rc=$rc reason=${err:-no_result_line}" |
+      tee -a "$RAW_TMP"
+  fi
+}
+
+# engines of round R, rotated by R so that no engine always runs first
+rotated() {
+  local r="$1" k="${#engines[@]}" i
+  for ((i = 0; i < k; ++i)); do echo "${engines[$(((i + r - 1) % k))]}"; done
+}
+
+t0=$SECONDS
+for r in $(seq "$ROUNDS"); do
+  echo "bench: round $r of $ROUNDS ($((SECONDS - t0)) s so far)"
+  mapfile -t order < <(rotated "$r")
+  for s in $SCENES; do
+    for e in "${order[@]}"; do run_one "$r" "$e" "$s"; done
+  done
+  for n in $SCALING_NS; do
+    for e in "${order[@]}"; do run_one "$r" "$e" g "$n"; done
+  done
+  if [[ " ${engines[*]} " == *" ragdoll_sim "* ]]; then
+    for s in $OWN_SCENES; do run_one "$r" ragdoll_sim "$s"; done
+  fi
+done
+echo "# meta loadavg_end=$(cut -d' ' -f1-3 /proc/loadavg)" >>"$RAW_TMP"
+echo "# meta total_s=$((SECONDS - t0))" >>"$RAW_TMP"
+mv "$RAW_TMP" "$BENCH_OUT/results_raw.txt"
+echo "bench: $((SECONDS - t0)) s; raw lines in $BENCH_OUT/results_raw.txt (engine stderr: $LOG)"
+
+# ---- 4. report
+/usr/bin/python3 "$ROOT/scripts/bench_report.py" "$BENCH_OUT/results_raw.txt" \
+  --md "$BENCH_OUT/RESULTS.md" --png "$BENCH_OUT/scaling.png"

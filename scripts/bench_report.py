@@ -1,0 +1,415 @@
+#!/usr/bin/python3
+"""bench_report.py RAW [--md RESULTS.md] [--png scaling.png]
+
+Turns the raw result lines of scripts/bench.sh (bench/results_raw.txt: one key=value line per
+run, plus "# meta key=value" and "# FAILED ..." lines) into a Markdown report and a plot of the
+scaling scene g. Standard library + matplotlib only. Nothing in it is specific to one sitting:
+every number comes from RAW.
+"""
+import argparse
+import os
+import statistics
+import sys
+from collections import OrderedDict, defaultdict
+
+OURS = "ragdoll_sim"
+ENGINE_ORDER = [OURS, "mujoco", "bullet", "ode"]
+SCENE_ORDER = ["a", "b", "c", "g", "p", "s"]
+SCENE_DESC = {
+    "a": "1 ragdoll standing, pelvis at 1.5 m, 10 000 steps",
+    "b": "32 ragdolls standing, 4 x 8 grid, 1.5 m pitch, 3 000 steps",
+    "c": "8 ragdolls prone in a column, yaw k*45 deg, 5 000 steps",
+    "g": "scaling: N ragdolls standing (pose of b) on a grid, 1.5 m pitch, 3 000 steps",
+    "p": "ours only: 64 ragdolls dropped prone into a 3 m x 3 m pit, 8 000 steps",
+    "s": "ours only: 4 x 4 x 3 pile of 0.4 m boxes (sleeping), 3 000 steps",
+}
+# quality metrics shown for every run group (all printed by every engine)
+QUALITY = ["max_anchor_err_m", "max_ground_pen_m", "max_limit_viol_rad", "pelvis_z_3s_mean",
+           "ground_pen_3s_m", "anchor_err_3s_m", "vmax_3s", "nan"]
+OURS_EXTRA = ["substeps", "sleep", "max_contacts", "us_per_step_first_1s", "us_per_step_last_1s",
+              "awake_bodies_end", "pit_outside_end", "pelvis_z_end_max"]
+OURS_EXTRA_MEDIAN = {"us_per_step_first_1s", "us_per_step_last_1s"}  # timings: median
+
+
+def family(engine):
+    """'mujoco-2.2.2' -> 'mujoco'; 'ragdoll_sim' -> 'ragdoll_sim'."""
+    return engine.split("-", 1)[0]
+
+
+def parse_kv(text):
+    d = OrderedDict()
+    for tok in text.split():
+        if "=" in tok:
+            k, v = tok.split("=", 1)
+            d[k] = v
+    return d
+
+
+def parse(path):
+    meta, runs, failures = OrderedDict(), [], []
+    with open(path) as f:
+        for raw in f:
+            line = raw.strip()
+            if not line:
+                continue
+            if line.startswith("# meta "):
+                k, _, v = line[len("# meta "):].partition("=")
+                meta[k.strip()] = v.strip()
+            elif line.startswith("# FAILED"):
+                failures.append(parse_kv(line[len("# FAILED"):]))
+            elif line.startswith("engine="):
+                runs.append(parse_kv(line))
+    return meta, runs, failures
+
+
+def fnum(x):
+    try:
+        return float(x)
+    except (TypeError, ValueError):
+        return float("nan")
+
+
+def group_key(d):
+    n = int(d.get("ragdolls", "0") or 0)
+    return (family(d["engine"]), d["scenario"], n if d["scenario"] == "g" else None)
+
+
+def sort_key(key):
+    e, s, n = key
+    ei = ENGINE_ORDER.index(e) if e in ENGINE_ORDER else len(ENGINE_ORDER)
+    si = SCENE_ORDER.index(s) if s in SCENE_ORDER else len(SCENE_ORDER)
+    return (si, n or 0, ei, e)
+
+
+def scene_label(s, n):
+    return "g N=%d" % n if s == "g" else s
+
+
+def fmt_sps(x):
+    if x != x:
+        return "-"
+    if x >= 100:
+        return "{:,.0f}".format(x)
+    return "{:.1f}".format(x)
+
+
+def fmt_ratio(x):
+    return "-" if x != x else "{:.2f}".format(x)
+
+
+def same_or_range(vals, numeric=True):
+    """One value if all runs agree (deterministic engines), else min-max."""
+    uniq = sorted(set(vals), key=fnum if numeric else str)
+    if len(uniq) == 1:
+        return uniq[0]
+    if numeric:
+        xs = [fnum(v) for v in vals]
+        return "%s–%s (varies)" % (min(vals, key=fnum), max(vals, key=fnum)) if all(
+            x == x for x in xs) else " / ".join(uniq)
+    return " / ".join(uniq)
+
+
+class Group:
+    def __init__(self, key, runs):
+        self.key = key
+        self.runs = runs
+        self.engine_name = runs[0]["engine"]
+        self.sps = [fnum(r["steps_per_s"]) for r in runs]
+        self.us = [fnum(r["us_per_body_step"]) for r in runs]
+        self.by_round = {r.get("round", str(i)): fnum(r["steps_per_s"]) for i, r in enumerate(runs)}
+
+    @property
+    def sps_med(self):
+        return statistics.median(self.sps)
+
+    @property
+    def us_med(self):
+        return statistics.median(self.us)
+
+    def field(self, k, numeric=True):
+        vals = [r.get(k, "-") for r in self.runs]
+        return same_or_range(vals, numeric)
+
+
+def build_groups(runs):
+    g = defaultdict(list)
+    for r in runs:
+        g[group_key(r)].append(r)
+    return OrderedDict((k, Group(k, g[k])) for k in sorted(g, key=sort_key))
+
+
+def ratio(groups, scene, n, peer):
+    """Our speed / the peer's speed (steps/s): ratio of the medians, and min-max of the
+    per-round ratios (both engines ran back to back in the same round)."""
+    ours, other = groups.get((OURS, scene, n)), groups.get((peer, scene, n))
+    if not ours or not other:
+        return float("nan"), float("nan"), float("nan")
+    med = ours.sps_med / other.sps_med
+    per = [ours.by_round[r] / other.by_round[r] for r in ours.by_round if r in other.by_round]
+    return med, (min(per) if per else float("nan")), (max(per) if per else float("nan"))
+
+
+def md_table(header, rows):
+    out = ["| " + " | ".join(header) + " |", "|" + "|".join("---" for _ in header) + "|"]
+    out += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
+    return "\n".join(out)
+
+
+def failure_for(failures, engine, scene, n):
+    for f in failures:
+        if f.get("engine") == engine and f.get("scenario") == scene and (
+                scene != "g" or int(f.get("ragdolls", "0")) == n):
+            return f
+    return None
+
+
+def report(meta, runs, failures, png_name):
+    groups = build_groups(runs)
+    engines = [e for e in ENGINE_ORDER if any(k[0] == e for k in groups)]
+    engines += sorted({k[0] for k in groups} - set(engines))
+    peers = [e for e in engines if e != OURS]
+    names = {k[0]: g.engine_name for k, g in groups.items()}
+    L = []
+    L.append("# Benchmark results: ragdoll_sim vs MuJoCo, Bullet, ODE")
+    L.append("")
+    L.append("Generated by `make bench` (scripts/bench.sh + scripts/bench_report.py) from "
+             "`bench/results_raw.txt`; do not edit by hand.")
+    L.append("")
+    L.append("## Machine and sitting")
+    L.append("")
+    for k, label in [("date", "date (UTC)"), ("commit", "git commit"), ("worktree", "work tree"),
+                     ("nproc", "nproc"), ("cpu", "CPU (/proc/cpuinfo)"),
+                     ("compiler", "g++"), ("flags", "flags (ours and peers)"),
+                     ("rounds", "rounds"), ("omp_num_threads", "OMP_NUM_THREADS (threads of ours; the peers are single-threaded)"),
+                     ("engines", "engines"),
+                     ("loadavg_start", "load average at start"),
+                     ("loadavg_end", "load average at end"), ("total_s", "run time (s)")]:
+        if k in meta:
+            L.append("- %s: %s" % (label, meta[k].replace("_", " ") if k == "worktree" else meta[k]))
+    L.append("")
+    L.append("All engines ran in this one sitting, alternating: in every round each scene is run by "
+             "every engine back to back (the engine order rotates from round to round). Steps/s is "
+             "the median over the rounds with the min–max in brackets; µs/body-step is the median. "
+             "Only the step calls are timed (peers' README: `wall_s`). Absolute timings on a "
+             "shared 2-core machine are noisy; compare engines through the ratios, which come "
+             "from the same sitting. A quality metric is shown once when all rounds agree, as a "
+             "range otherwise.")
+    L.append("")
+    L.append("Scenes (dt = 1 ms, ground z = 0, friction 0.8, ragdoll15.urdf of ../shared/peers):")
+    L.append("")
+    for s in SCENE_ORDER:
+        if any(k[1] == s for k in groups):
+            L.append("- **%s**: %s" % (s, SCENE_DESC.get(s, "")))
+    L.append("")
+
+    # ---- main table
+    L.append("## All runs: engine × scene")
+    L.append("")
+    header = ["engine", "scene", "bodies", "steps", "runs", "steps/s median (min–max)",
+              "µs/body-step", "max_anchor_err_m", "max_ground_pen_m",
+              "max_limit_viol_rad (joint@step)", "pelvis_z_3s_mean (min–max)", "ground_pen_3s_m",
+              "anchor_err_3s_m", "vmax_3s", "nan"]
+    rows = []
+    for k, g in groups.items():
+        e, s, n = k
+        rows.append([
+            names[e], scene_label(s, n), g.field("bodies"), g.field("steps"), len(g.runs),
+            "%s (%s–%s)" % (fmt_sps(g.sps_med), fmt_sps(min(g.sps)), fmt_sps(max(g.sps))),
+            "%.2f" % g.us_med, g.field("max_anchor_err_m"), g.field("max_ground_pen_m"),
+            "%s (%s)" % (g.field("max_limit_viol_rad"), g.field("worst_limit", numeric=False)),
+            "%s (%s–%s)" % (g.field("pelvis_z_3s_mean"), g.field("pelvis_z_3s_min"),
+                            g.field("pelvis_z_3s_max")),
+            g.field("ground_pen_3s_m"), g.field("anchor_err_3s_m"), g.field("vmax_3s"),
+            g.field("nan"),
+        ])
+    L.append(md_table(header, rows))
+    L.append("")
+
+    # ---- ratios
+    if OURS in engines and peers:
+        L.append("## Speed of ours relative to each peer")
+        L.append("")
+        L.append("ragdoll_sim steps/s ÷ peer steps/s (> 1: ours is faster; µs/body-step ratio is "
+                 "the inverse). First the ratio of the medians, then in brackets the min–max of the "
+                 "per-round ratios.")
+        L.append("")
+        scenes = [(s, n) for (e, s, n) in groups if e == OURS and
+                  any((p, s, n) in groups for p in peers)]
+        scenes = sorted(set(scenes), key=lambda t: (SCENE_ORDER.index(t[0]) if t[0] in SCENE_ORDER
+                                                    else 99, t[1] or 0))
+        rows = []
+        for s, n in scenes:
+            row = [scene_label(s, n)]
+            for p in peers:
+                med, lo, hi = ratio(groups, s, n, p)
+                if med != med:
+                    f = failure_for(failures, p, s, n)
+                    row.append("%s failed" % names.get(p, p) if f else "-")
+                else:
+                    row.append("%s (%s–%s)" % (fmt_ratio(med), fmt_ratio(lo), fmt_ratio(hi)))
+            rows.append(row)
+        L.append(md_table(["scene"] + ["ours ÷ %s" % names.get(p, p) for p in peers], rows))
+        L.append("")
+
+    # ---- scaling
+    ns = sorted({n for (e, s, n) in groups if s == "g"} |
+                {int(f.get("ragdolls", 0)) for f in failures if f.get("scenario") == "g"})
+    if ns:
+        L.append("## Scaling (scene g): µs per body-step vs number of ragdolls")
+        L.append("")
+        L.append("Median µs/body-step (min–max over the rounds), and median steps/s. Flat means "
+                 "linear cost in the number of bodies. Plot: `%s`." % png_name)
+        L.append("")
+        header = ["ragdolls", "bodies"]
+        for e in engines:
+            header += ["%s µs/body-step" % names[e], "%s steps/s" % names[e]]
+        header += ["ours ÷ %s (steps/s)" % names[p] for p in peers if OURS in engines]
+        rows = []
+        for n in ns:
+            bodies = next((g.field("bodies") for (e, s, m), g in groups.items()
+                           if s == "g" and m == n), "-")
+            row = [n, bodies]
+            for e in engines:
+                g = groups.get((e, "g", n))
+                if g:
+                    row += ["%.2f (%.2f–%.2f)" % (g.us_med, min(g.us), max(g.us)),
+                            fmt_sps(g.sps_med)]
+                else:
+                    f = failure_for(failures, e, "g", n)
+                    row += ["failed" if f else "-", "-"]
+            if OURS in engines:
+                for p in peers:
+                    med, lo, hi = ratio(groups, "g", n, p)
+                    row.append("-" if med != med else "%s (%s–%s)" % (
+                        fmt_ratio(med), fmt_ratio(lo), fmt_ratio(hi)))
+            rows.append(row)
+        L.append(md_table(header, rows))
+        L.append("")
+        L.append("The peers run scene g through `bench/peers_scaling/scaling_<engine>.cpp`: the "
+                 "unmodified peer bench source from ../shared/peers with `make_scene`/`parse_args` "
+                 "of ragdoll_common.hpp wrapped to add scene g; the grid is "
+                 "`bench/scaling_grid.hpp`, the same one bench_ragdoll uses.")
+        L.append("")
+
+    # ---- our extras
+    ours_groups = [(k, g) for k, g in groups.items() if k[0] == OURS]
+    if ours_groups:
+        L.append("## ragdoll_sim: extra fields")
+        L.append("")
+        L.append("Cost per step in the first and the last simulated second (µs, median; "
+                 "sleeping bodies cost nothing), bodies awake at the end, contact count at the "
+                 "end; scene p: ragdolls whose pelvis ended outside the pit, and the highest "
+                 "pelvis at the end (m).")
+        L.append("")
+        rows = []
+        for (e, s, n), g in ours_groups:
+            rows.append([scene_label(s, n)] + [
+                "%.1f" % statistics.median(fnum(r.get(k)) for r in g.runs)
+                if k in OURS_EXTRA_MEDIAN else g.field(k) for k in OURS_EXTRA])
+        L.append(md_table(["scene"] + OURS_EXTRA, rows))
+        L.append("")
+
+    # ---- failures
+    if failures:
+        L.append("## Failed runs")
+        L.append("")
+        rows = []
+        for f in failures:
+            rows.append([f.get("engine", "?"), scene_label(f.get("scenario", "?"),
+                                                          int(f.get("ragdolls", "0") or 0)),
+                         f.get("round", "?"), f.get("rc", "?"),
+                         "`%s`" % f.get("reason", "").replace("_", " ")])
+        L.append(md_table(["engine", "scene", "round", "exit status", "last stderr line"], rows))
+        L.append("")
+        if any(f.get("engine") == "mujoco" and f.get("scenario") == "g" for f in failures):
+            L.append("MuJoCo: the peer bench sets `njmax` = 250 constraint rows per ragdoll, and "
+                     "MuJoCo 2.2.2 preallocates dense njmax × njmax arrays in mjData (`efc_AR`, "
+                     "`efc_AR_colind`, see mjxmacro.h) in one buffer whose size is an int number "
+                     "of bytes; from about 42 ragdolls on that passes 2 GiB and `mj_makeData` "
+                     "fails (\"could not create mjData\"). The peer's settings are kept as they "
+                     "are, so MuJoCo has no number there.")
+            L.append("")
+
+    L.append("## How to run")
+    L.append("")
+    L.append("```sh\nmake bench                      # ROUNDS=3, all scenes, scaling N = 1 4 16 64 256\n"
+             "ROUNDS=5 make bench\n"
+             "SCALING_NS=\"1 4 16\" OWN_SCENES= make bench   # quicker\n"
+             "/usr/bin/python3 scripts/bench_report.py bench/results_raw.txt --md bench/RESULTS.md "
+             "--png bench/scaling.png   # report only\n"
+             ".ws/bench/bench_ragdoll g --ragdolls 64 --urdf ../shared/peers/ragdoll15.urdf\n"
+             ".ws/bench/peers/scaling_ode g --ragdolls 64 --urdf ../shared/peers/ragdoll15.urdf\n```")
+    L.append("")
+    L.append("Other settings: PEERS_DIR, SCENES, OWN_SCENES, SCALING_NS, SCALING_STEPS, ENGINES, "
+             "RUN_TIMEOUT (see the header of scripts/bench.sh). Engine stderr of the last sitting: "
+             "`.ws/bench/bench_stderr.log`.")
+    L.append("")
+    return "\n".join(L), groups, engines, names
+
+
+def plot(groups, engines, names, path, failures=()):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7, 5.2), dpi=120)
+    any_line = False
+    for e in engines:
+        pts = sorted((n, g) for (ee, s, n), g in groups.items() if ee == e and s == "g")
+        if not pts:
+            continue
+        xs = [n for n, _ in pts]
+        ys = [g.us_med for _, g in pts]
+        lo = [g.us_med - min(g.us) for _, g in pts]
+        hi = [max(g.us) - g.us_med for _, g in pts]
+        failed = sorted({int(f.get("ragdolls", 0)) for f in failures
+                         if f.get("engine") == e and f.get("scenario") == "g"} - set(xs))
+        label = names[e] + (" (failed at N=%s)" % ", ".join(map(str, failed)) if failed else "")
+        ax.errorbar(xs, ys, yerr=[lo, hi], marker="o", capsize=3,
+                    linewidth=2.5 if e == OURS else 1.5, label=label)
+        any_line = True
+    ax.set_xscale("log", base=2)
+    ax.set_xlabel("ragdolls (15 bodies each)")
+    ax.set_ylabel("µs per body-step (median, min–max)")
+    ax.set_title("Scaling scene g: standing ragdolls on a 1.5 m grid")
+    ax.set_ylim(bottom=0)
+    ax.grid(True, which="both", alpha=0.3)
+    if any_line:
+        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2, fontsize="small")
+        xs = sorted({n for (e, s, n) in groups if s == "g"})
+        ax.set_xticks(xs)
+        ax.set_xticklabels([str(x) for x in xs])
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("raw")
+    ap.add_argument("--md", default=None, help="write the Markdown report here (default: stdout)")
+    ap.add_argument("--png", default=None, help="write the scaling plot here")
+    a = ap.parse_args()
+    meta, runs, failures = parse(a.raw)
+    if not runs:
+        print("bench_report: no result lines in %s" % a.raw, file=sys.stderr)
+        return 1
+    png_name = os.path.basename(a.png) if a.png else "scaling.png"
+    text, groups, engines, names = report(meta, runs, failures, png_name)
+    if a.md:
+        with open(a.md, "w") as f:
+            f.write(text)
+        print("bench_report: wrote %s" % a.md)
+    else:
+        print(text)
+    if a.png:
+        if any(s == "g" for (_, s, _) in groups):
+            plot(groups, engines, names, a.png, failures)
+            print("bench_report: wrote %s" % a.png)
+        else:
+            print("bench_report: no scene g lines, no plot", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
