@@ -38,6 +38,12 @@ struct RagdollJointDef {
   // Pose of chain link k relative to the joint frame rotated by the first k+1 axis angles:
   // link_k = parent * frame_parent * R(a0,t0)..R(ak,tk) * chain_offsets[k] (O_{k+2}... folded).
   std::vector<Transform> chain_offsets;
+  // URDF <dynamics>, one value per axis (a ball chain: each source joint's on its axis; empty
+  // or short = 0): viscous damping (N m s/rad) -> JointMotor::damping, and Coulomb friction
+  // torque (N m) -> a velocity motor with target 0 capped at the friction (see passiveMotor).
+  std::vector<double> damping, friction;
+  // Elasticity and break force of the anchor (not in URDF; default rigid and unbreakable).
+  JointSpring spring;
 };
 
 struct RagdollDef {
@@ -57,8 +63,13 @@ struct Ragdoll {
   std::vector<JointId> joints;  // one per RagdollDef::joints entry
 };
 
+// The motor spawnRagdoll puts on one axis of a joint: viscous damping damping[axis], and for
+// friction[axis] > 0 a velocity motor (hertz 0, target_velocity 0, max_torque = friction).
+JointMotor passiveMotor(const RagdollJointDef& joint, int axis);
+
 // Creates bodies (root link at root_pose, the rest at their rest poses), shapes, joints and
-// collision filters. Optional material overrides every shape's material.
+// collision filters. Optional material overrides every shape's material. Joints get
+// passiveMotor on every axis and their `spring`.
 Ragdoll spawnRagdoll(World& world, const RagdollDef& def, const Transform& root_pose,
                      const Material* material = nullptr);
 

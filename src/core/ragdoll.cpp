@@ -2,6 +2,7 @@
 #include "ragdoll_sim/ragdoll.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 
 namespace ragdoll_sim {
 
@@ -14,6 +15,20 @@ int RagdollDef::findLink(const std::string& link_name) const {
 double RagdollDef::totalMass() const {
   double m = 0.0;
   for (const LinkDef& l : links) m += l.mass;
+  return m;
+}
+
+JointMotor passiveMotor(const RagdollJointDef& j, int axis) {
+  JointMotor m;
+  const size_t a = static_cast<size_t>(axis);
+  const double friction = axis >= 0 && a < j.friction.size() ? j.friction[a] : 0.0;
+  m.damping = axis >= 0 && a < j.damping.size() ? std::max(j.damping[a], 0.0) : 0.0;
+  if (friction > 0.0) {
+    m.enabled = true;
+    m.hertz = 0.0;
+    m.target_velocity = 0.0;
+    m.max_torque = friction;
+  }
   return m;
 }
 
@@ -51,6 +66,8 @@ Ragdoll spawnRagdoll(World& world, const RagdollDef& def, const Transform& root_
         bj.lower[k] = j.lower[k];
         bj.upper[k] = j.upper[k];
       }
+      for (int k = 0; k < 3; ++k) bj.motors[k] = passiveMotor(j, k);
+      bj.spring = j.spring;
       r.joints.push_back(world.createBallJoint(bj));
     } else {
       HingeJointDef hj;
@@ -64,6 +81,8 @@ Ragdoll spawnRagdoll(World& world, const RagdollDef& def, const Transform& root_
         hj.lower = j.lower[0];
         hj.upper = j.upper[0];
       }
+      hj.motor = passiveMotor(j, 0);
+      hj.spring = j.spring;
       r.joints.push_back(world.createHingeJoint(hj));
     }
   }

@@ -103,6 +103,84 @@ bool loadMaterials(const ros::NodeHandle& pnh, MaterialTable* t, std::string* er
   return true;
 }
 
+// One ~joints entry (or ~joint_defaults): {stiffness, damping, break_force,
+// motor: {hertz, damping_ratio, max_torque}}, every key optional, no other keys.
+bool jointSettings(XmlRpc::XmlRpcValue& v, const std::string& where, JointSettings* s,
+                   std::string* error) {
+  if (v.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
+    *error = where + " must be a dictionary {stiffness, damping, break_force, motor: {hertz, "
+                     "damping_ratio, max_torque}}";
+    return false;
+  }
+  auto field = [&](XmlRpc::XmlRpcValue& value, const std::string& name,
+                   std::optional<double>* out) {
+    const double x = number(value);
+    if (std::isnan(x)) {
+      *error = where + "/" + name + " must be a number";
+      return false;
+    }
+    *out = x;
+    return true;
+  };
+  for (auto& [key, value] : v) {
+    bool ok = true;
+    if (key == "stiffness") ok = field(value, key, &s->stiffness);
+    else if (key == "damping") ok = field(value, key, &s->damping);
+    else if (key == "break_force") ok = field(value, key, &s->break_force);
+    else if (key == "motor") {
+      if (value.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
+        *error = where + "/motor must be a dictionary {hertz, damping_ratio, max_torque}";
+        return false;
+      }
+      for (auto& [mkey, mvalue] : value) {
+        if (mkey == "hertz") ok = field(mvalue, "motor/hertz", &s->hertz);
+        else if (mkey == "damping_ratio") ok = field(mvalue, "motor/damping_ratio", &s->damping_ratio);
+        else if (mkey == "max_torque") ok = field(mvalue, "motor/max_torque", &s->max_torque);
+        else {
+          *error = where + "/motor has an unknown key '" + mkey +
+                   "' (known: hertz, damping_ratio, max_torque)";
+          return false;
+        }
+        if (!ok) return false;
+      }
+    } else {
+      *error = where + " has an unknown key '" + key +
+               "' (known: stiffness, damping, break_force, motor)";
+      return false;
+    }
+    if (!ok) return false;
+  }
+  *error = validateJointSettings(*s, where);
+  return error->empty();
+}
+
+// ~joint_defaults and ~joints (config/joints.yaml).
+bool loadJointSettings(const ros::NodeHandle& pnh, NodeConfig* c, std::string* error) {
+  try {
+    XmlRpc::XmlRpcValue defaults;
+    if (pnh.getParam("joint_defaults", defaults) &&
+        !jointSettings(defaults, "parameter " + pnh.resolveName("joint_defaults"),
+                       &c->joint_defaults, error))
+      return false;
+    XmlRpc::XmlRpcValue joints;
+    if (!pnh.getParam("joints", joints)) return true;
+    const std::string where = "parameter " + pnh.resolveName("joints");
+    if (joints.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
+      *error = where + " must be a dictionary: joint name -> {stiffness, damping, break_force, motor}";
+      return false;
+    }
+    for (auto& [name, value] : joints) {
+      JointSettings s;
+      if (!jointSettings(value, where + "/" + name, &s, error)) return false;
+      c->joints.emplace_back(name, s);
+    }
+  } catch (const XmlRpc::XmlRpcException& e) {
+    *error = "parameter " + pnh.resolveName("joints") + ": " + e.getMessage();
+    return false;
+  }
+  return true;
+}
+
 // The named surface of the table, or the fallback when the name is empty.
 bool surface(const MaterialTable& t, const std::string& name, const char* param,
              const Material& fallback, Material* out, std::string* error) {
@@ -148,7 +226,15 @@ bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* c, std::string* erro
             read(pnh, "publish_markers", "a bool", &c->publish_markers, error) &&
             read(pnh, "ragdoll_material", "a string", &c->ragdoll_material, error) &&
             read(pnh, "ground_material", "a string", &c->ground_material, error) &&
-            loadMaterials(pnh, &c->materials, error);
+            read(pnh, "motor/hertz", "a number (Hz)", &c->motor.hertz, error) &&
+            read(pnh, "motor/damping_ratio", "a number", &c->motor.damping_ratio, error) &&
+            read(pnh, "motor/max_torque", "a number (N*m)", &c->motor.max_torque, error) &&
+            read(pnh, "balance/enabled", "a bool", &c->balance.enabled, error) &&
+            read(pnh, "balance/kp", "a number (rad/m)", &c->balance.kp, error) &&
+            read(pnh, "balance/kd", "a number (rad s/m)", &c->balance.kd, error) &&
+            read(pnh, "balance/ankles", "a list of joint names", &c->balance.ankles, error) &&
+            read(pnh, "balance/feet", "a list of link names", &c->balance.feet, error) &&
+            loadMaterials(pnh, &c->materials, error) && loadJointSettings(pnh, c, error);
   if (!ok) return false;
   if (gravity.size() != 3) {
     *error = "parameter " + pnh.resolveName("gravity") + " must be a list of 3 numbers, got " +
@@ -196,6 +282,9 @@ std::string validateNodeConfig(const NodeConfig& c) {
   if (!(e = positive("max_torque", c.max_torque)).empty()) return e;
   if (!(e = positive("max_lever_arm", c.max_lever_arm)).empty()) return e;
   if (!(e = positive("max_catchup", c.max_catchup)).empty()) return e;
+  if (!(e = validateMotorGains(c.motor, "parameter ~motor")).empty()) return e;
+  if (!std::isfinite(c.balance.kp) || !std::isfinite(c.balance.kd))
+    return "parameters ~balance/kp and ~balance/kd must be finite";
   return "";
 }
 

@@ -2,7 +2,10 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
+#include "joint_control.hpp"
 #include "ragdoll_sim/material.hpp"
 #include "ragdoll_sim/math.hpp"
 #include "ragdoll_sim/shape.hpp"
@@ -17,6 +20,15 @@ namespace node {
 struct SpawnPose {
   double x = 0.0, y = 0.0, z = 1.1;  // root link origin, m (z = 1.1: feet ~0.1 m above ground)
   double roll = 0.0, pitch = 0.0, yaw = 0.0;  // rad
+};
+
+// Active ragdoll: ragdoll_sim::BalanceController (include/ragdoll_sim/balance.hpp).
+struct BalanceConfig {
+  bool enabled = false;  // on at start-up (~set_balance switches it later)
+  double kp = 2.0;       // rad of ankle target per m of centre-of-mass offset from the feet
+  double kd = 0.5;       // rad per m/s of centre-of-mass velocity
+  std::vector<std::string> ankles{"ankle_l", "ankle_r"};  // hinge joints
+  std::vector<std::string> feet{"foot_l", "foot_r"};      // support links
 };
 
 struct NodeConfig {
@@ -40,6 +52,10 @@ struct NodeConfig {
   double max_lever_arm = 10.0;         // m
   double max_catchup = 0.1;            // s of physics run at most per loop iteration when late
   bool publish_markers = true;
+  MotorGains motor;                    // ~motor/{hertz, damping_ratio, max_torque}
+  JointSettings joint_defaults;        // ~joint_defaults (config/joints.yaml)
+  std::vector<std::pair<std::string, JointSettings>> joints;  // ~joints: name -> settings
+  BalanceConfig balance;               // ~balance/...
 
   Transform spawnTransform() const;
 };

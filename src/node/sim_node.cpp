@@ -89,32 +89,27 @@ bool SimNode::init(std::string* error) {
   }
   for (const std::string& note : def_.notes) ROS_INFO("URDF: %s", note.c_str());
 
-  // --- world ---
-  WorldDef wd;
-  wd.gravity = config_.gravity;
-  wd.substeps = config_.substeps;
-  wd.materials = config_.materials;
-  world_ = std::make_unique<World>(wd);
-  if (config_.ground) {
-    BodyDef gd;
-    gd.type = BodyType::Static;
-    gd.name = "ground";
-    ground_ = world_->createBody(gd);
-    ShapeDef sd;
-    sd.geometry = Geometry::plane(Vec3::UnitZ(), 0.0);
-    sd.material = config_.ground_surface;
-    world_->addShape(ground_, sd);
-  }
-  ragdoll_ = spawnRagdoll(*world_, def_, config_.spawnTransform(), &config_.ragdoll_surface);
-  if (ragdoll_.bodies.size() != def_.links.size() || ragdoll_.joints.size() != def_.joints.size()) {
-    *error = "spawnRagdoll returned " + std::to_string(ragdoll_.bodies.size()) + " bodies / " +
-             std::to_string(ragdoll_.joints.size()) + " joints for a model with " +
-             std::to_string(def_.links.size()) + " links / " + std::to_string(def_.joints.size()) +
-             " joints";
+  // --- joints: springs, break forces and motor gains (~joint_defaults, ~joints) ---
+  axes_ = AxisTable(def_);
+  JointSettingsResult settings =
+      applyJointSettings(&def_, axes_, config_.joint_defaults, config_.joints, config_.motor);
+  for (const std::string& w : settings.warnings) ROS_WARN("%s", w.c_str());
+  if (!settings.error.empty()) {
+    *error = settings.error;
     return false;
   }
-  rest_poses_.clear();
-  for (const LinkDef& l : def_.links) rest_poses_.push_back(l.rest_pose);
+  gains_ = std::move(settings.gains);
+  targets_.assign(static_cast<size_t>(axes_.size()), AxisTarget());
+  moving_targets_.clear();
+  for (const RagdollJointDef& j : def_.joints) {
+    if (j.spring.stiffness > 0.0 || std::isfinite(j.spring.break_force))
+      ROS_INFO("joint '%s': anchor stiffness %g N/m, damping %g N*s/m, break_force %g N",
+               j.name.c_str(), j.spring.stiffness, j.spring.damping, j.spring.break_force);
+  }
+
+  // --- world ---
+  balance_on_ = config_.balance.enabled;
+  if (!buildWorld(error)) return false;
 
   links_ = LinkTable(def_);
   limits_.max_impulse = config_.max_impulse;
@@ -134,6 +129,10 @@ bool SimNode::init(std::string* error) {
 
   // --- ROS interface ---
   tf_broadcaster_ = std::make_unique<tf2_ros::TransformBroadcaster>();
+  broken_pub_ = pnh_.advertise<ragdoll_sim::JointBroken>("joint_broken", 20);
+  target_sub_ = pnh_.subscribe("target_pose", 10, &SimNode::onTargetPose, this);
+  balance_srv_ = pnh_.advertiseService("set_balance", &SimNode::onSetBalance, this);
+  clear_targets_srv_ = pnh_.advertiseService("clear_targets", &SimNode::onClearTargets, this);
   markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 1, /*latch=*/true);
   joints_pub_ = nh_.advertise<sensor_msgs::JointState>("joint_states", 10);
   impulse_sub_ = pnh_.subscribe("apply_impulse", 20, &SimNode::onImpulse, this);
@@ -147,12 +146,99 @@ bool SimNode::init(std::string* error) {
   start_stamp_ = ros::Time::now();
   const Transform spawn = config_.spawnTransform();
   ROS_INFO("ragdoll_sim: '%s' (%zu links, %zu joints, %.2f kg) at (%.2f, %.2f, %.2f), "
-           "physics %.0f Hz x %d substeps, publish %.0f Hz, gravity (%.2f, %.2f, %.2f)%s%s",
+           "physics %.0f Hz x %d substeps, publish %.0f Hz, gravity (%.2f, %.2f, %.2f)%s%s%s",
            def_.name.c_str(), def_.links.size(), def_.joints.size(), def_.totalMass(),
            spawn.p.x(), spawn.p.y(), spawn.p.z(), config_.physics_rate, config_.substeps,
            config_.publish_rate, config_.gravity.x(), config_.gravity.y(), config_.gravity.z(),
-           config_.ground ? ", ground plane z=0" : "", paused_ ? ", PAUSED" : "");
+           config_.ground ? ", ground plane z=0" : "", paused_ ? ", PAUSED" : "",
+           balance_ ? ", balance ON" : "");
   return true;
+}
+
+bool SimNode::buildWorld(std::string* error) {
+  balance_.reset();  // it drives the joints of the old world
+  WorldDef wd;
+  wd.gravity = config_.gravity;
+  wd.substeps = config_.substeps;
+  wd.materials = config_.materials;
+  world_ = std::make_unique<World>(wd);
+  ground_ = BodyId();
+  if (config_.ground) {
+    BodyDef gd;
+    gd.type = BodyType::Static;
+    gd.name = "ground";
+    ground_ = world_->createBody(gd);
+    ShapeDef sd;
+    sd.geometry = Geometry::plane(Vec3::UnitZ(), 0.0);
+    sd.material = config_.ground_surface;
+    world_->addShape(ground_, sd);
+  }
+  ragdoll_ = spawnRagdoll(*world_, def_, config_.spawnTransform(), &config_.ragdoll_surface);
+  if (ragdoll_.bodies.size() != def_.links.size() || ragdoll_.joints.size() != def_.joints.size()) {
+    *error = "spawnRagdoll returned " + std::to_string(ragdoll_.bodies.size()) + " bodies / " +
+             std::to_string(ragdoll_.joints.size()) + " joints for a model with " +
+             std::to_string(def_.links.size()) + " links / " + std::to_string(def_.joints.size()) +
+             " joints";
+    return false;
+  }
+  setBalance(balance_on_);
+  return true;
+}
+
+void SimNode::setBalance(bool on) {
+  balance_on_ = on;
+  balance_.reset();
+  if (on) {
+    BalanceDef bd;
+    bd.hold = holdMotor(0.0, config_.motor, JointMotor());
+    bd.kp = config_.balance.kp;
+    bd.kd = config_.balance.kd;
+    bd.ankles = config_.balance.ankles;
+    bd.feet = config_.balance.feet;
+    balance_ = std::make_unique<BalanceController>(*world_, ragdoll_, def_, bd);
+    for (const std::string& m : balance_->missing())
+      ROS_WARN("balance: %s not in the model; the joints hold their pose but the balance law "
+               "on the ankles is off (~balance/ankles, ~balance/feet)", m.c_str());
+  }
+  // Per-joint gains, URDF damping and the targets on top of what the controller set.
+  for (int i = 0; i < axes_.size(); ++i) applyAxisMotor(i);
+}
+
+void SimNode::applyAxisMotor(int i) {
+  const AxisInfo& a = axes_[i];
+  const JointMotor passive = passiveMotor(def_.joints[static_cast<size_t>(a.joint)], a.axis);
+  const AxisTarget& t = targets_[static_cast<size_t>(i)];
+  JointMotor m = passive;
+  if (t.active) {
+    m = targetMotor(t, a, gains_[static_cast<size_t>(i)], passive, simTime());
+    // The controller keeps its own ankle targets (its balance law adds to them).
+    if (balance_ && t.has_position) balance_->setTarget(*world_, a.name, m.target);
+  } else if (balance_) {
+    m = holdMotor(0.0, gains_[static_cast<size_t>(i)], passive);
+    balance_->setTarget(*world_, a.name, 0.0);
+  }
+  world_->setJointMotor(ragdoll_.joints[static_cast<size_t>(a.joint)], a.axis, m);
+}
+
+void SimNode::publishBrokenJoints() {
+  for (JointId id : world_->takeBrokenJoints()) {
+    const auto it = std::find(ragdoll_.joints.begin(), ragdoll_.joints.end(), id);
+    if (it == ragdoll_.joints.end()) continue;
+    const RagdollJointDef& j = def_.joints[static_cast<size_t>(it - ragdoll_.joints.begin())];
+    ragdoll_sim::JointBroken msg;
+    msg.header.stamp = simStamp();
+    msg.header.frame_id = config_.world_frame;
+    msg.ragdoll = def_.name;
+    msg.joint = j.name;
+    msg.parent_link = def_.links[static_cast<size_t>(j.parent)].name;
+    msg.child_link = def_.links[static_cast<size_t>(j.child)].name;
+    msg.force = world_->jointForce(id);
+    broken_pub_.publish(msg);
+    ROS_INFO("joint '%s' broke at sim time %.3f s: '%s' came off '%s' (anchor force %.1f N, "
+             "break_force %g N)",
+             j.name.c_str(), simTime(), msg.child_link.c_str(), msg.parent_link.c_str(), msg.force,
+             j.spring.break_force);
+  }
 }
 
 // ------------------------------------------------------------------------------------------
@@ -174,6 +260,8 @@ void SimNode::stepOnce() {
     world_->applyForce(body, f.force, world_->bodyPose(body).apply(f.local_point));
     if (!f.torque.isZero(0.0)) world_->applyTorque(body, f.torque);
   }
+  for (int i : moving_targets_) applyAxisMotor(i);  // targets that move with their velocity
+  if (balance_) balance_->update(*world_);
   world_->step(dt_);
   ++steps_;
   if (!forces_.empty()) {
@@ -183,12 +271,13 @@ void SimNode::stepOnce() {
                                  [](const ActiveForce& f) { return f.steps_left == 0; }),
                   forces_.end());
   }
+  publishBrokenJoints();
 }
 
 void SimNode::resetRagdoll() {
-  const Transform root = config_.spawnTransform();
-  for (size_t i = 0; i < ragdoll_.bodies.size(); ++i)
-    world_->setBodyState(ragdoll_.bodies[i], root * rest_poses_[i], Vec3::Zero(), Vec3::Zero());
+  // A fresh world rejoins broken joints; bodies and joints get the same ids as before.
+  std::string error;
+  if (!buildWorld(&error)) ROS_ERROR("reset: %s", error.c_str());
   forces_.clear();
   prev_joint_step_ = -1;
 }
@@ -384,21 +473,15 @@ void SimNode::publishMarkers(const ros::Time& stamp) {
 }
 
 void SimNode::buildJointState() {
+  // Names as in axes_ (the names ~target_pose takes).
   joint_state_.name.clear();
+  for (const AxisInfo& a : axes_.axes()) joint_state_.name.push_back(a.name);
   joint_sources_.clear();
   for (size_t j = 0; j < def_.joints.size(); ++j) {
-    const RagdollJointDef& jd = def_.joints[j];
     JointSource src;
     src.id = ragdoll_.joints[j];
-    src.ball = jd.kind == RagdollJointKind::Ball;
-    src.first = static_cast<int>(joint_state_.name.size());
-    const size_t n = src.ball ? 3 : 1;
-    for (size_t k = 0; k < n; ++k) {
-      if (k < jd.source_joints.size())
-        joint_state_.name.push_back(jd.source_joints[k]);
-      else
-        joint_state_.name.push_back(n == 1 ? jd.name : jd.name + "_" + std::to_string(k));
-    }
+    src.ball = def_.joints[j].kind == RagdollJointKind::Ball;
+    src.first = axes_.first(static_cast<int>(j));
     joint_sources_.push_back(src);
   }
   joint_state_.position.assign(joint_state_.name.size(), 0.0);
@@ -486,6 +569,56 @@ void SimNode::onForce(const ragdoll_sim::ApplyForce::ConstPtr& msg) {
   forces_.push_back(toActiveForce(cmd, check, linkPose(check.link), dt_));
   ROS_DEBUG("force on '%s' for %lld steps", cmd.link.c_str(),
             static_cast<long long>(forces_.back().steps_left));
+}
+
+void SimNode::onTargetPose(const sensor_msgs::JointState::ConstPtr& msg) {
+  TargetPoseCommand cmd;
+  cmd.names = msg->name;
+  cmd.position = msg->position;
+  cmd.velocity = msg->velocity;
+  const TargetPoseCheck check = checkTargetPose(cmd, axes_);
+  if (!check.ok) {
+    ROS_WARN_THROTTLE(1.0, "%s; target pose dropped", check.error.c_str());
+    return;
+  }
+  if (!check.clamped.empty()) {
+    std::string names;
+    for (const std::string& n : check.clamped) names += (names.empty() ? "'" : ", '") + n + "'";
+    ROS_WARN_THROTTLE(1.0, "target pose: %s outside the joint limits, clamped to them", names.c_str());
+  }
+  for (const auto& [axis, target] : toAxisTargets(cmd, check, simTime())) {
+    targets_[static_cast<size_t>(axis)] = target;
+    applyAxisMotor(axis);
+  }
+  moving_targets_.clear();
+  for (int i = 0; i < axes_.size(); ++i) {
+    const AxisTarget& t = targets_[static_cast<size_t>(i)];
+    if (t.active && t.has_position && t.velocity != 0.0) moving_targets_.push_back(i);
+  }
+  ROS_DEBUG("target pose for %zu joint(s)", check.axes.size());
+}
+
+bool SimNode::onSetBalance(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res) {
+  setBalance(req.data);
+  res.success = true;
+  if (!req.data) {
+    res.message = "balance off";
+  } else if (balance_ && balance_->missing().empty()) {
+    res.message = "balance on";
+  } else {
+    res.message = "joints hold the pose, but the balance law is off: missing";
+    for (const std::string& m : balance_->missing()) res.message += " " + m;
+  }
+  ROS_INFO("%s at sim time %.3f s", res.message.c_str(), simTime());
+  return true;
+}
+
+bool SimNode::onClearTargets(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  targets_.assign(targets_.size(), AxisTarget());
+  moving_targets_.clear();
+  for (int i = 0; i < axes_.size(); ++i) applyAxisMotor(i);
+  ROS_INFO("joint targets cleared at sim time %.3f s", simTime());
+  return true;
 }
 
 bool SimNode::onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {

@@ -11,14 +11,18 @@
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
 #include <std_srvs/Empty.h>
+#include <std_srvs/SetBool.h>
 #include <tf2_ros/transform_broadcaster.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include "commands.hpp"
+#include "joint_control.hpp"
 #include "node_config.hpp"
 #include "ragdoll_sim/ApplyForce.h"
 #include "ragdoll_sim/ApplyImpulse.h"
+#include "ragdoll_sim/JointBroken.h"
 #include "ragdoll_sim/Step.h"
+#include "ragdoll_sim/balance.hpp"
 #include "ragdoll_sim/ragdoll.hpp"
 #include "ragdoll_sim/world.hpp"
 
@@ -44,6 +48,13 @@ class SimNode {
   ros::Time simStamp() const;      // start stamp + sim time (exact, integer nanoseconds)
   double simTime() const;
   void resetRagdoll();
+  // A new World with the ground and the ragdoll at its spawn pose (joints as configured, none
+  // broken), then the joint motors: targets, balance, passive URDF dynamics.
+  bool buildWorld(std::string* error);
+  void setBalance(bool on);
+  // Puts the motor of one axis in the world: its target, else the balance hold, else passive.
+  void applyAxisMotor(int axis);
+  void publishBrokenJoints();      // ~joint_broken + INFO for joints that broke in the last step
 
   // --- publishing ---
   void buildTfMessages();
@@ -57,6 +68,9 @@ class SimNode {
   // --- ROS callbacks ---
   void onImpulse(const ragdoll_sim::ApplyImpulse::ConstPtr& msg);
   void onForce(const ragdoll_sim::ApplyForce::ConstPtr& msg);
+  void onTargetPose(const sensor_msgs::JointState::ConstPtr& msg);
+  bool onSetBalance(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
+  bool onClearTargets(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
@@ -73,9 +87,16 @@ class SimNode {
   std::unique_ptr<World> world_;
   Ragdoll ragdoll_;
   BodyId ground_;
-  std::vector<Transform> rest_poses_;  // per link, relative to the root link
   LinkTable links_;
   CommandLimits limits_;
+
+  // Joint control: every joint angle (joint_states names), its motor gains and target.
+  AxisTable axes_;
+  std::vector<MotorGains> gains_;      // per axis (~motor, ~joint_defaults, ~joints)
+  std::vector<AxisTarget> targets_;    // per axis (~target_pose)
+  std::vector<int> moving_targets_;    // axes whose target moves (position + velocity)
+  std::unique_ptr<BalanceController> balance_;  // active ragdoll, when on
+  bool balance_on_ = false;
 
   // Time: sim time = steps_ * dt_ns_ nanoseconds.
   int64_t dt_ns_ = 1000000;
@@ -113,9 +134,10 @@ class SimNode {
 
   int64_t last_tf_step_ = -1;
 
-  ros::Publisher markers_pub_, joints_pub_;
-  ros::Subscriber impulse_sub_, force_sub_;
+  ros::Publisher markers_pub_, joints_pub_, broken_pub_;
+  ros::Subscriber impulse_sub_, force_sub_, target_sub_;
   ros::ServiceServer pause_srv_, unpause_srv_, reset_srv_, clear_srv_, step_srv_;
+  ros::ServiceServer balance_srv_, clear_targets_srv_;
 };
 
 }  // namespace node

@@ -3,7 +3,9 @@
 // Steps: parse (urdfdom's console_bridge errors are captured into the result), group links
 // joined by fixed joints into one body (mass properties and shapes lumped into the top link),
 // fold chains of 2-3 revolute joints through massless geometry-less links into ball joints,
-// turn the remaining revolute/continuous joints into hinges, and compute rest poses.
+// turn the remaining revolute/continuous joints into hinges, and compute rest poses. Each
+// revolute joint's <dynamics> damping / friction goes to its axis (RagdollJointDef::damping,
+// ::friction); an empty <dynamics/> (which urdfdom alone rejects) means both 0.
 // Prismatic, planar and (non-root) floating joints are rejected for now.
 //
 // Ball chain frames. URDF gives child-in-parent = O1 R(x1,t1) O2 R(x2,t2) O3 R(x3,t3) with joint
@@ -17,7 +19,10 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -273,6 +278,15 @@ class Loader {
     return true;
   }
 
+  // <dynamics damping friction> of one joint (0 without the element).
+  static void dynamics(const urdf::Joint& j, double& damping, double& friction) {
+    damping = j.dynamics ? j.dynamics->damping : 0.0;
+    friction = j.dynamics ? j.dynamics->friction : 0.0;
+    if (!std::isfinite(damping) || damping < 0 || !std::isfinite(friction) || friction < 0)
+      throw LoadError("joint " + quoted(j.name) +
+                      ": <dynamics> damping and friction must be finite and >= 0");
+  }
+
   bool isChainLink(const Group& g, double parent_mass) const {
     return g.shapes.empty() && g.child_joints.size() == 1 &&
            g.mass.mass < kDummyFraction * parent_mass;
@@ -333,6 +347,10 @@ class Loader {
       }
       double lo, hi;
       jd.limited |= limits(j, lo, hi);
+      double damping, friction;
+      dynamics(j, damping, friction);
+      jd.damping.push_back(damping);
+      jd.friction.push_back(friction);
       jd.axes.push_back(Q * unitAxis(j));
       jd.lower.push_back(lo);
       jd.upper.push_back(hi);
@@ -362,6 +380,8 @@ class Loader {
         jd.axes.push_back(jd.axes[0].cross(jd.axes[1]).normalized());
         jd.lower.push_back(0.0);
         jd.upper.push_back(0.0);
+        jd.damping.push_back(0.0);
+        jd.friction.push_back(0.0);
         jd.limited = true;
         def_.notes.push_back(where + ": 2-joint chain, ball joint with the third axis locked");
       }
@@ -383,16 +403,118 @@ class Loader {
   double folded_mass_ = 0;
 };
 
+// urdfdom rejects a joint's <dynamics/> that has neither damping nor friction (the whole
+// model then fails to parse); URDF gives both a default of 0. This pass over the XML gives such
+// an element damping="0" so that it means "no damping, no friction", and notes the attributes
+// of a joint's <dynamics> that the simulator ignores (only damping and friction are used, e.g.
+// Gazebo's spring_stiffness). Returns true and sets *out when it changed the text.
+// A small scanner, enough for URDF: comments, CDATA, <? ?> and <! > are skipped; quoted
+// attribute values may hold '>'. Only <dynamics> of a <robot>'s <joint> is touched.
+bool normalizeDynamics(const std::string& xml, std::string* out, std::vector<std::string>* notes) {
+  auto isNameChar = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == ':' || c == '.';
+  };
+  std::vector<std::string> stack;  // open elements
+  std::vector<size_t> inserts;     // positions after "<dynamics"
+  std::string joint;               // name of the innermost open <joint>
+  size_t i = 0;
+  while ((i = xml.find('<', i)) != std::string::npos) {
+    auto skipTo = [&](const char* end) {
+      const size_t e = xml.find(end, i);
+      i = e == std::string::npos ? xml.size() : e + std::strlen(end);
+    };
+    if (xml.compare(i, 4, "<!--") == 0) { skipTo("-->"); continue; }
+    if (xml.compare(i, 9, "<![CDATA[") == 0) { skipTo("]]>"); continue; }
+    if (xml.compare(i, 2, "<?") == 0) { skipTo("?>"); continue; }
+    if (xml.compare(i, 2, "<!") == 0) { skipTo(">"); continue; }
+    const bool closing = xml.compare(i, 2, "</") == 0;
+    size_t p = i + (closing ? 2 : 1);
+    const size_t name_start = p;
+    while (p < xml.size() && isNameChar(xml[p])) ++p;
+    const std::string name = xml.substr(name_start, p - name_start);
+    const size_t name_end = p;
+    // Attributes up to '>' (quotes respected).
+    std::vector<std::pair<std::string, std::string>> attrs;
+    bool self_closing = false;
+    while (p < xml.size() && xml[p] != '>') {
+      const char c = xml[p];
+      if (c == '/') { self_closing = true; ++p; continue; }
+      if (std::isspace(static_cast<unsigned char>(c))) { ++p; continue; }
+      self_closing = false;
+      const size_t a = p;
+      while (p < xml.size() && isNameChar(xml[p])) ++p;
+      std::string attr = xml.substr(a, p - a), value;
+      while (p < xml.size() && std::isspace(static_cast<unsigned char>(xml[p]))) ++p;
+      if (p < xml.size() && xml[p] == '=') {
+        ++p;
+        while (p < xml.size() && std::isspace(static_cast<unsigned char>(xml[p]))) ++p;
+        if (p < xml.size() && (xml[p] == '"' || xml[p] == '\'')) {
+          const char q = xml[p];
+          const size_t e = xml.find(q, p + 1);
+          const size_t end = e == std::string::npos ? xml.size() : e;
+          value = xml.substr(p + 1, end - p - 1);
+          p = std::min(xml.size(), end + 1);
+        }
+      }
+      if (attr.empty()) ++p;  // stray character: step over it
+      else attrs.emplace_back(attr, value);
+    }
+    i = std::min(xml.size(), p + 1);
+    if (closing) {
+      while (!stack.empty()) {  // tolerate unbalanced input; urdfdom reports it
+        const std::string top = stack.back();
+        stack.pop_back();
+        if (top == name) break;
+      }
+      if (name == "joint") joint.clear();
+      continue;
+    }
+    if (name == "joint") {
+      joint.clear();
+      for (const auto& [k, v] : attrs)
+        if (k == "name") joint = v;
+    }
+    if (name == "dynamics" && stack.size() >= 2 && stack.back() == "joint" &&
+        stack[stack.size() - 2] == "robot") {
+      bool has = false;
+      for (const auto& [k, v] : attrs) {
+        if (k == "damping" || k == "friction") has = true;
+        else notes->push_back("joint " + quoted(joint) + ": <dynamics> attribute " + quoted(k) +
+                              " ignored (only damping and friction are used)");
+      }
+      if (!has) {
+        inserts.push_back(name_end);
+        notes->push_back("joint " + quoted(joint) +
+                         ": <dynamics> without damping or friction, both taken as 0");
+      }
+    }
+    if (!self_closing) stack.push_back(name);
+  }
+  if (inserts.empty()) return false;
+  out->clear();
+  out->reserve(xml.size() + 12 * inserts.size());
+  size_t from = 0;
+  for (size_t at : inserts) {
+    out->append(xml, from, at - from);
+    out->append(" damping=\"0\"");
+    from = at;
+  }
+  out->append(xml, from, std::string::npos);
+  return true;
+}
+
 }  // namespace
 
 UrdfLoadResult loadUrdfString(const std::string& xml) {
   UrdfLoadResult result;
   urdf::ModelInterfaceSharedPtr model;
+  std::vector<std::string> notes;  // from normalizeDynamics
   {
     static std::mutex mutex;  // the console_bridge output handler is global
     std::lock_guard<std::mutex> lock(mutex);
     LogCapture capture;
-    model = urdf::parseURDF(xml);
+    std::string normalized;
+    model = urdf::parseURDF(normalizeDynamics(xml, &normalized, &notes) ? normalized : xml);
     if (!model || !model->getRoot()) {
       result.error = "URDF <robot> could not be parsed: " +
                      (capture.errors().empty() ? std::string("unknown error") : capture.errors());
@@ -401,6 +523,7 @@ UrdfLoadResult loadUrdfString(const std::string& xml) {
   }
   try {
     result.def = Loader(*model).run();
+    result.def.notes.insert(result.def.notes.begin(), notes.begin(), notes.end());
     result.ok = true;
   } catch (const LoadError& e) {
     result.error = e.what();

@@ -88,6 +88,18 @@ class TfSnapshots {
   // The next complete snapshot received from now on.
   Snapshot next(double timeout = 20.0) { return waitFor(ros::Time(), ros::WallTime::now(), timeout); }
 
+  // Whether some node publishes /tf to us yet.
+  bool connected() const { return sub_.getNumPublishers() > 0; }
+
+  // The complete snapshots kept (the last 2000) with from <= stamp <= to, oldest first.
+  std::vector<Snapshot> range(const ros::Time& from, const ros::Time& to) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::vector<Snapshot> out;
+    for (const Snapshot& s : complete_)
+      if (s.stamp >= from && s.stamp <= to) out.push_back(s);
+    return out;
+  }
+
   Snapshot latest() {
     std::lock_guard<std::mutex> lock(mutex_);
     return complete_.empty() ? Snapshot() : complete_.back();

@@ -438,3 +438,107 @@ TEST(UrdfLoader, MalformedInputsFailWithNamedElements) {
   EXPECT_FALSE(missing.ok);
   EXPECT_NE(missing.error.find("/nonexistent/robot.urdf"), std::string::npos);
 }
+
+// ---- <dynamics> ------------------------------------------------------------------------------
+namespace {
+// joint() with `inner` (e.g. a <dynamics/> element) before </joint>.
+std::string jointWith(const std::string& inner, const std::string& name, const std::string& type,
+                      const std::string& parent, const std::string& child, const std::string& axis) {
+  std::string j = joint(name, type, parent, child, "0 0 0", "0 0 0", axis);
+  return j.insert(j.size() - std::string("</joint>").size(), inner);
+}
+}  // namespace
+
+TEST(UrdfLoader, DynamicsDampingAndFrictionGoToTheirAxes) {
+  // a hinge h, a 3-chain b1 b2 b3 (ball) and a 2-chain c1 c2 (ball with a locked third axis).
+  const UrdfLoadResult r = loadUrdfString(robot(
+      boxLink("a", 2) + boxLink("h_child", 1) + boxLink("b", 1) + boxLink("c", 1) +
+      dummyLink("d1") + dummyLink("d2") + dummyLink("d3") +
+      jointWith("<dynamics damping='0.7' friction='1.5'/>", "h", "revolute", "a", "h_child", "0 1 0") +
+      jointWith("<dynamics damping='0.1'/>", "b1", "revolute", "a", "d1", "0 1 0") +
+      jointWith("<dynamics friction='0.2' damping='0.3'/>", "b2", "revolute", "d1", "d2", "1 0 0") +
+      joint("b3", "revolute", "d2", "b", "0 0 0", "0 0 0", "0 0 1") +
+      jointWith("<dynamics friction='4'/>", "c1", "continuous", "a", "d3", "1 0 0") +
+      jointWith("<dynamics damping='2'></dynamics>", "c2", "revolute", "d3", "c", "0 0 1")));
+  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_EQ(r.def.joints.size(), 3u);
+  auto byName = [&](const std::string& name) -> const RagdollJointDef& {
+    for (const RagdollJointDef& j : r.def.joints)
+      if (j.name == name) return j;
+    ADD_FAILURE() << "no joint " << name;
+    return r.def.joints[0];
+  };
+  const RagdollJointDef& h = byName("h");
+  EXPECT_EQ(h.damping, (std::vector<double>{0.7}));
+  EXPECT_EQ(h.friction, (std::vector<double>{1.5}));
+  const RagdollJointDef& ball = byName("b1+b2+b3");
+  EXPECT_EQ(ball.damping, (std::vector<double>{0.1, 0.3, 0.0}));
+  EXPECT_EQ(ball.friction, (std::vector<double>{0.0, 0.2, 0.0}));
+  const RagdollJointDef& ball2 = byName("c1+c2");
+  EXPECT_EQ(ball2.damping, (std::vector<double>{0.0, 2.0, 0.0}));
+  EXPECT_EQ(ball2.friction, (std::vector<double>{4.0, 0.0, 0.0}));
+
+  // What spawnRagdoll puts on the axes.
+  const JointMotor hm = passiveMotor(h, 0);
+  EXPECT_TRUE(hm.enabled);
+  EXPECT_DOUBLE_EQ(hm.hertz, 0.0);
+  EXPECT_DOUBLE_EQ(hm.target_velocity, 0.0);
+  EXPECT_DOUBLE_EQ(hm.max_torque, 1.5);
+  EXPECT_DOUBLE_EQ(hm.damping, 0.7);
+  EXPECT_FALSE(passiveMotor(ball, 0).enabled);  // damping only
+  EXPECT_DOUBLE_EQ(passiveMotor(ball, 0).damping, 0.1);
+  EXPECT_TRUE(passiveMotor(ball, 1).enabled);
+  EXPECT_DOUBLE_EQ(passiveMotor(ball, 1).max_torque, 0.2);
+  const JointMotor none = passiveMotor(ball, 2);
+  EXPECT_FALSE(none.enabled);
+  EXPECT_DOUBLE_EQ(none.damping, 0.0);
+  EXPECT_FALSE(passiveMotor(ball, 7).enabled);  // out of range: nothing
+}
+
+TEST(UrdfLoader, OurRagdollHasNoJointDynamics) {
+  ASSERT_TRUE(ours().ok) << ours().error;
+  for (const RagdollJointDef& j : ours().def.joints) {
+    EXPECT_EQ(j.damping, std::vector<double>(j.axes.size(), 0.0)) << j.name;
+    EXPECT_EQ(j.friction, std::vector<double>(j.axes.size(), 0.0)) << j.name;
+  }
+}
+
+TEST(UrdfLoader, EmptyDynamicsIsZeroAndOtherAttributesAreNoted) {
+  // urdfdom alone rejects <dynamics/> without damping and friction; we read it as both 0. A
+  // commented-out element and one inside <gazebo> (not URDF's) are left alone.
+  const std::string xml = robot(
+      boxLink("a", 2) + boxLink("b", 1) + boxLink("c", 1) + "<!-- <joint name='x'><dynamics/></joint> -->" +
+      "<gazebo reference='h1'><joint name='g'><dynamics/></joint></gazebo>" +
+      jointWith("<dynamics/>", "h1", "revolute", "a", "b", "0 1 0") +
+      jointWith("<dynamics damping=\"0.25\" spring_stiffness='3' spring_reference='0.1'/>", "h2",
+                "revolute", "b", "c", "1 0 0"));
+  EXPECT_FALSE(urdf::parseURDF(xml)) << "urdfdom accepts an empty <dynamics/> now";
+  const UrdfLoadResult r = loadUrdfString(xml);
+  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_EQ(r.def.joints.size(), 2u);
+  ASSERT_EQ(r.def.joints[0].name, "h1");  // a -> b -> c: h1 first
+  EXPECT_EQ(r.def.joints[0].damping, (std::vector<double>{0.0}));
+  EXPECT_EQ(r.def.joints[0].friction, (std::vector<double>{0.0}));
+  EXPECT_EQ(r.def.joints[1].damping, (std::vector<double>{0.25}));
+  int empty = 0, ignored = 0, other = 0;
+  for (const std::string& n : r.def.notes) {
+    if (n.find("dynamics") == std::string::npos) continue;
+    if (n.find("'h1'") != std::string::npos && n.find("without damping or friction") != std::string::npos) ++empty;
+    else if (n.find("'h2'") != std::string::npos && n.find("ignored") != std::string::npos &&
+             (n.find("spring_stiffness") != std::string::npos || n.find("spring_reference") != std::string::npos)) ++ignored;
+    else ++other;
+  }
+  EXPECT_EQ(empty, 1);
+  EXPECT_EQ(ignored, 2);
+  EXPECT_EQ(other, 0);
+}
+
+TEST(UrdfLoader, NegativeOrBadDynamicsFailNamingTheJoint) {
+  for (const std::string dyn : {"<dynamics damping='-0.5'/>", "<dynamics friction='-1'/>",
+                                "<dynamics damping='abc'/>"}) {
+    const UrdfLoadResult r = loadUrdfString(robot(boxLink("a", 2) + boxLink("b", 1) +
+                                                  jointWith(dyn, "bad_j", "revolute", "a", "b", "0 1 0")));
+    EXPECT_FALSE(r.ok) << dyn;
+    EXPECT_NE(r.error.find("bad_j"), std::string::npos) << r.error;
+  }
+}

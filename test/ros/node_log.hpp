@@ -1,0 +1,64 @@
+// Helpers shared by the rostests: the node's WARN (and above) messages from /rosout, and waiting
+// for a publisher's subscribers.
+#pragma once
+
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <ros/ros.h>
+#include <rosgraph_msgs/Log.h>
+
+namespace ragdoll_test {
+
+class NodeWarnings {
+ public:
+  NodeWarnings(ros::NodeHandle& nh, const std::string& node) : node_(node) {
+    sub_ = nh.subscribe("/rosout", 100, &NodeWarnings::onLog, this);
+  }
+
+  // Waits up to `timeout` s for a warning of the node containing every one of `words`.
+  bool wait(const std::vector<std::string>& words, double timeout) {
+    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
+    while (ros::ok() && ros::WallTime::now() < deadline) {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        for (const auto& w : warnings_) {
+          bool all = true;
+          for (const auto& word : words) all = all && w.msg.find(word) != std::string::npos;
+          if (all) return true;
+        }
+      }
+      ros::WallDuration(0.02).sleep();
+    }
+    return false;
+  }
+
+ private:
+  void onLog(const rosgraph_msgs::Log::ConstPtr& m) {
+    if (m->name != node_ || m->level < rosgraph_msgs::Log::WARN) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    warnings_.push_back(*m);
+  }
+
+  std::string node_;
+  ros::Subscriber sub_;
+  std::mutex mutex_;
+  std::vector<rosgraph_msgs::Log> warnings_;
+};
+
+inline bool waitConnected(const ros::Publisher& pub, double timeout = 20.0) {
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
+  while (ros::ok() && pub.getNumSubscribers() == 0 && ros::WallTime::now() < deadline)
+    ros::WallDuration(0.02).sleep();
+  return pub.getNumSubscribers() > 0;
+}
+
+inline bool waitConnected(const ros::Subscriber& sub, double timeout = 20.0) {
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
+  while (ros::ok() && sub.getNumPublishers() == 0 && ros::WallTime::now() < deadline)
+    ros::WallDuration(0.02).sleep();
+  return sub.getNumPublishers() > 0;
+}
+
+}  // namespace ragdoll_test
