@@ -119,6 +119,19 @@ struct World::Impl {
   void updateSleep(double dt);
   Joint& addJoint(JointType type, BodyId a, BodyId b, const Transform& fa, const Transform& fb,
                   bool collide_connected);
+  // Hinge and prismatic: one axis with its limit, motor and spring.
+  template <class Def>
+  JointId addAxisJoint(JointType type, const Def& def) {
+    Joint& j = addJoint(type, def.body_a, def.body_b, def.frame_a, def.frame_b,
+                        def.collide_connected);
+    j.axis = def.axis.normalized();
+    j.limits_enabled = def.enable_limit;
+    j.lower[0] = def.lower;
+    j.upper[0] = def.upper;
+    j.motors[0] = def.motor;
+    j.spring = def.spring;
+    return JointId{int32_t(joints.size() - 1)};
+  }
 };
 
 void World::Impl::collide(double dt) {
@@ -491,15 +504,7 @@ JointId World::createBallJoint(const BallJointDef& def) {
 }
 
 JointId World::createHingeJoint(const HingeJointDef& def) {
-  Joint& j = impl_->addJoint(JointType::Hinge, def.body_a, def.body_b, def.frame_a, def.frame_b,
-                             def.collide_connected);
-  j.axis = def.axis.normalized();
-  j.limits_enabled = def.enable_limit;
-  j.lower[0] = def.lower;
-  j.upper[0] = def.upper;
-  j.motors[0] = def.motor;
-  j.spring = def.spring;
-  return JointId{int32_t(impl_->joints.size() - 1)};
+  return impl_->addAxisJoint(JointType::Hinge, def);
 }
 
 JointId World::createFixedJoint(const FixedJointDef& def) {
@@ -512,15 +517,7 @@ JointId World::createFixedJoint(const FixedJointDef& def) {
 JointId World::createPrismaticJoint(const PrismaticJointDef& def) {
   if (def.spring.stiffness > 0.0 || !(def.axis.norm() > 0.0))
     throw std::invalid_argument("ragdoll_sim: a prismatic joint needs an axis and no stiffness");
-  Joint& j = impl_->addJoint(JointType::Prismatic, def.body_a, def.body_b, def.frame_a,
-                             def.frame_b, def.collide_connected);
-  j.axis = def.axis.normalized();
-  j.limits_enabled = def.enable_limit;
-  j.lower[0] = def.lower;
-  j.upper[0] = def.upper;
-  j.motors[0] = def.motor;
-  j.spring = def.spring;
-  return JointId{int32_t(impl_->joints.size() - 1)};
+  return impl_->addAxisJoint(JointType::Prismatic, def);
 }
 
 void World::disableCollision(BodyId a, BodyId b) {
