@@ -81,7 +81,7 @@ struct World::Impl {
   };
   std::vector<IslandRange> island_ranges;
   std::vector<int> island_order;  // biggest first, for load balance
-  std::vector<int> island_bodies, island_of_body, group_offsets;
+  std::vector<int> island_bodies, island_of_body, group_offsets, group_cursor, body_scratch;
   std::vector<Joint*> joint_scratch;
   std::vector<ContactConstraint> contact_scratch;
   std::vector<int> old_contact;
@@ -291,13 +291,13 @@ namespace {
 // group boundaries (size groups + 1).
 template <class T, class Key>
 void groupBy(std::vector<T>& items, int groups, Key key, std::vector<T>& scratch,
-             std::vector<int>& offsets) {
+             std::vector<int>& offsets, std::vector<int>& cursor) {
   offsets.assign(groups + 1, 0);
   for (const T& t : items) ++offsets[key(t) + 1];
   for (int g = 0; g < groups; ++g) offsets[g + 1] += offsets[g];
   scratch.resize(items.size());
-  std::vector<int> next(offsets.begin(), offsets.end() - 1);
-  for (T& t : items) scratch[next[key(t)]++] = std::move(t);
+  cursor.assign(offsets.begin(), offsets.end() - 1);
+  for (T& t : items) scratch[cursor[key(t)]++] = std::move(t);
   items.swap(scratch);
 }
 }  // namespace
@@ -319,9 +319,8 @@ void World::Impl::partitionIslands() {
     island_bodies.push_back(i);
   }
   island_ranges.assign(count, IslandRange());
-  std::vector<int> scratch_bodies;
   const auto bodyIsland = [&](int b) { return island_of_body[b]; };
-  groupBy(island_bodies, count, bodyIsland, scratch_bodies, group_offsets);
+  groupBy(island_bodies, count, bodyIsland, body_scratch, group_offsets, group_cursor);
   for (int k = 0; k < count; ++k) {
     island_ranges[k].body_begin = group_offsets[k];
     island_ranges[k].body_end = group_offsets[k + 1];
@@ -330,14 +329,14 @@ void World::Impl::partitionIslands() {
     return island_of_body[a] >= 0 ? island_of_body[a] : island_of_body[b];
   };
   groupBy(active_joints, count, [&](const Joint* j) { return pairIsland(j->a, j->b); },
-          joint_scratch, group_offsets);
+          joint_scratch, group_offsets, group_cursor);
   for (int k = 0; k < count; ++k) {
     island_ranges[k].joint_begin = group_offsets[k];
     island_ranges[k].joint_end = group_offsets[k + 1];
   }
   groupBy(contact_solver.constraints(), count,
           [&](const ContactConstraint& c) { return pairIsland(c.a, c.b); }, contact_scratch,
-          group_offsets);
+          group_offsets, group_cursor);
   for (int k = 0; k < count; ++k) {
     island_ranges[k].contact_begin = group_offsets[k];
     island_ranges[k].contact_end = group_offsets[k + 1];
