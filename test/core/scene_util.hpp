@@ -23,15 +23,31 @@ inline BodyId addGround(World& w, const Material& m = Material(), const Quat& q 
   return g;
 }
 
+// Shapeless bodies (joint tests): a static frame, and a dynamic body with its COM at `com`.
+inline BodyId addStatic(World& w, const Transform& pose = Transform()) {
+  BodyDef d;
+  d.type = BodyType::Static;
+  d.pose = pose;
+  return w.createBody(d);
+}
+
+inline BodyId addDynamic(World& w, double mass, const Mat3& inertia, const Transform& pose,
+                         const Vec3& com = Vec3::Zero(), const Vec3& v = Vec3::Zero(),
+                         const Vec3& omega = Vec3::Zero()) {
+  BodyDef d;
+  d.mass = mass;
+  d.inertia = inertia;
+  d.pose = pose;
+  d.com = com;
+  d.linear_velocity = v;
+  d.angular_velocity = omega;
+  return w.createBody(d);
+}
+
 inline BodyId addBody(World& w, const Geometry& g, double mass, const Mat3& inertia,
                       const Transform& pose, const Material& m = Material(),
                       const Vec3& v = Vec3::Zero()) {
-  BodyDef d;
-  d.pose = pose;
-  d.mass = mass;
-  d.inertia = inertia;
-  d.linear_velocity = v;
-  const BodyId b = w.createBody(d);
+  const BodyId b = addDynamic(w, mass, inertia, pose, Vec3::Zero(), v);
   w.addShape(b, {g, Transform(), m});
   return b;
 }

@@ -5,6 +5,7 @@
 
 #include <memory>
 
+#include "node_log.hpp"
 #include "tf_snapshots.hpp"
 
 using namespace ragdoll_test;
@@ -44,15 +45,12 @@ TEST(Gravity, RagdollComesToRestOnTheGround) {
 }
 
 int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "gravity_test");
-  ros::AsyncSpinner spinner(1);
-  spinner.start();
-  ros::NodeHandle nh;
-  g_links = urdfLinks(&g_root);
-  g_tf = std::make_unique<TfSnapshots>(nh, linkNames(g_links));
-  int rc = RUN_ALL_TESTS();
-  spinner.stop();
-  g_tf.reset();
-  return rc;
+  return runRosTests(
+      argc, argv, "gravity_test", 1,
+      [] {
+        ros::NodeHandle nh;
+        g_links = urdfLinks(&g_root);
+        g_tf = std::make_unique<TfSnapshots>(nh, linkNames(g_links));
+      },
+      [] { g_tf.reset(); });
 }

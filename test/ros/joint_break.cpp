@@ -137,15 +137,12 @@ TEST(JointBreak, WeakWristBreaksAndTheHandFliesOff) {
 }
 
 int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "joint_break_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  ros::NodeHandle nh;
-  g_links = urdfLinks();
-  g_tf = std::make_unique<TfSnapshots>(nh, linkNames(g_links));
-  int rc = RUN_ALL_TESTS();
-  spinner.stop();
-  g_tf.reset();
-  return rc;
+  return runRosTests(
+      argc, argv, "joint_break_test", 2,
+      [] {
+        ros::NodeHandle nh;
+        g_links = urdfLinks();
+        g_tf = std::make_unique<TfSnapshots>(nh, linkNames(g_links));
+      },
+      [] { g_tf.reset(); });
 }

@@ -1,6 +1,8 @@
-// Helpers shared by the rostests: the node's WARN (and above) messages from /rosout, and waiting
-// for a publisher's subscribers.
+// Helpers shared by the rostests: the node's WARN (and above) messages from /rosout, waiting
+// for a publisher's subscribers, and the test main.
 #pragma once
+
+#include <gtest/gtest.h>
 
 #include <mutex>
 #include <string>
@@ -59,6 +61,22 @@ inline bool waitConnected(const ros::Subscriber& sub, double timeout = 20.0) {
   while (ros::ok() && sub.getNumPublishers() == 0 && ros::WallTime::now() < deadline)
     ros::WallDuration(0.02).sleep();
   return sub.getNumPublishers() > 0;
+}
+
+// The body of a rostest's main: gtest and ROS set up, callbacks on `spinners` threads, then
+// setup(), the tests, and teardown() once the spinner has stopped (no callback still running).
+template <class Setup, class Teardown>
+int runRosTests(int argc, char** argv, const char* name, int spinners, Setup setup,
+                Teardown teardown) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, name);
+  ros::AsyncSpinner spinner(spinners);
+  spinner.start();
+  setup();
+  const int rc = RUN_ALL_TESTS();
+  spinner.stop();
+  teardown();
+  return rc;
 }
 
 }  // namespace ragdoll_test

@@ -134,15 +134,16 @@ TEST(TargetPose, B_BadNamesAndNaNAreDropped) {
 }
 
 int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "target_pose_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  Fixture fixture;
-  fx = &fixture;
-  fixture.init();
-  int rc = RUN_ALL_TESTS();
-  spinner.stop();
-  fx = nullptr;
-  return rc;
+  std::unique_ptr<Fixture> fixture;
+  return runRosTests(
+      argc, argv, "target_pose_test", 2,
+      [&] {
+        fixture = std::make_unique<Fixture>();
+        fx = fixture.get();
+        fx->init();
+      },
+      [&] {
+        fx = nullptr;
+        fixture.reset();
+      });
 }

@@ -7,14 +7,13 @@
 
 #include <limits>
 #include <memory>
-#include <mutex>
 
 #include <ragdoll_sim/ApplyForce.h>
 #include <ragdoll_sim/ApplyImpulse.h>
-#include <rosgraph_msgs/Log.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 
+#include "node_log.hpp"
 #include "tf_snapshots.hpp"
 
 using namespace ragdoll_test;
@@ -29,46 +28,14 @@ struct Fixture {
   std::vector<LinkMass> links;
   std::unique_ptr<TfSnapshots> tf;
   ros::Publisher impulse_pub, force_pub;
-  ros::Subscriber rosout_sub;
-  std::mutex log_mutex;
-  std::vector<rosgraph_msgs::Log> warnings;  // WARN and above from the node
+  std::unique_ptr<NodeWarnings> warnings;  // WARN and above from the node
 
   void init() {
     links = urdfLinks(&root);
     tf = std::make_unique<TfSnapshots>(nh, linkNames(links));
     impulse_pub = nh.advertise<ragdoll_sim::ApplyImpulse>(std::string(kNode) + "/apply_impulse", 10);
     force_pub = nh.advertise<ragdoll_sim::ApplyForce>(std::string(kNode) + "/apply_force", 10);
-    rosout_sub = nh.subscribe("/rosout", 100, &Fixture::onLog, this);
-  }
-
-  void onLog(const rosgraph_msgs::Log::ConstPtr& m) {
-    if (m->name != kNode || m->level < rosgraph_msgs::Log::WARN) return;
-    std::lock_guard<std::mutex> lock(log_mutex);
-    warnings.push_back(*m);
-  }
-
-  // Waits up to `timeout` s for a node warning containing every one of `words`.
-  bool waitWarning(const std::vector<std::string>& words, double timeout) {
-    ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
-    while (ros::ok() && ros::WallTime::now() < deadline) {
-      {
-        std::lock_guard<std::mutex> lock(log_mutex);
-        for (const auto& w : warnings) {
-          bool all = true;
-          for (const auto& word : words) all = all && w.msg.find(word) != std::string::npos;
-          if (all) return true;
-        }
-      }
-      ros::WallDuration(0.02).sleep();
-    }
-    return false;
-  }
-
-  bool waitConnected(const ros::Publisher& pub, double timeout = 20.0) {
-    ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
-    while (ros::ok() && pub.getNumSubscribers() == 0 && ros::WallTime::now() < deadline)
-      ros::WallDuration(0.02).sleep();
-    return pub.getNumSubscribers() > 0;
+    warnings = std::make_unique<NodeWarnings>(nh, kNode);
   }
 
   // Momentum from two snapshots at least `span` s of sim time apart, the first one received
@@ -115,7 +82,7 @@ TEST(ZeroGravity, A_TfForEveryLinkWithin2s) {
 }
 
 TEST(ZeroGravity, B_ImpulseGivesMomentum) {
-  ASSERT_TRUE(fx->waitConnected(fx->impulse_pub)) << "node does not subscribe ~apply_impulse";
+  ASSERT_TRUE(waitConnected(fx->impulse_pub)) << "node does not subscribe ~apply_impulse";
   Vec3 before;
   ASSERT_TRUE(fx->measure(&before));
   EXPECT_LT(before.norm(), 0.05) << "ragdoll not at rest before the impulse: " << str(before);
@@ -137,7 +104,7 @@ TEST(ZeroGravity, B_ImpulseGivesMomentum) {
 }
 
 TEST(ZeroGravity, C_ForceForHalfSecondAddsImpulse) {
-  ASSERT_TRUE(fx->waitConnected(fx->force_pub)) << "node does not subscribe ~apply_force";
+  ASSERT_TRUE(waitConnected(fx->force_pub)) << "node does not subscribe ~apply_force";
   Vec3 before;
   ASSERT_TRUE(fx->measure(&before));
 
@@ -183,7 +150,7 @@ TEST(ZeroGravity, D_InvalidCommandsAreDropped) {
   bad.frame = "link";
   bad.impulse.x = 5.0;
   fx->impulse_pub.publish(bad);
-  EXPECT_TRUE(fx->waitWarning({"no_such_link"}, 5.0))
+  EXPECT_TRUE(fx->warnings->wait({"no_such_link"}, 5.0))
       << "no WARN from " << kNode << " naming the unknown link on /rosout";
 
   Snapshot s = fx->tf->latest();
@@ -199,7 +166,7 @@ TEST(ZeroGravity, D_InvalidCommandsAreDropped) {
   huge.frame = "link";
   huge.impulse.z = 5000.0;
   fx->impulse_pub.publish(huge);
-  EXPECT_TRUE(fx->waitWarning({"max_impulse"}, 5.0)) << "no WARN about the impulse cap";
+  EXPECT_TRUE(fx->warnings->wait({"max_impulse"}, 5.0)) << "no WARN about the impulse cap";
 
   // A NaN force: dropped.
   ragdoll_sim::ApplyForce nan;
@@ -208,7 +175,7 @@ TEST(ZeroGravity, D_InvalidCommandsAreDropped) {
   nan.force.x = std::numeric_limits<double>::quiet_NaN();
   nan.duration = 1.0;
   fx->force_pub.publish(nan);
-  EXPECT_TRUE(fx->waitWarning({"not finite"}, 5.0)) << "no WARN about a NaN force";
+  EXPECT_TRUE(fx->warnings->wait({"not finite"}, 5.0)) << "no WARN about a NaN force";
 
   Vec3 after;
   ASSERT_TRUE(fx->measure(&after, ros::WallTime::now() + ros::WallDuration(0.3)));
@@ -217,15 +184,16 @@ TEST(ZeroGravity, D_InvalidCommandsAreDropped) {
 }
 
 int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "zero_gravity_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  Fixture fixture;
-  fx = &fixture;
-  fixture.init();
-  int rc = RUN_ALL_TESTS();
-  spinner.stop();
-  fx = nullptr;
-  return rc;
+  std::unique_ptr<Fixture> fixture;
+  return runRosTests(
+      argc, argv, "zero_gravity_test", 2,
+      [&] {
+        fixture = std::make_unique<Fixture>();
+        fx = fixture.get();
+        fx->init();
+      },
+      [&] {
+        fx = nullptr;
+        fixture.reset();
+      });
 }
