@@ -53,7 +53,7 @@ WorldDef noSleep() {
 }
 
 // The frame of the joint in each body's link frame, given its world pose at creation.
-Transform local(World& w, BodyId b, const Transform& world_frame) {
+Transform local(const World& w, BodyId b, const Transform& world_frame) {
   return w.bodyPose(b).inverse() * world_frame;
 }
 }  // namespace
@@ -486,7 +486,17 @@ struct FreePair {
   }
   Transform jointWorld() const {
     return Transform(Vec3(0.2, 0.05, 0.0), quatFromRpy(0.1, -0.2, 0.3));
+  }  // A joint def of any type joining a and b at jointWorld().
+  template <class Def>
+  Def def() const {
+    Def d;
+    d.body_a = a;
+    d.body_b = b;
+    d.frame_a = local(w, a, jointWorld());
+    d.frame_b = local(w, b, jointWorld());
+    return d;
   }
+
   // Returns the relative change of the angular momentum.
   double check(const char* name, const JointId j) {
     const Vec3 p0 = w.linearMomentum();
@@ -515,34 +525,21 @@ struct FreePair {
 double ballBaselineAngularDrift() {
   static const double drift = [] {
     FreePair f;
-    BallJointDef d;
-    d.body_a = f.a;
-    d.body_b = f.b;
-    d.frame_a = local(f.w, f.a, f.jointWorld());
-    d.frame_b = local(f.w, f.b, f.jointWorld());
-    return f.check("ball (baseline)", f.w.createBallJoint(d));
+    return f.check("ball (baseline)", f.w.createBallJoint(f.def<BallJointDef>()));
   }();
   return drift;
 }
 
 TEST(JointMomentum, FixedPairConservesMomentum) {
   FreePair f;
-  FixedJointDef d;
-  d.body_a = f.a;
-  d.body_b = f.b;
-  d.frame_a = local(f.w, f.a, f.jointWorld());
-  d.frame_b = local(f.w, f.b, f.jointWorld());
+  FixedJointDef d = f.def<FixedJointDef>();
   const double dL = f.check("fixed", f.w.createFixedJoint(d));
   EXPECT_LT(dL, 2.0 * ballBaselineAngularDrift());
 }
 
 TEST(JointMomentum, PrismaticPairConservesMomentum) {
   FreePair f;
-  PrismaticJointDef d;
-  d.body_a = f.a;
-  d.body_b = f.b;
-  d.frame_a = local(f.w, f.a, f.jointWorld());
-  d.frame_b = local(f.w, f.b, f.jointWorld());
+  PrismaticJointDef d = f.def<PrismaticJointDef>();
   d.axis = Vec3(1, 1, 0).normalized();
   d.enable_limit = true;
   d.lower = -0.05;
@@ -560,11 +557,7 @@ TEST(JointMomentum, PrismaticPairConservesMomentum) {
 
 TEST(JointMomentum, SwingTwistBallPairConservesMomentum) {
   FreePair f;
-  BallJointDef d;
-  d.body_a = f.a;
-  d.body_b = f.b;
-  d.frame_a = local(f.w, f.a, f.jointWorld());
-  d.frame_b = local(f.w, f.b, f.jointWorld());
+  BallJointDef d = f.def<BallJointDef>();
   d.enable_limits = true;
   d.limit_mode = BallLimitMode::SwingTwist;
   d.swing_cone_angle = 0.3;
