@@ -37,7 +37,7 @@ struct WorldDef {
   double max_angular_speed = 200.0;     // rad/s
   bool enable_sleep = true;
   double time_to_sleep = 0.5;           // s an island must stay slow before it sleeps
-  double sleep_speed = 0.05;            // m/s, |v| + extent |w| below this counts as slow
+  double sleep_speed = 0.05;            // m/s, max(|v|, extent |w|) below this counts as slow (Box2D v3)
   MaterialTable materials;              // pair coefficients and the combine rules
   // Islands are solved in parallel on this many threads (0: all cores). The result does not
   // depend on it: islands share no bodies and each is solved in the same order. Default 1:

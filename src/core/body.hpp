@@ -32,7 +32,7 @@ struct BodyMotion {
   Mat3 inv_inertia_local = Mat3::Zero();
   double inv_mass = 0.0;
   double linear_damping = 0.0, angular_damping = 0.0, gravity_scale = 1.0;
-  double extent = 0.0;      // farthest shape point from the COM (sleep speed = |v| + extent |w|)
+  double extent = 0.0;      // farthest shape point from the COM (sleep speed = max(|v|, extent |w|))
   double sleep_time = 0.0;  // how long the body has been slow
   bool awake = false;       // static and sleeping bodies are not awake
 

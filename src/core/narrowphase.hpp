@@ -35,5 +35,7 @@ struct Aabb {
 };
 Aabb computeAabb(const Geometry& g, const Transform& x);
 inline bool isUnbounded(const Geometry& g) { return g.type == ShapeType::Plane; }
+// Distance from `point` to the farthest point of the shape at pose x (0 for a plane).
+double maxExtent(const Geometry& g, const Transform& x, const Vec3& point);
 
 }  // namespace ragdoll_sim

@@ -178,4 +178,42 @@ Aabb computeAabb(const Geometry& g, const Transform& x) {
   return {x.p - ext, x.p + ext};
 }
 
+double maxExtent(const Geometry& g, const Transform& x, const Vec3& point) {
+  const Vec3 c = x.p - point;
+  const Vec3 axis = x.q * Vec3::UnitZ();
+  switch (g.type) {
+    case ShapeType::Sphere: return c.norm() + g.radius;
+    case ShapeType::Capsule:
+      return std::max((c + g.half_height * axis).norm(), (c - g.half_height * axis).norm()) + g.radius;
+    case ShapeType::Cylinder: {
+      // farthest rim point: the end-cap centre farther away, plus the radius across the axis
+      double best = 0.0;
+      for (const double s : {1.0, -1.0}) {
+        const Vec3 e = c + s * g.half_height * axis;
+        const double along = e.dot(axis), across = (e - along * axis).norm() + g.radius;
+        best = std::max(best, std::sqrt(along * along + across * across));
+      }
+      return best;
+    }
+    case ShapeType::Box: {
+      double best = 0.0;
+      for (int k = 0; k < 8; ++k) {
+        const Vec3 corner(k & 1 ? g.half_extents.x() : -g.half_extents.x(),
+                          k & 2 ? g.half_extents.y() : -g.half_extents.y(),
+                          k & 4 ? g.half_extents.z() : -g.half_extents.z());
+        best = std::max(best, (c + x.q * corner).norm());
+      }
+      return best;
+    }
+    case ShapeType::ConvexHull: {
+      double best = c.norm();
+      if (g.hull)
+        for (const Vec3& v : g.hull->vertices) best = std::max(best, (c + x.q * v).norm());
+      return best;
+    }
+    case ShapeType::Plane: return 0.0;
+  }
+  return 0.0;
+}
+
 }  // namespace ragdoll_sim

@@ -406,7 +406,7 @@ void World::Impl::updateSleep(double dt) {
   for (int i = 0; i < n; ++i) {
     BodyMotion& m = motions[i];
     if (!m.awake) continue;
-    const double speed = m.v.norm() + m.extent * m.w.norm();
+    const double speed = std::max(m.v.norm(), m.extent * m.w.norm());  // as Box2D v3
     m.sleep_time = speed < def.sleep_speed ? m.sleep_time + dt : 0.0;
     double& r = slow[islands.find(i)];
     r = std::min(r, m.sleep_time);
@@ -475,13 +475,9 @@ void World::addShape(BodyId id, const ShapeDef& def) {
   b.shapes.push_back(def);
   b.shape_ids.push_back(int(impl_->shapes.size()));
   impl_->shapes.push_back({id.index, int(b.shapes.size() - 1)});
-  // bounding-sphere radius about the COM, for the sleep speed
+  // farthest shape point from the COM, for the sleep speed
   BodyMotion& m = impl_->motions[id.index];
-  if (!isUnbounded(def.geometry)) {
-    const Aabb box = computeAabb(def.geometry, def.local);
-    const Vec3 c = 0.5 * (box.lo + box.hi) - m.local_com;
-    m.extent = std::max(m.extent, c.norm() + 0.5 * (box.hi - box.lo).norm());
-  }
+  m.extent = std::max(m.extent, maxExtent(def.geometry, def.local, m.local_com));
 }
 
 JointId World::createBallJoint(const BallJointDef& def) {

@@ -135,6 +135,23 @@ TEST(Sleep, RestingBoxSleepsAndWakesOnImpulse) {
   std::printf("[ sleep    ] box asleep after %.3f s\n", (asleep_at + 1) * kDt);
 }
 
+// The sleep test is Box2D v3's: max(|v|, extent |w|) below sleep_speed for time_to_sleep. A
+// sphere drifting at 0.8 sleep_speed and spinning at 0.8 sleep_speed / extent sleeps (a sum of
+// the two would keep it awake); at 1.2 sleep_speed in either it stays awake.
+TEST(Sleep, SlowestOfDriftAndSpinDecides) {
+  for (const double f : {0.8, 1.2}) {
+    WorldDef wd;
+    wd.gravity.setZero();
+    World w(wd);
+    const double r = 0.1, m = 1.0;
+    const BodyId b = addBody(w, Geometry::sphere(r), m, Mat3::Identity() * 0.4 * m * r * r,
+                             Transform(), Material());
+    w.setBodyState(b, Transform(), Vec3(f * wd.sleep_speed, 0, 0), Vec3(0, 0, f * wd.sleep_speed / r));
+    for (int i = 0; i < 1000; ++i) w.step(kDt);
+    EXPECT_EQ(w.isAwake(b), f > 1.0) << "speed factor " << f;
+  }
+}
+
 // A compound body (two spheres on a bar, offsets from the COM) rests on both spheres.
 TEST(Compound, DumbbellRestsOnBothEnds) {
   World w;
