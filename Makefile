@@ -28,7 +28,8 @@ test: deps build
 
 # Debian packages only the benchmark needs (the peer engines and the plot); `make test` never
 # installs or builds any of it.
-BENCH_DEBS := libmujoco-dev libbullet-dev libode-dev libtinyxml2-dev liburdfdom-dev python3-matplotlib
+BENCH_DEBS := libmujoco-dev libbullet-dev libode-dev libtinyxml2-dev liburdfdom-dev python3-matplotlib \
+              valgrind
 
 # Release build of bench/bench_ragdoll and of the peer benches (../shared/peers or PEERS_DIR),
 # ROUNDS (default 3) alternating rounds of scenes a, b, c, the scaling scene g and our p, s;

@@ -26,6 +26,7 @@
 #                            same result for any count); the peers are single-threaded.
 #   BENCH_THREADS=1          OMP_NUM_THREADS for every run (only matters for threads=0).
 #   BENCH_OUT=bench          folder for results_raw.txt, RESULTS.md, scaling.png
+#   FLOPS=1                  0 skips the flop count (scripts/flops.sh, valgrind, ~5 min)
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
 PEERS_DIR="$(cd "${PEERS_DIR:-$ROOT/../shared/peers}" && pwd)"
@@ -151,6 +152,11 @@ for r in $(seq "$ROUNDS"); do
   fi
 done
 echo "# meta loadavg_end=$(cut -d' ' -f1-3 /proc/loadavg)" >>"$RAW_TMP"
+# ---- flop count (after the timed runs, so that it disturbs none of them)
+if [[ " ${engines[*]} " == *" ragdoll_sim "* && "${FLOPS:-1}" != 0 ]] && command -v valgrind >/dev/null; then
+  echo "bench: counting flops per body-step (valgrind lackey, a few minutes)"
+  "$ROOT/scripts/flops.sh" >>"$RAW_TMP" || echo "bench: flop count failed" >&2
+fi
 echo "# meta total_s=$((SECONDS - t0))" >>"$RAW_TMP"
 mv "$RAW_TMP" "$BENCH_OUT/results_raw.txt"
 echo "bench: $((SECONDS - t0)) s; raw lines in $BENCH_OUT/results_raw.txt (engine stderr: $LOG)"

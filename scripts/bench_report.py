@@ -309,6 +309,36 @@ def report(meta, runs, failures, png_name):
         L.append(md_table(["scene"] + OURS_EXTRA, rows))
         L.append("")
 
+    # ---- flop count and the machine's peak (scripts/flops.sh)
+    if "flops_per_body_step" in meta and ours_groups:
+        flops = float(meta["flops_per_body_step"])
+        peak = float(meta.get("peak_gflops", "nan"))
+        L.append("## Flops per body-step and the machine's peak")
+        L.append("")
+        L.append("Counted by `scripts/flops.sh`: bench_ragdoll built with x87 arithmetic and "
+                 "Eigen's vectorisation off, so that valgrind's lackey counts every double "
+                 "operation (an upper bound: conversions and negations count too), scene a, "
+                 "steps %s. Peak: %s = %.1f GFLOP/s." % (
+                     meta.get("flops_window", "?").replace("a:", ""),
+                     meta.get("peak_basis", "?").replace("_", " "), peak))
+        L.append("")
+        rows = []
+        for (e, s, n), g in ours_groups:
+            if s in ("a", "s"):
+                continue  # asleep for most of their steps: the rate is not the solver's
+            bsps = statistics.median(fnum(r.get("body_steps_per_s")) for r in g.runs)
+            gf = flops * bsps / 1e9
+            rows.append([scene_label(s, n), "%.0f" % flops, "%.0f" % bsps, "%.2f" % gf,
+                         "%.2f %%" % (100.0 * gf / peak)])
+        L.append(md_table(["scene", "flops/body-step", "body-steps/s", "GFLOP/s",
+                           "fraction of peak"], rows))
+        L.append("")
+        L.append("The flops per body-step are those of scene a while its ragdoll is awake and "
+                 "on the ground; scenes with more contacts per body cost more. Scenes a and s "
+                 "are left out: they sleep for most of their steps, and sleeping bodies cost no "
+                 "flops.")
+        L.append("")
+
     # ---- failures
     if failures:
         L.append("## Failed runs")
