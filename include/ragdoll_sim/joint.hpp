@@ -26,6 +26,9 @@ struct JointSpring {
   double stiffness = 0.0;  // N/m, 0 = rigid
   double damping = 0.0;    // N s/m
   double break_force = std::numeric_limits<double>::infinity();  // N
+  // Fixed joints: N m in the rotation lock. Past it the weld breaks (a lock transmits at most
+  // this torque, like the anchor and break_force).
+  double break_torque = std::numeric_limits<double>::infinity();
 };
 
 // Joint motor on each angle: drives it towards `target` (rad) as a soft constraint of natural

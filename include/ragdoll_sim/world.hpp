@@ -112,6 +112,7 @@ class World {
   // World anchor B - anchor A (prismatic: its part off the axis).
   Vec3 jointAnchorError(JointId joint) const;
   double jointForce(JointId joint) const;                 // N, in the anchor, last substep
+  double jointTorque(JointId joint) const;  // N m, fixed joint's rotation lock, last substep
   bool isJointBroken(JointId joint) const;
   // Joints broken since the last call, in the order they broke (for events).
   std::vector<JointId> takeBrokenJoints();

@@ -85,7 +85,12 @@ void solveJoint(Joint& j, const StepContext& ctx, bool use_bias) {
   if (j.type == JointType::Hinge) j.hinge_axis.solve(A, B, ctx.joint_softness, use_bias);
   if (j.swing_twist_limits)
     j.swing_twist.solve(A, B, j.swing_cone, j.twist_lower, j.twist_upper, ctx, use_bias);
-  if (j.type == JointType::Fixed) j.angle_lock.solve(A, B, ctx.joint_softness, use_bias);
+  if (j.type == JointType::Fixed) {
+    // Gauss-Seidel against the anchor overshoots on the way (a long lever on a light body):
+    // the weld breaks when the torque still sits at the cap after the substep's last sweep.
+    j.angle_lock.solve(A, B, ctx.joint_softness, use_bias, j.spring.break_torque * ctx.h);
+    j.torque = j.angle_lock.impulse.norm() * ctx.inv_h;
+  }
   solveAnchor(j, A, B, ctx, use_bias);
 }
 

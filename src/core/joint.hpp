@@ -30,6 +30,7 @@ struct Joint {
   bool broken = false;
   bool overloaded = false;  // the anchor reached break_force in this substep
   double force = 0.0;  // N in the anchor during the last substep
+  double torque = 0.0;  // N m in a fixed joint's rotation lock during the last substep
   std::array<JointMotor, 3> motors;       // hinge, prismatic: [0]; ball: per Euler axis
   std::array<AngleMotorPart, 3> motor_parts;
 

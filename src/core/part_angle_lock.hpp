@@ -9,6 +9,8 @@
 // The frames are tracked through the substeps with the bodies' delta rotations.
 #pragma once
 
+#include <limits>
+
 #include <Eigen/Dense>
 
 #include "solver_context.hpp"
@@ -32,7 +34,10 @@ struct AngleLockPart {
 
   void warmStart(SolverBody& A, SolverBody& B) const { applyPairAngularImpulse(A, B, impulse); }
 
-  void solve(SolverBody& A, SolverBody& B, const Softness& soft, bool use_bias) {
+  // max_impulse caps the accumulated impulse's norm (a breakable weld's break_torque h); true
+  // when it was reached.
+  bool solve(SolverBody& A, SolverBody& B, const Softness& soft, bool use_bias,
+             double max_impulse = std::numeric_limits<double>::infinity()) {
     Vec3 bias = Vec3::Zero();
     double mass_scale = 1.0, impulse_scale = 0.0;
     if (use_bias) {
@@ -41,11 +46,14 @@ struct AngleLockPart {
       impulse_scale = soft.impulse_scale;
     }
     const Mat3 K = A.inv_inertia + B.inv_inertia;
-    if (!(K.trace() > 1e-300)) return;  // both bodies static or asleep
-    const Vec3 lambda =
-        -mass_scale * K.ldlt().solve(B.w - A.w + bias) - impulse_scale * impulse;
-    impulse += lambda;
-    applyPairAngularImpulse(A, B, lambda);
+    if (!(K.trace() > 1e-300)) return false;  // both bodies static or asleep
+    const Vec3 old = impulse;
+    impulse += -mass_scale * K.ldlt().solve(B.w - A.w + bias) - impulse_scale * impulse;
+    const double n = impulse.norm();
+    const bool capped = n > max_impulse;
+    if (capped) impulse *= max_impulse / n;
+    applyPairAngularImpulse(A, B, impulse - old);
+    return capped;
   }
 };
 

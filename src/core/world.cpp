@@ -374,7 +374,9 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int 
     }
     for (int k = r.joint_begin; k < r.joint_end; ++k) {
       Joint& j = *js[k];
-      if (!j.broken && (j.overloaded || j.force > j.spring.break_force)) j.broken = true;
+      if (!j.broken && (j.overloaded || j.force > j.spring.break_force ||
+                        j.torque >= (1.0 - 1e-9) * j.spring.break_torque))
+        j.broken = true;
     }
   }
   for (int it = 0; it < def.position_iterations; ++it) {
@@ -729,6 +731,7 @@ Vec3 World::jointAnchorError(JointId id) const {
 }
 
 double World::jointForce(JointId id) const { return impl_->joints.at(id.index).force; }
+double World::jointTorque(JointId id) const { return impl_->joints.at(id.index).torque; }
 bool World::isJointBroken(JointId id) const { return impl_->joints.at(id.index).broken; }
 
 std::vector<JointId> World::takeBrokenJoints() {
