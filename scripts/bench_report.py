@@ -318,8 +318,9 @@ def report(meta, runs, failures, png_name):
         L.append("Counted by `scripts/flops.sh`: bench_ragdoll built with x87 arithmetic and "
                  "Eigen's vectorisation off, so that valgrind's lackey counts every double "
                  "operation (an upper bound: conversions and negations count too), scene a, "
-                 "steps %s. Peak: %s = %.1f GFLOP/s." % (
+                 "steps %s, commit %s. Peak: %s = %.1f GFLOP/s." % (
                      meta.get("flops_window", "?").replace("a:", ""),
+                     meta.get("flops_commit", meta.get("commit", "?")),
                      meta.get("peak_basis", "?").replace("_", " "), peak))
         L.append("")
         rows = []

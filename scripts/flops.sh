@@ -30,6 +30,7 @@ mhz="$(awk -F: '/cpu MHz/ {print $2; exit}' /proc/cpuinfo | tr -d ' ')"
 if grep -qw avx512f /proc/cpuinfo; then fpc=32; elif grep -qw fma /proc/cpuinfo; then fpc=16; else fpc=4; fi
 peak="$(awk -v c="$cores" -v m="$mhz" -v f="$fpc" 'BEGIN {printf "%.1f", c * m * 1e6 * f / 1e9}')"
 echo "# meta flops_per_body_step=$per"
+echo "# meta flops_commit=$(git -C "$ROOT" rev-parse --short HEAD 2>/dev/null || echo unknown)"
 echo "# meta flops_window=a:$((N0 + 1))-$N1"
 echo "# meta peak_gflops=$peak"
 echo "# meta peak_basis=${cores}_cores_x_${mhz}_MHz_x_${fpc}_DP_flops/cycle"
