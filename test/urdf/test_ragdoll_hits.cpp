@@ -139,17 +139,22 @@ TEST(RagdollHits, StepIsBitIdenticalAcrossRunsAndThreadCounts) {
       spawnRagdoll(w, def, Transform(Vec3(1.2 * i, 0, 1.1), Quat::Identity()));
     for (int k = 0; k < 4; ++k)
       spawnRagdoll(w, def, Transform(Vec3(0, 4, 0.4 + 0.5 * k), quatFromRpy(0, M_PI / 2, 0.7 * k)));
-    for (int i = 0; i < 1500; ++i) {
-      if (i == 300) w.applyLinearImpulse(BodyId{5}, Vec3(20, 0, 0), w.bodyPose(BodyId{5}).p);
+    // 10 000 steps with commands at fixed steps: an impulse every 700 steps on a different
+    // body (waking what slept), and a 30 N push on one pelvis during steps 5000..5199.
+    const int bodies = w.bodyCount();
+    for (int i = 0; i < 10000; ++i) {
+      if (i % 700 == 300) {
+        const BodyId b{1 + (i / 700 * 37) % (bodies - 1)};
+        w.applyLinearImpulse(b, Vec3(20, -10, 5), w.bodyPose(b).p);
+      }
+      if (i >= 5000 && i < 5200) w.applyForce(BodyId{16}, Vec3(0, 30, 0), w.comPosition(BodyId{16}));
       w.step(1e-3);
     }
     return poseHash(w);
   };
-  const uint64_t h1 = run(1), h1b = run(1), h2 = run(2), h4 = run(4);
-  std::printf("[ hits     ] pose hash after 1500 steps: 1 thread %016llx, again %016llx, 2 threads %016llx, 4 threads %016llx\n",
-              (unsigned long long)h1, (unsigned long long)h1b, (unsigned long long)h2,
-              (unsigned long long)h4);
+  const uint64_t h1 = run(1), h1b = run(1), h2 = run(2);
+  std::printf("[ hits     ] pose hash after 10000 steps: 1 thread %016llx, again %016llx, 2 threads %016llx\n",
+              (unsigned long long)h1, (unsigned long long)h1b, (unsigned long long)h2);
   EXPECT_EQ(h1, h1b);
   EXPECT_EQ(h1, h2);
-  EXPECT_EQ(h1, h4);
 }
