@@ -12,7 +12,10 @@ DEBS := build-essential cmake googletest libgtest-dev \
         libconsole-bridge-dev libeigen3-dev catkin python3-rostest librostest-dev ros-core \
         python3-rostopic rviz xvfb imagemagick \
         python3-geometry-msgs python3-std-srvs python3-sensor-msgs python3-tf2-msgs \
-        python3-visualization-msgs
+        python3-visualization-msgs \
+        libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure \
+        libros-rosgraph-msgs-dev python3-rosgraph-msgs librosbag-dev python3-rosbag \
+        ros-robot-state-publisher
 
 deps:
 	@scripts/deps.sh $(DEBS)

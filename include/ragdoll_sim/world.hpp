@@ -116,6 +116,9 @@ class World {
   bool isJointBroken(JointId joint) const;
   // Joints broken since the last call, in the order they broke (for events).
   std::vector<JointId> takeBrokenJoints();
+  // Breaks a joint as if its break force had been passed (its pair collides again), without an
+  // event: for rebuilding a world that carries broken joints over.
+  void breakJoint(JointId joint);
   // Motor of one joint angle (hinge: axis 0; ball: Euler axes 0..2; prismatic: axis 0, linear).
   void setJointMotor(JointId joint, int axis, const JointMotor& motor);
 

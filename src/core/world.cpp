@@ -740,6 +740,15 @@ std::vector<JointId> World::takeBrokenJoints() {
   return out;
 }
 
+void World::breakJoint(JointId id) {
+  Joint& j = impl_->joints.at(id.index);
+  if (j.broken) return;
+  j.broken = true;
+  impl_->disabled.erase(bodyPairKey(j.a, j.b));
+  impl_->wake(j.a);
+  impl_->wake(j.b);
+}
+
 void World::setJointMotor(JointId id, int axis, const JointMotor& motor) {
   Joint& j = impl_->joints.at(id.index);
   j.motors.at(axis) = motor;

@@ -1,5 +1,6 @@
 #include "commands.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <sstream>
 
@@ -196,6 +197,16 @@ ActiveForce toActiveForce(const ForceCommand& cmd, const CommandCheck& check,
   }
   f.steps_left = forceStepCount(cmd.duration, dt);
   return f;
+}
+
+std::string ragdollNameError(const std::string& name) {
+  if (name.empty()) return "the ragdoll name is empty";
+  if (std::isdigit(static_cast<unsigned char>(name[0])))
+    return "ragdoll name '" + name + "' starts with a digit";
+  for (char c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_')
+      return "ragdoll name '" + name + "' may hold only letters, digits and '_'";
+  return "";
 }
 
 }  // namespace node

@@ -115,5 +115,24 @@ int64_t forceStepCount(double duration, double dt);
 ActiveForce toActiveForce(const ForceCommand& cmd, const CommandCheck& check,
                           const Transform& link_pose, double dt);
 
+// A valid ragdoll name: non-empty, letters, digits and '_' only, not starting with a digit
+// (it becomes a topic namespace and a TF prefix). Returns "" or the problem.
+std::string ragdollNameError(const std::string& name);
+
+// Splits "<ragdoll>/<rest>" when the part before the first '/' is the name of a ragdoll
+// (is_ragdoll); otherwise ragdoll = "" and rest = qualified.
+template <class IsRagdoll>
+void splitQualifiedName(const std::string& qualified, IsRagdoll is_ragdoll, std::string* ragdoll,
+                        std::string* rest) {
+  const size_t slash = qualified.find('/');
+  if (slash != std::string::npos && slash > 0 && is_ragdoll(qualified.substr(0, slash))) {
+    *ragdoll = qualified.substr(0, slash);
+    *rest = qualified.substr(slash + 1);
+  } else {
+    ragdoll->clear();
+    *rest = qualified;
+  }
+}
+
 }  // namespace node
 }  // namespace ragdoll_sim

@@ -7,6 +7,9 @@
 #include <ros/node_handle.h>
 #include <xmlrpcpp/XmlRpcException.h>
 
+#include "pacing.hpp"
+#include "commands.hpp"
+
 namespace ragdoll_sim {
 namespace node {
 
@@ -202,6 +205,11 @@ bool surface(const MaterialTable& t, const std::string& name, const char* param,
 bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* c, std::string* error) {
   std::vector<double> gravity{c->gravity.x(), c->gravity.y(), c->gravity.z()};
   bool ok = read(pnh, "physics_rate", "a number (Hz)", &c->physics_rate, error) &&
+            read(pnh, "real_time_factor", "a number", &c->real_time_factor, error) &&
+            read(pnh, "clock_rate", "a number (Hz)", &c->clock_rate, error) &&
+            read(pnh, "position_iterations", "an integer", &c->position_iterations, error) &&
+            read(pnh, "ragdoll_name", "a string", &c->ragdoll_name, error) &&
+            read(pnh, "tf_prefix", "a string", &c->tf_prefix, error) &&
             read(pnh, "publish_rate", "a number (Hz)", &c->publish_rate, error) &&
             read(pnh, "substeps", "an integer", &c->substeps, error) &&
             read(pnh, "gravity", "a list of 3 numbers (m/s^2)", &gravity, error) &&
@@ -268,6 +276,17 @@ std::string validateNodeConfig(const NodeConfig& c) {
   if (c.physics_rate > 1e6) return "parameter ~physics_rate must be <= 1e6 Hz";
   if (!(e = positive("publish_rate", c.publish_rate)).empty()) return e;
   if (c.substeps < 1) return "parameter ~substeps must be >= 1, got " + std::to_string(c.substeps);
+  if (c.position_iterations < 0)
+    return "parameter ~position_iterations must be >= 0, got " + std::to_string(c.position_iterations);
+  if (*realTimeFactorError(c.real_time_factor)) {
+    std::ostringstream s;
+    s << "parameter ~real_time_factor " << realTimeFactorError(c.real_time_factor) << ", got "
+      << c.real_time_factor;
+    return s.str();
+  }
+  if (!(e = nonneg("clock_rate", c.clock_rate)).empty()) return e;
+  if (!c.ragdoll_name.empty() && !ragdollNameError(c.ragdoll_name).empty())
+    return "parameter ~ragdoll_name: " + ragdollNameError(c.ragdoll_name);
   if (!c.gravity.allFinite()) return "parameter ~gravity must be finite";
   const SpawnPose& s = c.spawn;
   for (double v : {s.x, s.y, s.z, s.roll, s.pitch, s.yaw})

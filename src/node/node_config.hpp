@@ -33,6 +33,9 @@ struct BalanceConfig {
 
 struct NodeConfig {
   double physics_rate = 1000.0;        // Hz, fixed physics step = 1 / physics_rate
+  double real_time_factor = 1.0;       // sim s per wall s; 0 or inf = as fast as possible
+  double clock_rate = 0.0;             // Hz of sim time for /clock (on /use_sim_time); 0 = every step
+  int position_iterations = 2;         // WorldDef::position_iterations
   double publish_rate = 60.0;          // Hz, TF / markers / joint_states
   int substeps = 4;                    // solver substeps per physics step
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);
@@ -44,6 +47,8 @@ struct NodeConfig {
   Material ragdoll_surface, ground_surface;  // resolved from the two names above
   bool paused = false;
   std::string urdf_file;               // "" -> URDF text from the robot_description param
+  std::string ragdoll_name;            // launch-time ragdoll; "" = the URDF's robot name
+  std::string tf_prefix;               // its TF prefix; "" = bare link names
   std::string world_frame = "world";
   bool ground = true;                  // static ground plane z = 0
   double max_impulse = 1000.0;         // N*s

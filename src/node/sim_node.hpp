@@ -1,5 +1,12 @@
-// SimNode: owns the World and the ragdoll, steps it at a fixed rate in real time on the calling
-// thread, publishes TF / markers / joint_states and serves the command topics and services.
+// SimNode: owns the World and the ragdolls, steps them at a fixed rate (paced by the wall clock
+// at a real-time factor, or as fast as possible), publishes TF / markers / joint_states /
+// link_states (and /clock when it is the ROS clock) and serves the command topics, the
+// services and dynamic_reconfigure. Its methods live in several files, one concept each:
+//   sim_node.cpp      start-up, main loop, time, one physics step
+//   sim_world.cpp     ragdoll instances, building / rebuilding the World, joint motors
+//   sim_commands.cpp  command topics and the queue of stamped commands
+//   sim_services.cpp  services and dynamic_reconfigure
+//   sim_publish.cpp   TF, markers, joint_states, link_states, /clock, joint_broken
 #pragma once
 
 #include <cstdint>
@@ -7,7 +14,8 @@
 #include <string>
 #include <vector>
 
-#include <geometry_msgs/TransformStamped.h>
+#include <boost/thread/recursive_mutex.hpp>
+#include <dynamic_reconfigure/server.h>
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
 #include <std_srvs/Empty.h>
@@ -15,15 +23,22 @@
 #include <tf2_ros/transform_broadcaster.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "command_queue.hpp"
 #include "commands.hpp"
 #include "joint_control.hpp"
 #include "node_config.hpp"
+#include "pacing.hpp"
+#include "ragdoll_instance.hpp"
 #include "ragdoll_sim/ApplyForce.h"
 #include "ragdoll_sim/ApplyImpulse.h"
+#include "ragdoll_sim/DeleteRagdoll.h"
+#include "ragdoll_sim/GetLinkState.h"
 #include "ragdoll_sim/JointBroken.h"
+#include "ragdoll_sim/LinkStates.h"
+#include "ragdoll_sim/PhysicsConfig.h"
+#include "ragdoll_sim/SetRagdollState.h"
+#include "ragdoll_sim/SpawnRagdoll.h"
 #include "ragdoll_sim/Step.h"
-#include "ragdoll_sim/balance.hpp"
-#include "ragdoll_sim/ragdoll.hpp"
 #include "ragdoll_sim/world.hpp"
 
 namespace ragdoll_sim {
@@ -39,36 +54,54 @@ class SimNode {
   // false with *error naming the problem.
   bool init(std::string* error);
 
-  // Steps in real time until ROS shuts down. Returns the process exit code.
+  // Steps until ROS shuts down. Returns the process exit code.
   int run();
 
+  // The ragdolls, the first being the launch-time one (for the visualizer).
+  const std::vector<RagdollInstance>& ragdolls() const { return ragdolls_; }
+  const World& world() const { return *world_; }
+
  private:
-  // --- simulation ---
-  void stepOnce();                 // one physics step with the active forces
-  ros::Time simStamp() const;      // start stamp + sim time (exact, integer nanoseconds)
-  double simTime() const;
-  void resetRagdoll();
-  // A new World with the ground and the ragdoll at its spawn pose (joints as configured, none
-  // broken), then the joint motors: targets, balance, passive URDF dynamics.
-  bool buildWorld(std::string* error);
-  void setBalance(bool on);
-  // Puts the motor of one axis in the world: its target, else the balance hold, else passive.
-  void applyAxisMotor(int axis);
-  void publishBrokenJoints();      // ~joint_broken + INFO for joints that broke in the last step
+  // --- time and stepping (sim_node.cpp) ---
+  void stepOnce();               // due commands, motors, forces, one World::step, events
+  ros::Time simStamp() const;    // stamp of the current sim time (see stamp_origin_)
+  double simTime() const { return static_cast<double>(sim_ns_) * 1e-9; }
+  void restartPacing();
 
-  // --- publishing ---
-  void buildTfMessages();
-  void buildMarkers();
-  void buildJointState();
-  void publish();                  // TF + joint_states when sim time advanced; markers always
-  void publishTf(const ros::Time& stamp);
-  void publishMarkers(const ros::Time& stamp);
-  void publishJointState(const ros::Time& stamp);
+  // --- ragdolls and the World (sim_world.cpp) ---
+  // A ready instance (joint settings, tables, buffers) of `def`; false with *error.
+  bool makeInstance(RagdollDef def, const std::string& name, const std::string& tf_prefix,
+                    const Transform& spawn, bool warn_unknown_joints, RagdollInstance* out,
+                    std::string* error);
+  WorldDef worldDef() const;
+  // A new World with the ground and every ragdoll: at its spawn pose (joints whole), or, with
+  // carry_state, in the pose and velocity it has now with its broken joints still broken.
+  bool buildWorld(bool carry_state, std::string* error);
+  bool spawnInWorld(RagdollInstance& r, std::string* error);  // bodies at r.spawn_pose
+  void setBalance(RagdollInstance& r, bool on, bool log);
+  // Rebuilds every balance controller (they refer into the instances, which may have moved).
+  void rebindControllers();
+  void applyAxisMotor(RagdollInstance& r, int axis);
+  void applyAllMotors(RagdollInstance& r);
+  void resetAll();
+  // Index of the ragdoll `name` ("" = the first), or -1.
+  int findRagdoll(const std::string& name) const;
+  void structureChanged();  // markers and link_states rebuilt after a spawn / delete / rebuild
 
-  // --- ROS callbacks ---
+  // --- commands (sim_commands.cpp) ---
   void onImpulse(const ragdoll_sim::ApplyImpulse::ConstPtr& msg);
   void onForce(const ragdoll_sim::ApplyForce::ConstPtr& msg);
   void onTargetPose(const sensor_msgs::JointState::ConstPtr& msg);
+  // Applies now or queues until the stamp's sim time.
+  void submit(QueuedCommand cmd, const ros::Time& stamp, const char* what);
+  void applyCommand(const QueuedCommand& cmd);
+  void applyDueCommands();
+  bool applyImpulse(RagdollInstance& r, const ImpulseCommand& cmd);
+  bool applyForce(RagdollInstance& r, const ForceCommand& cmd);
+  bool applyTargetPose(RagdollInstance& r, const TargetPoseCommand& cmd);
+  size_t activeForceCount() const;
+
+  // --- services and dynamic_reconfigure (sim_services.cpp) ---
   bool onSetBalance(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
   bool onClearTargets(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
@@ -76,68 +109,78 @@ class SimNode {
   bool onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onClearForces(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onStep(ragdoll_sim::Step::Request& req, ragdoll_sim::Step::Response& res);
+  bool onSpawn(ragdoll_sim::SpawnRagdoll::Request& req, ragdoll_sim::SpawnRagdoll::Response& res);
+  bool onDelete(ragdoll_sim::DeleteRagdoll::Request& req, ragdoll_sim::DeleteRagdoll::Response& res);
+  bool onSetState(ragdoll_sim::SetRagdollState::Request& req,
+                  ragdoll_sim::SetRagdollState::Response& res);
+  bool onGetLinkState(ragdoll_sim::GetLinkState::Request& req,
+                      ragdoll_sim::GetLinkState::Response& res);
+  void startReconfigure();
+  void onReconfigure(ragdoll_sim::PhysicsConfig& cfg, uint32_t level);
+  ragdoll_sim::PhysicsConfig currentPhysics() const;
 
-  Transform linkPose(int link) const;
+  // --- publishing (sim_publish.cpp) ---
+  void buildTf(RagdollInstance& r);
+  void buildJointState(RagdollInstance& r);
+  void buildMarkers();
+  void buildLinkStates();
+  void publish();  // TF, joint_states, link_states when sim time advanced; markers always
+  void publishTf(const ros::Time& stamp);
+  void publishMarkers(const ros::Time& stamp);
+  void publishJointStates(const ros::Time& stamp);
+  void publishLinkStates(const ros::Time& stamp);
+  void publishClock(bool force);   // at ~clock_rate, or every step; force: now if not yet sent
+  void publishBrokenJoints();      // ~joint_broken + INFO for joints that broke in the last step
 
   ros::NodeHandle nh_, pnh_;
   NodeConfig config_;
 
-  // Model and world.
-  RagdollDef def_;
   std::unique_ptr<World> world_;
-  Ragdoll ragdoll_;
   BodyId ground_;
-  LinkTable links_;
+  std::vector<RagdollInstance> ragdolls_;
+  int next_color_ = 0;
   CommandLimits limits_;
+  CommandQueue queue_;
+  static constexpr size_t kMaxActiveForces = 256;  // over all ragdolls
 
-  // Joint control: every joint angle (joint_states names), its motor gains and target.
-  AxisTable axes_;
-  std::vector<MotorGains> gains_;      // per axis (~motor, ~joint_defaults, ~joints)
-  std::vector<AxisTarget> targets_;    // per axis (~target_pose)
-  std::vector<int> moving_targets_;    // axes whose target moves (position + velocity)
-  std::unique_ptr<BalanceController> balance_;  // active ragdoll, when on
-  bool balance_on_ = false;
-
-  // Time: sim time = steps_ * dt_ns_ nanoseconds.
+  // Time: sim time sim_ns_ advances by dt_ns_ per step (dt_ns_ may change at run time).
   int64_t dt_ns_ = 1000000;
   double dt_ = 1e-3;
+  int64_t sim_ns_ = 0;
   int64_t steps_ = 0;
-  ros::Time start_stamp_;
+  // Stamp of sim time 0: 0 when the node runs on /use_sim_time (stamps are sim time), else
+  // the wall time at start-up (stamp differences still equal sim-time differences).
+  ros::Time stamp_origin_;
+  bool sim_time_ = false;       // /use_sim_time
+  bool publish_clock_ = false;  // this node publishes /clock
+  int64_t last_clock_ns_ = -1, next_clock_ns_ = 0;
   bool paused_ = false;
+  Pacer pacer_;
+  bool pacing_dirty_ = false;   // restart the pacer at the next loop iteration
 
-  // Forces re-applied every step (capacity reserved up front).
-  static constexpr size_t kMaxActiveForces = 256;
-  std::vector<ActiveForce> forces_;
-
-  // Publishing buffers, built once and updated in place.
+  // Publishing buffers.
   std::unique_ptr<tf2_ros::TransformBroadcaster> tf_broadcaster_;
-  std::vector<geometry_msgs::TransformStamped> tf_msgs_;
-  std::vector<int> ball_joints_;         // indices of ball joints with chain links
-  std::vector<int> ball_tf_offset_;      // first tf_msgs_ slot of each ball joint's chain links
-
+  std::vector<geometry_msgs::TransformStamped> tf_all_;  // all ragdolls' TF, one message
   struct MarkerSource {
     BodyId body;
-    Transform local;   // marker frame in the body frame
+    Transform local;  // marker frame in the body frame
   };
   visualization_msgs::MarkerArray markers_;
   std::vector<MarkerSource> marker_sources_;
+  bool markers_delete_all_ = false;  // the next marker message first clears the old ones
+  ragdoll_sim::LinkStates link_states_;
+  std::vector<BodyId> link_state_bodies_;
+  int64_t last_publish_step_ = -1;
 
-  struct JointSource {
-    JointId id;
-    bool ball = false;
-    int first = 0;     // index into joint_state_.position
-  };
-  sensor_msgs::JointState joint_state_;
-  std::vector<JointSource> joint_sources_;
-  std::vector<double> prev_positions_;
-  int64_t prev_joint_step_ = -1;
-
-  int64_t last_tf_step_ = -1;
-
-  ros::Publisher markers_pub_, joints_pub_, broken_pub_;
+  ros::Publisher markers_pub_, broken_pub_, link_states_pub_, clock_pub_;
   ros::Subscriber impulse_sub_, force_sub_, target_sub_;
   ros::ServiceServer pause_srv_, unpause_srv_, reset_srv_, clear_srv_, step_srv_;
   ros::ServiceServer balance_srv_, clear_targets_srv_;
+  ros::ServiceServer spawn_srv_, delete_srv_, set_state_srv_, get_link_srv_;
+
+  boost::recursive_mutex reconfigure_mutex_;
+  std::unique_ptr<dynamic_reconfigure::Server<ragdoll_sim::PhysicsConfig>> reconfigure_;
+  bool reconfigure_ready_ = false;  // the server's first (initial) callback has run
 };
 
 }  // namespace node

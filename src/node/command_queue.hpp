@@ -1,0 +1,52 @@
+// Commands held until the sim time at which they take effect (ROS-free, unit-tested).
+//
+// Why: a command applied whenever its message happens to arrive lands on a step that depends on
+// wall-clock timing, so a recorded run could not be replayed step for step. A command whose
+// header stamp lies in the future is queued here and applied at the start of the first physics
+// step that begins at or after that sim time, so the same commands give the same steps in
+// every run (README: "Deterministic replay").
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "commands.hpp"
+#include "joint_control.hpp"
+
+namespace ragdoll_sim {
+namespace node {
+
+struct QueuedCommand {
+  int64_t due_ns = 0;   // sim time (ns since the start) at which it takes effect
+  uint64_t seq = 0;     // arrival order (set by push), breaks ties between equal due times
+  std::string ragdoll;  // "" = the first ragdoll
+  std::variant<ImpulseCommand, ForceCommand, TargetPoseCommand> command;
+};
+
+class CommandQueue {
+ public:
+  explicit CommandQueue(size_t capacity = 4096) : capacity_(capacity) {}
+  // False (and nothing queued) when `capacity` commands are already waiting.
+  bool push(QueuedCommand c);
+  // Removes and returns the commands with due_ns <= now_ns, by due time, then arrival.
+  std::vector<QueuedCommand> takeDue(int64_t now_ns);
+  size_t size() const { return items_.size(); }
+  size_t capacity() const { return capacity_; }
+  void clear() { items_.clear(); }
+
+ private:
+  size_t capacity_;
+  uint64_t next_seq_ = 0;
+  std::vector<QueuedCommand> items_;  // sorted by (due_ns, seq)
+};
+
+// When a command stamped `stamp_ns` (absolute stamp, ns) takes effect, in sim ns since the
+// start: stamps count from `origin_ns` (the stamp of sim time 0). A zero stamp means "now"
+// (returns now_ns), and so does a stamp at or before now_ns.
+int64_t commandDueNs(int64_t stamp_ns, int64_t origin_ns, int64_t now_ns);
+
+}  // namespace node
+}  // namespace ragdoll_sim

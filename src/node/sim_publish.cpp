@@ -1,0 +1,355 @@
+// SimNode: TF, markers, joint_states, link_states, /clock and joint_broken. Every stamp is
+// simStamp(); on /use_sim_time that is the sim time, and /clock carries the same value before
+// anything stamped with it goes out.
+#include <algorithm>
+
+#include <rosgraph_msgs/Clock.h>
+
+#include "sim_node.hpp"
+
+namespace ragdoll_sim {
+namespace node {
+
+namespace {
+
+void toMsg(const Transform& t, geometry_msgs::Transform* m) {
+  m->translation.x = t.p.x();
+  m->translation.y = t.p.y();
+  m->translation.z = t.p.z();
+  m->rotation.x = t.q.x();
+  m->rotation.y = t.q.y();
+  m->rotation.z = t.q.z();
+  m->rotation.w = t.q.w();
+}
+
+void toMsg(const Transform& t, geometry_msgs::Pose* m) {
+  m->position.x = t.p.x();
+  m->position.y = t.p.y();
+  m->position.z = t.p.z();
+  m->orientation.x = t.q.x();
+  m->orientation.y = t.q.y();
+  m->orientation.z = t.q.z();
+  m->orientation.w = t.q.w();
+}
+
+void toMsg(const Vec3& v, geometry_msgs::Vector3* m) {
+  m->x = v.x();
+  m->y = v.y();
+  m->z = v.z();
+}
+
+std_msgs::ColorRGBA color(float r, float g, float b, float a = 1.0f) {
+  std_msgs::ColorRGBA c;
+  c.r = r;
+  c.g = g;
+  c.b = b;
+  c.a = a;
+  return c;
+}
+
+// A few distinguishable colours: link i of the ragdoll with colour index k.
+std_msgs::ColorRGBA linkColor(int ragdoll, size_t link) {
+  static const float kPalette[][3] = {{0.90f, 0.60f, 0.30f}, {0.35f, 0.60f, 0.90f},
+                                      {0.45f, 0.80f, 0.45f}, {0.85f, 0.45f, 0.55f},
+                                      {0.75f, 0.70f, 0.35f}, {0.60f, 0.50f, 0.85f}};
+  const size_t n = sizeof(kPalette) / sizeof(kPalette[0]);
+  const float* p = kPalette[static_cast<size_t>(ragdoll) % n];
+  const float shade = (link % 2) ? 0.8f : 1.0f;  // neighbouring links a little apart
+  return color(p[0] * shade, p[1] * shade, p[2] * shade, 0.9f);
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------------------------------
+// TF
+
+void SimNode::buildTf(RagdollInstance& r) {
+  r.tf_msgs.clear();
+  for (const LinkDef& l : r.def.links) {
+    geometry_msgs::TransformStamped t;
+    t.header.frame_id = config_.world_frame;
+    t.child_frame_id = r.frame(l.name);
+    r.tf_msgs.push_back(t);
+  }
+  r.ball_joints.clear();
+  r.ball_tf_offset.clear();
+  for (size_t j = 0; j < r.def.joints.size(); ++j) {
+    const RagdollJointDef& jd = r.def.joints[j];
+    if (jd.kind != RagdollJointKind::Ball || jd.chain_links.empty()) continue;
+    r.ball_joints.push_back(static_cast<int>(j));
+    r.ball_tf_offset.push_back(static_cast<int>(r.tf_msgs.size()));
+    for (const std::string& c : jd.chain_links) {
+      geometry_msgs::TransformStamped t;
+      t.header.frame_id = config_.world_frame;
+      t.child_frame_id = r.frame(c);
+      r.tf_msgs.push_back(t);
+    }
+  }
+}
+
+void SimNode::publishTf(const ros::Time& stamp) {
+  tf_all_.clear();
+  for (RagdollInstance& r : ragdolls_) {
+    for (size_t i = 0; i < r.ragdoll.bodies.size(); ++i) {
+      r.tf_msgs[i].header.stamp = stamp;
+      toMsg(world_->bodyPose(r.ragdoll.bodies[i]), &r.tf_msgs[i].transform);
+    }
+    for (size_t k = 0; k < r.ball_joints.size(); ++k) {
+      const int j = r.ball_joints[k];
+      const std::vector<Transform> poses = ballChainLinkPoses(*world_, r.ragdoll, r.def, j);
+      const size_t n = std::min(poses.size(), r.def.joints[static_cast<size_t>(j)].chain_links.size());
+      for (size_t c = 0; c < n; ++c) {
+        geometry_msgs::TransformStamped& t = r.tf_msgs[static_cast<size_t>(r.ball_tf_offset[k]) + c];
+        t.header.stamp = stamp;
+        toMsg(poses[c], &t.transform);
+      }
+    }
+    tf_all_.insert(tf_all_.end(), r.tf_msgs.begin(), r.tf_msgs.end());
+  }
+  if (!tf_all_.empty()) tf_broadcaster_->sendTransform(tf_all_);
+}
+
+// ------------------------------------------------------------------------------------------
+// Markers
+
+void SimNode::buildMarkers() {
+  markers_.markers.clear();
+  marker_sources_.clear();
+  auto add = [&](const std::string& ns, int id, BodyId body, const Transform& local, int type,
+                 const Vec3& scale, const std_msgs::ColorRGBA& c) -> visualization_msgs::Marker& {
+    visualization_msgs::Marker m;
+    m.header.frame_id = config_.world_frame;
+    m.ns = ns;
+    m.id = id;
+    m.type = type;
+    m.action = visualization_msgs::Marker::ADD;
+    m.scale.x = scale.x();
+    m.scale.y = scale.y();
+    m.scale.z = scale.z();
+    m.color = c;
+    m.pose.orientation.w = 1.0;
+    markers_.markers.push_back(m);
+    marker_sources_.push_back({body, local});
+    return markers_.markers.back();
+  };
+
+  using visualization_msgs::Marker;
+  for (const RagdollInstance& r : ragdolls_) {
+    for (size_t i = 0; i < r.ragdoll.bodies.size(); ++i) {
+      const BodyId body = r.ragdoll.bodies[i];
+      const std::string ns = r.frame(r.def.links[i].name);
+      const std_msgs::ColorRGBA c = linkColor(r.color_index, i);
+      int id = 0;
+      for (const ShapeDef& s : world_->bodyShapes(body)) {
+        const Geometry& g = s.geometry;
+        switch (g.type) {
+          case ShapeType::Sphere:
+            add(ns, id++, body, s.local, Marker::SPHERE, Vec3::Constant(2 * g.radius), c);
+            break;
+          case ShapeType::Box:
+            add(ns, id++, body, s.local, Marker::CUBE, 2 * g.half_extents, c);
+            break;
+          case ShapeType::Cylinder:
+            add(ns, id++, body, s.local, Marker::CYLINDER,
+                Vec3(2 * g.radius, 2 * g.radius, 2 * g.half_height), c);
+            break;
+          case ShapeType::Capsule: {
+            add(ns, id++, body, s.local, Marker::CYLINDER,
+                Vec3(2 * g.radius, 2 * g.radius, 2 * g.half_height), c);
+            for (double sign : {1.0, -1.0}) {
+              Transform cap = s.local * Transform(Vec3(0, 0, sign * g.half_height), Quat::Identity());
+              add(ns, id++, body, cap, Marker::SPHERE, Vec3::Constant(2 * g.radius), c);
+            }
+            break;
+          }
+          case ShapeType::ConvexHull: {
+            if (!g.hull) break;
+            Marker& m = add(ns, id++, body, s.local, Marker::TRIANGLE_LIST, Vec3::Ones(), c);
+            for (const HullData::Face& f : g.hull->faces) {
+              for (size_t k = 1; k + 1 < f.verts.size(); ++k) {
+                for (int v : {f.verts[0], f.verts[k], f.verts[k + 1]}) {
+                  geometry_msgs::Point p;
+                  p.x = g.hull->vertices[v].x();
+                  p.y = g.hull->vertices[v].y();
+                  p.z = g.hull->vertices[v].z();
+                  m.points.push_back(p);
+                }
+              }
+            }
+            break;
+          }
+          case ShapeType::Plane:
+            break;  // planes on ragdoll links make no sense to draw
+        }
+      }
+    }
+  }
+
+  if (ground_.valid()) {
+    // The plane as a thin 20 m x 20 m slab whose top face is the plane.
+    for (const ShapeDef& s : world_->bodyShapes(ground_)) {
+      if (s.geometry.type != ShapeType::Plane) continue;
+      const double thickness = 0.02;
+      const Vec3 n = s.geometry.normal.normalized();
+      Transform slab(n * (s.geometry.offset - 0.5 * thickness),
+                     Quat::FromTwoVectors(Vec3::UnitZ(), n));
+      add("ground", 0, ground_, s.local * slab, Marker::CUBE, Vec3(20.0, 20.0, thickness),
+          color(0.55f, 0.55f, 0.55f, 0.6f));
+      break;
+    }
+  }
+}
+
+void SimNode::publishMarkers(const ros::Time& stamp) {
+  for (size_t k = 0; k < markers_.markers.size(); ++k) {
+    visualization_msgs::Marker& m = markers_.markers[k];
+    m.header.stamp = stamp;
+    toMsg(world_->bodyPose(marker_sources_[k].body) * marker_sources_[k].local, &m.pose);
+  }
+  if (markers_delete_all_) {
+    // A deleted ragdoll's markers go away: DELETEALL first, then the current set.
+    visualization_msgs::MarkerArray all;
+    visualization_msgs::Marker clear;
+    clear.header.frame_id = config_.world_frame;
+    clear.header.stamp = stamp;
+    clear.action = visualization_msgs::Marker::DELETEALL;
+    all.markers.push_back(clear);
+    all.markers.insert(all.markers.end(), markers_.markers.begin(), markers_.markers.end());
+    markers_pub_.publish(all);
+    markers_delete_all_ = false;
+    return;
+  }
+  markers_pub_.publish(markers_);
+}
+
+// ------------------------------------------------------------------------------------------
+// joint_states and link_states
+
+void SimNode::buildJointState(RagdollInstance& r) {
+  // Names as in the AxisTable (the URDF revolute joints, which ~target_pose takes too).
+  r.joint_state.name.clear();
+  for (const AxisInfo& a : r.axes.axes()) r.joint_state.name.push_back(a.name);
+  r.joint_sources.clear();
+  for (size_t j = 0; j < r.def.joints.size(); ++j) {
+    RagdollInstance::JointSource src;
+    src.id = r.ragdoll.joints[j];
+    src.ball = r.def.joints[j].kind == RagdollJointKind::Ball;
+    src.first = r.axes.first(static_cast<int>(j));
+    r.joint_sources.push_back(src);
+  }
+  r.joint_state.position.assign(r.joint_state.name.size(), 0.0);
+  r.joint_state.velocity.assign(r.joint_state.name.size(), 0.0);
+  r.prev_positions.assign(r.joint_state.name.size(), 0.0);
+  r.prev_joint_ns = -1;
+}
+
+void SimNode::publishJointStates(const ros::Time& stamp) {
+  for (RagdollInstance& r : ragdolls_) {
+    std::vector<double>& q = r.joint_state.position;
+    for (const RagdollInstance::JointSource& s : r.joint_sources) {
+      if (s.ball) {
+        const std::array<double, 3> a = world_->ballAngles(s.id);
+        q[static_cast<size_t>(s.first)] = a[0];
+        q[static_cast<size_t>(s.first) + 1] = a[1];
+        q[static_cast<size_t>(s.first) + 2] = a[2];
+      } else {
+        q[static_cast<size_t>(s.first)] = world_->hingeAngle(s.id);
+      }
+    }
+    // Velocities: finite differences over the sim time since the last message.
+    if (r.prev_joint_ns >= 0 && sim_ns_ > r.prev_joint_ns) {
+      const double h = static_cast<double>(sim_ns_ - r.prev_joint_ns) * 1e-9;
+      for (size_t i = 0; i < q.size(); ++i) r.joint_state.velocity[i] = (q[i] - r.prev_positions[i]) / h;
+    } else {
+      std::fill(r.joint_state.velocity.begin(), r.joint_state.velocity.end(), 0.0);
+    }
+    r.prev_positions = q;
+    r.prev_joint_ns = sim_ns_;
+    r.joint_state.header.stamp = stamp;
+    r.joint_states_pub.publish(r.joint_state);
+  }
+}
+
+void SimNode::buildLinkStates() {
+  link_states_ = ragdoll_sim::LinkStates();
+  link_states_.header.frame_id = config_.world_frame;
+  link_state_bodies_.clear();
+  for (const RagdollInstance& r : ragdolls_) {
+    for (size_t i = 0; i < r.ragdoll.bodies.size(); ++i) {
+      link_states_.ragdoll.push_back(r.name);
+      link_states_.link.push_back(r.def.links[i].name);
+      link_state_bodies_.push_back(r.ragdoll.bodies[i]);
+    }
+  }
+  link_states_.pose.resize(link_state_bodies_.size());
+  link_states_.twist.resize(link_state_bodies_.size());
+}
+
+void SimNode::publishLinkStates(const ros::Time& stamp) {
+  if (link_states_pub_.getNumSubscribers() == 0) return;
+  for (size_t i = 0; i < link_state_bodies_.size(); ++i) {
+    const BodyId b = link_state_bodies_[i];
+    const Transform pose = world_->bodyPose(b);
+    toMsg(pose, &link_states_.pose[i]);
+    toMsg(world_->pointVelocity(b, pose.p), &link_states_.twist[i].linear);
+    toMsg(world_->bodyState(b).angular_velocity, &link_states_.twist[i].angular);
+  }
+  link_states_.header.stamp = stamp;
+  link_states_pub_.publish(link_states_);
+}
+
+// ------------------------------------------------------------------------------------------
+// Clock, events, the publish cycle
+
+void SimNode::publishClock(bool force) {
+  if (!publish_clock_ || sim_ns_ == last_clock_ns_) return;
+  if (!force && config_.clock_rate > 0.0 && sim_ns_ < next_clock_ns_) return;
+  rosgraph_msgs::Clock c;
+  c.clock = simStamp();
+  clock_pub_.publish(c);
+  last_clock_ns_ = sim_ns_;
+  if (config_.clock_rate > 0.0)
+    next_clock_ns_ = sim_ns_ + std::max<int64_t>(1, std::llround(1e9 / config_.clock_rate));
+}
+
+void SimNode::publishBrokenJoints() {
+  for (JointId id : world_->takeBrokenJoints()) {
+    for (const RagdollInstance& r : ragdolls_) {
+      const auto it = std::find(r.ragdoll.joints.begin(), r.ragdoll.joints.end(), id);
+      if (it == r.ragdoll.joints.end()) continue;
+      const RagdollJointDef& j = r.def.joints[static_cast<size_t>(it - r.ragdoll.joints.begin())];
+      publishClock(/*force=*/true);
+      ragdoll_sim::JointBroken msg;
+      msg.header.stamp = simStamp();
+      msg.header.frame_id = config_.world_frame;
+      msg.ragdoll = r.name;
+      msg.joint = j.name;
+      msg.parent_link = r.def.links[static_cast<size_t>(j.parent)].name;
+      msg.child_link = r.def.links[static_cast<size_t>(j.child)].name;
+      msg.force = world_->jointForce(id);
+      broken_pub_.publish(msg);
+      ROS_INFO("joint '%s' of '%s' broke at sim time %.3f s: '%s' came off '%s' (anchor force "
+               "%.1f N, break_force %g N)",
+               j.name.c_str(), r.name.c_str(), simTime(), msg.child_link.c_str(),
+               msg.parent_link.c_str(), msg.force, j.spring.break_force);
+      break;
+    }
+  }
+}
+
+void SimNode::publish() {
+  publishClock(/*force=*/true);  // the stamps below are a published clock value
+  const ros::Time stamp = simStamp();
+  // TF and the states only when sim time advanced (or the set of ragdolls changed): a
+  // repeated stamp would make every tf2 listener complain (TF_REPEATED_DATA) while paused.
+  if (steps_ != last_publish_step_) {
+    publishTf(stamp);
+    publishJointStates(stamp);
+    publishLinkStates(stamp);
+    last_publish_step_ = steps_;
+  }
+  if (config_.publish_markers && markers_pub_.getNumSubscribers() > 0) publishMarkers(stamp);
+}
+
+}  // namespace node
+}  // namespace ragdoll_sim
