@@ -22,36 +22,8 @@ void toMsg(const Transform& t, geometry_msgs::Transform* m) {
   m->rotation.w = t.q.w();
 }
 
-void toMsg(const Transform& t, geometry_msgs::Pose* m) {
-  m->position.x = t.p.x();
-  m->position.y = t.p.y();
-  m->position.z = t.p.z();
-  m->orientation.x = t.q.x();
-  m->orientation.y = t.q.y();
-  m->orientation.z = t.q.z();
-  m->orientation.w = t.q.w();
-}
-
 Vec3 toVec(const geometry_msgs::Vector3& v) { return Vec3(v.x, v.y, v.z); }
 Vec3 toVec(const geometry_msgs::Point& v) { return Vec3(v.x, v.y, v.z); }
-
-std_msgs::ColorRGBA color(float r, float g, float b, float a = 1.0f) {
-  std_msgs::ColorRGBA c;
-  c.r = r;
-  c.g = g;
-  c.b = b;
-  c.a = a;
-  return c;
-}
-
-// A few distinguishable colours for the links.
-std_msgs::ColorRGBA linkColor(size_t i) {
-  static const float kPalette[][3] = {{0.90f, 0.60f, 0.30f}, {0.35f, 0.60f, 0.90f},
-                                      {0.45f, 0.80f, 0.45f}, {0.85f, 0.45f, 0.55f},
-                                      {0.75f, 0.70f, 0.35f}, {0.60f, 0.50f, 0.85f}};
-  const float* p = kPalette[i % (sizeof(kPalette) / sizeof(kPalette[0]))];
-  return color(p[0], p[1], p[2], 0.9f);
-}
 
 }  // namespace
 
@@ -124,7 +96,6 @@ bool SimNode::init(std::string* error) {
 
   // --- publishing buffers ---
   buildTfMessages();
-  buildMarkers();
   buildJointState();
 
   // --- ROS interface ---
@@ -134,6 +105,11 @@ bool SimNode::init(std::string* error) {
   balance_srv_ = pnh_.advertiseService("set_balance", &SimNode::onSetBalance, this);
   clear_targets_srv_ = pnh_.advertiseService("clear_targets", &SimNode::onClearTargets, this);
   markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 1, /*latch=*/true);
+  visualizer_ = std::make_unique<Visualizer>(config_.markers, config_.world_frame);
+  interaction_ = std::make_unique<Interaction>(
+      nh_, pnh_, InteractionSettings{config_.poke, config_.drag, config_.world_frame, limits_},
+      visualizer_.get());
+  sceneChanged();
   joints_pub_ = nh_.advertise<sensor_msgs::JointState>("joint_states", 10);
   impulse_sub_ = pnh_.subscribe("apply_impulse", 20, &SimNode::onImpulse, this);
   force_sub_ = pnh_.subscribe("apply_force", 20, &SimNode::onForce, this);
@@ -182,7 +158,17 @@ bool SimNode::buildWorld(std::string* error) {
     return false;
   }
   setBalance(balance_on_);
+  sceneChanged();
   return true;
+}
+
+std::vector<RagdollView> SimNode::ragdollViews() const {
+  return {RagdollView{def_.name, "", &def_, &ragdoll_}};
+}
+
+void SimNode::sceneChanged() {
+  if (visualizer_) visualizer_->setScene(*world_, ragdollViews(), ground_);
+  if (interaction_) interaction_->setScene(world_.get(), ragdollViews());
 }
 
 void SimNode::setBalance(bool on) {
@@ -255,6 +241,7 @@ ros::Time SimNode::simStamp() const {
 double SimNode::simTime() const { return static_cast<double>(steps_ * dt_ns_) * 1e-9; }
 
 void SimNode::stepOnce() {
+  interaction_->beforeStep(simTime());
   for (const ActiveForce& f : forces_) {
     BodyId body = ragdoll_.bodies[f.link];
     world_->applyForce(body, f.force, world_->bodyPose(body).apply(f.local_point));
@@ -377,101 +364,6 @@ void SimNode::publishTf(const ros::Time& stamp) {
   tf_broadcaster_->sendTransform(tf_msgs_);
 }
 
-void SimNode::buildMarkers() {
-  markers_.markers.clear();
-  marker_sources_.clear();
-  auto add = [&](const std::string& ns, int id, BodyId body, const Transform& local, int type,
-                 const Vec3& scale, const std_msgs::ColorRGBA& c) -> visualization_msgs::Marker& {
-    visualization_msgs::Marker m;
-    m.header.frame_id = config_.world_frame;
-    m.ns = ns;
-    m.id = id;
-    m.type = type;
-    m.action = visualization_msgs::Marker::ADD;
-    m.scale.x = scale.x();
-    m.scale.y = scale.y();
-    m.scale.z = scale.z();
-    m.color = c;
-    m.pose.orientation.w = 1.0;
-    markers_.markers.push_back(m);
-    marker_sources_.push_back({body, local});
-    return markers_.markers.back();
-  };
-
-  using visualization_msgs::Marker;
-  for (size_t i = 0; i < ragdoll_.bodies.size(); ++i) {
-    const BodyId body = ragdoll_.bodies[i];
-    const std::string& ns = def_.links[i].name;
-    const std_msgs::ColorRGBA c = linkColor(i);
-    int id = 0;
-    for (const ShapeDef& s : world_->bodyShapes(body)) {
-      const Geometry& g = s.geometry;
-      switch (g.type) {
-        case ShapeType::Sphere:
-          add(ns, id++, body, s.local, Marker::SPHERE, Vec3::Constant(2 * g.radius), c);
-          break;
-        case ShapeType::Box:
-          add(ns, id++, body, s.local, Marker::CUBE, 2 * g.half_extents, c);
-          break;
-        case ShapeType::Cylinder:
-          add(ns, id++, body, s.local, Marker::CYLINDER,
-              Vec3(2 * g.radius, 2 * g.radius, 2 * g.half_height), c);
-          break;
-        case ShapeType::Capsule: {
-          add(ns, id++, body, s.local, Marker::CYLINDER,
-              Vec3(2 * g.radius, 2 * g.radius, 2 * g.half_height), c);
-          for (double sign : {1.0, -1.0}) {
-            Transform cap = s.local * Transform(Vec3(0, 0, sign * g.half_height), Quat::Identity());
-            add(ns, id++, body, cap, Marker::SPHERE, Vec3::Constant(2 * g.radius), c);
-          }
-          break;
-        }
-        case ShapeType::ConvexHull: {
-          if (!g.hull) break;
-          Marker& m = add(ns, id++, body, s.local, Marker::TRIANGLE_LIST, Vec3::Ones(), c);
-          for (const HullData::Face& f : g.hull->faces) {
-            for (size_t k = 1; k + 1 < f.verts.size(); ++k) {
-              for (int v : {f.verts[0], f.verts[k], f.verts[k + 1]}) {
-                geometry_msgs::Point p;
-                p.x = g.hull->vertices[v].x();
-                p.y = g.hull->vertices[v].y();
-                p.z = g.hull->vertices[v].z();
-                m.points.push_back(p);
-              }
-            }
-          }
-          break;
-        }
-        case ShapeType::Plane:
-          break;  // planes on ragdoll links make no sense to draw
-      }
-    }
-  }
-
-  if (ground_.valid()) {
-    // The plane as a thin 20 m x 20 m slab whose top face is the plane.
-    for (const ShapeDef& s : world_->bodyShapes(ground_)) {
-      if (s.geometry.type != ShapeType::Plane) continue;
-      const double thickness = 0.02;
-      const Vec3 n = s.geometry.normal.normalized();
-      Transform slab(n * (s.geometry.offset - 0.5 * thickness),
-                     Quat::FromTwoVectors(Vec3::UnitZ(), n));
-      add("ground", 0, ground_, s.local * slab, Marker::CUBE, Vec3(20.0, 20.0, thickness),
-          color(0.55f, 0.55f, 0.55f, 0.6f));
-      break;
-    }
-  }
-}
-
-void SimNode::publishMarkers(const ros::Time& stamp) {
-  for (size_t k = 0; k < markers_.markers.size(); ++k) {
-    visualization_msgs::Marker& m = markers_.markers[k];
-    m.header.stamp = stamp;
-    toMsg(world_->bodyPose(marker_sources_[k].body) * marker_sources_[k].local, &m.pose);
-  }
-  markers_pub_.publish(markers_);
-}
-
 void SimNode::buildJointState() {
   // Names as in axes_ (the names ~target_pose takes).
   joint_state_.name.clear();
@@ -523,7 +415,9 @@ void SimNode::publish() {
     publishJointState(stamp);
     last_tf_step_ = steps_;
   }
-  if (config_.publish_markers && markers_pub_.getNumSubscribers() > 0) publishMarkers(stamp);
+  interaction_->update(simTime());
+  if (config_.publish_markers && markers_pub_.getNumSubscribers() > 0)
+    markers_pub_.publish(visualizer_->update(*world_, stamp, simTime()));
 }
 
 // ------------------------------------------------------------------------------------------
@@ -543,6 +437,7 @@ void SimNode::onImpulse(const ragdoll_sim::ApplyImpulse::ConstPtr& msg) {
   }
   WorldImpulse w = toWorldImpulse(cmd, check, linkPose(check.link));
   world_->applyLinearImpulse(ragdoll_.bodies[w.link], w.impulse, w.point);
+  visualizer_->addImpulse(*world_, ragdoll_.bodies[w.link], w.point, w.impulse, simTime());
   ROS_DEBUG("impulse (%g, %g, %g) N*s on '%s' at (%g, %g, %g)", w.impulse.x(), w.impulse.y(),
             w.impulse.z(), cmd.link.c_str(), w.point.x(), w.point.y(), w.point.z());
 }
@@ -567,6 +462,9 @@ void SimNode::onForce(const ragdoll_sim::ApplyForce::ConstPtr& msg) {
     return;
   }
   forces_.push_back(toActiveForce(cmd, check, linkPose(check.link), dt_));
+  const ActiveForce& f = forces_.back();
+  visualizer_->addForce(*world_, ragdoll_.bodies[f.link], linkPose(f.link).apply(f.local_point),
+                        f.force, simTime(), f.steps_left < 0 ? -1.0 : f.steps_left * dt_);
   ROS_DEBUG("force on '%s' for %lld steps", cmd.link.c_str(),
             static_cast<long long>(forces_.back().steps_left));
 }
@@ -642,6 +540,7 @@ bool SimNode::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
 bool SimNode::onClearForces(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   ROS_INFO("cleared %zu active force(s)", forces_.size());
   forces_.clear();
+  visualizer_->endForces(simTime());
   return true;
 }
 

@@ -16,6 +16,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "commands.hpp"
+#include "interaction.hpp"
 #include "joint_control.hpp"
 #include "node_config.hpp"
 #include "ragdoll_sim/ApplyForce.h"
@@ -25,6 +26,7 @@
 #include "ragdoll_sim/balance.hpp"
 #include "ragdoll_sim/ragdoll.hpp"
 #include "ragdoll_sim/world.hpp"
+#include "visualization.hpp"
 
 namespace ragdoll_sim {
 namespace node {
@@ -55,14 +57,14 @@ class SimNode {
   // Puts the motor of one axis in the world: its target, else the balance hold, else passive.
   void applyAxisMotor(int axis);
   void publishBrokenJoints();      // ~joint_broken + INFO for joints that broke in the last step
+  std::vector<RagdollView> ragdollViews() const;
+  void sceneChanged();             // markers and rviz interaction follow a new world
 
   // --- publishing ---
   void buildTfMessages();
-  void buildMarkers();
   void buildJointState();
   void publish();                  // TF + joint_states when sim time advanced; markers always
   void publishTf(const ros::Time& stamp);
-  void publishMarkers(const ros::Time& stamp);
   void publishJointState(const ros::Time& stamp);
 
   // --- ROS callbacks ---
@@ -115,12 +117,8 @@ class SimNode {
   std::vector<int> ball_joints_;         // indices of ball joints with chain links
   std::vector<int> ball_tf_offset_;      // first tf_msgs_ slot of each ball joint's chain links
 
-  struct MarkerSource {
-    BodyId body;
-    Transform local;   // marker frame in the body frame
-  };
-  visualization_msgs::MarkerArray markers_;
-  std::vector<MarkerSource> marker_sources_;
+  std::unique_ptr<Visualizer> visualizer_;     // ~markers
+  std::unique_ptr<Interaction> interaction_;   // /clicked_point pokes, ~drag marker
 
   struct JointSource {
     JointId id;
