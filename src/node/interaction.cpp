@@ -64,14 +64,15 @@ void Interaction::setScene(World* world, const std::vector<RagdollView>& ragdoll
     Drag d;
     d.marker = view.name;
     d.ragdoll = static_cast<int>(r);
+    const int fallback = dragLink(*view.def, "");
+    if (fallback < 0) continue;  // a model without links
     d.link = dragLink(*view.def, settings_.drag.link);
     if (d.link < 0) {
-      ROS_WARN("~drag/link '%s' is not a link of '%s'; dragging its %s instead",
+      ROS_WARN("~drag/link '%s' is not a link of '%s'; dragging its '%s' instead",
                settings_.drag.link.c_str(), view.name.c_str(),
-               view.def->links[static_cast<size_t>(dragLink(*view.def, ""))].name.c_str());
-      d.link = dragLink(*view.def, "");
+               view.def->links[static_cast<size_t>(fallback)].name.c_str());
+      d.link = fallback;
     }
-    if (d.link < 0) continue;
     drags_.push_back(d);
 
     // Context menu: "drag link" > every link of the model.

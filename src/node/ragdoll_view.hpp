@@ -11,7 +11,8 @@ namespace node {
 
 struct RagdollView {
   std::string name;          // unique per node: marker namespace, interactive marker name
-  std::string tf_prefix;     // prepended to link names in TF ("" = none)
+  std::string tf_prefix;     // prepended to link names in TF ("" = none); markers and picks
+                             // work in the world frame and do not need it
   const RagdollDef* def = nullptr;
   const Ragdoll* ragdoll = nullptr;
 };
