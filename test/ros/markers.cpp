@@ -24,6 +24,9 @@ using visualization_msgs::Marker;
 namespace {
 
 const double kFade = 0.5;  // ~markers/arrow_fade in markers.test
+// Sim time between the messages that bracket an event: a publish period, or a late loop's
+// catch-up (~max_catchup = 0.1 s of physics) before it publishes.
+const double kSlack = 0.15;
 
 struct Fixture {
   ros::NodeHandle nh;
@@ -145,8 +148,7 @@ TEST(Markers, C_ImpulseArrowFadesAndIsDeleted) {
 
   // Fading: some message shows it more transparent, then one DELETE of its id, after which
   // it is gone. The sim time (stamps) from the first arrow to the DELETE is the fade time (the
-  // impulse ends when applied) plus at most the publish period and the time the command took
-  // to arrive; nothing shorter than the fade.
+  // impulse ends when applied), give or take the slack between messages.
   const int id = arrow.id;
   MarkerLog::Array fading, deleted, later;
   EXPECT_TRUE(fx->markers->waitFor([&](const MarkerLog::Array& m) {
@@ -158,8 +160,8 @@ TEST(Markers, C_ImpulseArrowFadesAndIsDeleted) {
     return x && x->action == Marker::DELETE; }, &deleted, before, 30.0))
       << "the arrow is never deleted";
   const double life = (stampOf(deleted) - stampOf(first)).toSec();
-  EXPECT_GE(life, kFade - 0.05) << "deleted after " << life << " s of sim time";
-  EXPECT_LE(life, kFade + 0.25) << "deleted after " << life << " s of sim time";
+  EXPECT_GE(life, kFade - kSlack) << "deleted after " << life << " s of sim time";
+  EXPECT_LE(life, kFade + kSlack) << "deleted after " << life << " s of sim time";
   const size_t after_delete = fx->markers->count();
   ASSERT_TRUE(fx->markers->waitFor([](const MarkerLog::Array&) { return true; }, &later, after_delete));
   EXPECT_EQ(arrowOf(later, id), nullptr) << "the arrow is still sent after its DELETE";
@@ -179,22 +181,21 @@ TEST(Markers, D_ForceArrowOpaqueForItsDurationThenFades) {
                                    &first, before, 20.0))
       << "no arrow after a force";
   const int id = MarkerLog::inNs(first, "arrows")[0]->id;
-  // Opaque until the force ends (1 s of sim time after it started, at most one publish
-  // period and the command's arrival before `first`).
+  // Opaque until the force ends, 1 s of sim time after it started (give or take the slack).
   MarkerLog::Array faded;
   ASSERT_TRUE(fx->markers->waitFor([&](const MarkerLog::Array& m) {
     const Marker* x = arrowOf(m, id);
     return !x || x->action == Marker::DELETE || x->color.a < 0.99f; }, &faded, before, 30.0));
   const double opaque = (stampOf(faded) - stampOf(first)).toSec();
-  EXPECT_GE(opaque, 1.0 - 0.1) << "the force arrow faded after " << opaque << " s of sim time";
+  EXPECT_GE(opaque, 1.0 - kSlack) << "the force arrow faded after " << opaque << " s of sim time";
   MarkerLog::Array deleted;
   ASSERT_TRUE(fx->markers->waitFor([&](const MarkerLog::Array& m) {
     const Marker* x = arrowOf(m, id);
     return x && x->action == Marker::DELETE; }, &deleted, before, 30.0))
       << "the force arrow is never deleted";
   const double life = (stampOf(deleted) - stampOf(first)).toSec();
-  EXPECT_GE(life, 1.0 + kFade - 0.1);
-  EXPECT_LE(life, 1.0 + kFade + 0.3);
+  EXPECT_GE(life, 1.0 + kFade - kSlack);
+  EXPECT_LE(life, 1.0 + kFade + kSlack);
 }
 
 int main(int argc, char** argv) {
