@@ -2,8 +2,8 @@
 // handle from <node>/drag/update_full and sends InteractiveMarkerFeedback to <node>/drag/feedback.
 // A: the handle floats ~drag/handle_height above the torso's centre of mass; B: dragged 0.5 m
 // sideways, the torso follows it (its centre of mass comes within 0.1 m of the target);
-// C: released, the pull stops (no gravity: the momentum stays constant) and the handle goes
-// back over the torso; D: feedback in another frame or with NaN only warns; E: the handle's
+// C: released, the pull stops (no gravity: the momentum stays constant) and the handle follows
+// the torso again; D: feedback in another frame or with NaN only warns; E: the handle's
 // context menu moves it to another link.
 #include <gtest/gtest.h>
 
@@ -12,6 +12,7 @@
 #include <memory>
 #include <mutex>
 
+#include <ragdoll_sim/ApplyImpulse.h>
 #include <visualization_msgs/InteractiveMarkerFeedback.h>
 #include <visualization_msgs/InteractiveMarkerInit.h>
 #include <visualization_msgs/InteractiveMarkerUpdate.h>
@@ -32,7 +33,7 @@ struct Fixture {
   std::vector<LinkMass> links;
   const LinkMass* torso = nullptr;
   std::unique_ptr<TfSnapshots> tf;
-  ros::Publisher feedback_pub;
+  ros::Publisher feedback_pub, impulse_pub;
   ros::Subscriber init_sub, update_sub;
   std::unique_ptr<NodeWarnings> warnings;
   std::unique_ptr<MarkerLog> markers;
@@ -48,6 +49,7 @@ struct Fixture {
       if (l.name == "torso") torso = &l;
     tf = std::make_unique<TfSnapshots>(nh, linkNames(links));
     feedback_pub = nh.advertise<InteractiveMarkerFeedback>("/ragdoll_sim/drag/feedback", 10);
+    impulse_pub = nh.advertise<ragdoll_sim::ApplyImpulse>("/ragdoll_sim/apply_impulse", 10);
     init_sub = nh.subscribe("/ragdoll_sim/drag/update_full", 5, &Fixture::onInit, this);
     update_sub = nh.subscribe("/ragdoll_sim/drag/update", 50, &Fixture::onUpdate, this);
     warnings = std::make_unique<NodeWarnings>(nh, "/ragdoll_sim");
@@ -83,6 +85,26 @@ struct Fixture {
           if (name) *name = marker;
           return true;
         }
+      }
+      ros::WallDuration(0.02).sleep();
+    }
+    return false;
+  }
+
+  // Waits until the last handle pose is within `tol` of `link`'s centre of mass + the handle
+  // height (latest TF); *off is the last distance seen.
+  bool handleOver(const LinkMass& link, double tol, double* off, double timeout = 10.0) {
+    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
+    while (ros::ok() && ros::WallTime::now() < deadline) {
+      const Snapshot s = tf->latest();
+      Vec3 h;
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        h = handle;
+      }
+      if (s.valid() && h.allFinite()) {
+        *off = (h - (comOf(s, link) + Vec3(0, 0, kHandleHeight))).norm();
+        if (*off < tol) return true;
       }
       ros::WallDuration(0.02).sleep();
     }
@@ -169,22 +191,40 @@ TEST(Drag, B_DraggedTheTorsoFollows) {
 }
 
 TEST(Drag, C_ReleasedThePullStops) {
-  const ros::WallTime sent = ros::WallTime::now();
   fx->send(InteractiveMarkerFeedback::MOUSE_UP, g_target + Vec3(0, 0, kHandleHeight));
-  // No force after the release: with gravity off, the momentum stays what it was.
+  // Push the ragdoll away from where it was dragged to (a spring still holding it would pull
+  // it back).
+  const Snapshot now = fx->tf->next();
+  ASSERT_TRUE(now.valid());
+  ragdoll_sim::ApplyImpulse push;
+  push.link = "pelvis";
+  push.frame = "world";
+  push.point.x = now.position("pelvis").x();
+  push.point.y = now.position("pelvis").y();
+  push.point.z = now.position("pelvis").z();
+  push.impulse.x = 20.0;  // about 0.3 m/s for the whole ragdoll
+  ASSERT_TRUE(waitConnected(fx->impulse_pub));
+  fx->impulse_pub.publish(push);
+  Snapshot away;
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(30.0);
+  while (ros::ok() && ros::WallTime::now() < deadline) {
+    away = fx->tf->next();
+    if (away.valid() && (comOf(away, *fx->torso) - g_target).norm() > 0.2) break;
+  }
+  ASSERT_TRUE(away.valid());
+  ASSERT_GT((comOf(away, *fx->torso) - g_target).norm(), 0.2) << "the push did not move the ragdoll";
+
+  // No force: with gravity off, the momentum stays what the push made it.
   Vec3 p1, p2;
-  ASSERT_TRUE(fx->measure(&p1, sent + ros::WallDuration(0.3)));
-  Snapshot s = fx->tf->latest();
-  ASSERT_TRUE(fx->measure(&p2, s.received + ros::WallDuration(0.5)));
+  ASSERT_TRUE(fx->measure(&p1, away.received));
+  ASSERT_TRUE(fx->measure(&p2, fx->tf->latest().received + ros::WallDuration(0.3)));
   EXPECT_LT((p2 - p1).norm(), 0.1) << "momentum still changes after the release: " << str(p1)
                                    << " -> " << str(p2);
-  // The handle goes back over the torso (the server publishes its new pose).
-  Vec3 handle;
-  ASSERT_TRUE(fx->handleAfter(ros::WallTime::now() + ros::WallDuration(0.3), &handle, nullptr));
-  Snapshot now = fx->tf->next();
-  ASSERT_TRUE(now.valid());
-  EXPECT_LT((handle - (comOf(now, *fx->torso) + Vec3(0, 0, kHandleHeight))).norm(), 0.1)
-      << "the handle does not follow the torso after the release";
+  EXPECT_GT(p1.x(), 10.0) << "momentum after the 20 N*s push: " << str(p1);
+  // The handle follows the torso again.
+  double off = 0.0;
+  EXPECT_TRUE(fx->handleOver(*fx->torso, 0.05, &off))
+      << "the handle does not follow the torso after the release (" << off << " m off)";
 }
 
 TEST(Drag, D_BadFeedbackOnlyWarns) {
@@ -216,15 +256,10 @@ TEST(Drag, E_MenuPicksAnotherLink) {
   for (const LinkMass& l : fx->links)
     if (l.name == "pelvis") pelvis = &l;
   ASSERT_NE(pelvis, nullptr);
-  const ros::WallTime sent = ros::WallTime::now();
   fx->send(InteractiveMarkerFeedback::MENU_SELECT, Vec3::Zero(), "world", entry);
-  // The handle now floats over the pelvis.
-  Vec3 handle;
-  ASSERT_TRUE(fx->handleAfter(sent + ros::WallDuration(0.5), &handle, nullptr));
-  Snapshot s = fx->tf->next();
-  ASSERT_TRUE(s.valid());
-  EXPECT_LT((handle - (comOf(s, *pelvis) + Vec3(0, 0, kHandleHeight))).norm(), 0.1)
-      << "the handle is not over the pelvis after choosing it in the menu";
+  double off = 0.0;
+  EXPECT_TRUE(fx->handleOver(*pelvis, 0.05, &off))
+      << "the handle is not over the pelvis after choosing it in the menu (" << off << " m off)";
 }
 
 int main(int argc, char** argv) {
