@@ -9,6 +9,7 @@ export PATH := /usr/bin:$(PATH)
 DEBS := build-essential cmake googletest libgtest-dev \
         ros-base-dev libroscpp-dev libtf2-ros-dev libvisualization-msgs-dev libgeometry-msgs-dev \
         libsensor-msgs-dev libstd-srvs-dev ros-message-generation liburdfdom-dev \
+        libinteractive-markers-dev \
         libconsole-bridge-dev libeigen3-dev catkin python3-rostest librostest-dev ros-core \
         python3-rostopic rviz xvfb imagemagick \
         python3-geometry-msgs python3-std-srvs python3-sensor-msgs python3-tf2-msgs \

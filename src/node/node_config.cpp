@@ -184,6 +184,25 @@ bool loadJointSettings(const ros::NodeHandle& pnh, NodeConfig* c, std::string* e
   return true;
 }
 
+// ~markers, ~poke, ~drag (rviz_settings.hpp).
+bool loadRvizSettings(const ros::NodeHandle& pnh, NodeConfig* c, std::string* error) {
+  return read(pnh, "markers/contacts", "a bool", &c->markers.contacts, error) &&
+         read(pnh, "markers/arrow_fade", "a number (s)", &c->markers.arrow_fade, error) &&
+         read(pnh, "markers/impulse_scale", "a number (m/(N*s))", &c->markers.impulse_scale, error) &&
+         read(pnh, "markers/force_scale", "a number (m/N)", &c->markers.force_scale, error) &&
+         read(pnh, "markers/max_arrow", "a number (m)", &c->markers.max_arrow, error) &&
+         read(pnh, "markers/max_arrows", "an integer", &c->markers.max_arrows, error) &&
+         read(pnh, "poke/enabled", "a bool", &c->poke.enabled, error) &&
+         read(pnh, "poke/impulse", "a number (N*s)", &c->poke.impulse, error) &&
+         read(pnh, "poke/max_distance", "a number (m)", &c->poke.max_distance, error) &&
+         read(pnh, "drag/enabled", "a bool", &c->drag.enabled, error) &&
+         read(pnh, "drag/link", "a string", &c->drag.link, error) &&
+         read(pnh, "drag/stiffness", "a number (N/m)", &c->drag.stiffness, error) &&
+         read(pnh, "drag/damping", "a number (N*s/m)", &c->drag.damping, error) &&
+         read(pnh, "drag/max_force", "a number (N)", &c->drag.max_force, error) &&
+         read(pnh, "drag/handle_height", "a number (m)", &c->drag.handle_height, error);
+}
+
 // The named surface of the table, or the fallback when the name is empty.
 bool surface(const MaterialTable& t, const std::string& name, const char* param,
              const Material& fallback, Material* out, std::string* error) {
@@ -242,7 +261,8 @@ bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* c, std::string* erro
             read(pnh, "balance/kd", "a number (rad s/m)", &c->balance.kd, error) &&
             read(pnh, "balance/ankles", "a list of joint names", &c->balance.ankles, error) &&
             read(pnh, "balance/feet", "a list of link names", &c->balance.feet, error) &&
-            loadMaterials(pnh, &c->materials, error) && loadJointSettings(pnh, c, error);
+            loadMaterials(pnh, &c->materials, error) && loadJointSettings(pnh, c, error) &&
+            loadRvizSettings(pnh, c, error);
   if (!ok) return false;
   if (gravity.size() != 3) {
     *error = "parameter " + pnh.resolveName("gravity") + " must be a list of 3 numbers, got " +
@@ -304,7 +324,9 @@ std::string validateNodeConfig(const NodeConfig& c) {
   if (!(e = validateMotorGains(c.motor, "parameter ~motor")).empty()) return e;
   if (!std::isfinite(c.balance.kp) || !std::isfinite(c.balance.kd))
     return "parameters ~balance/kp and ~balance/kd must be finite";
-  return "";
+  if (!(e = validateMarkerSettings(c.markers)).empty()) return e;
+  if (!(e = validatePokeSettings(c.poke)).empty()) return e;
+  return validateDragSettings(c.drag);
 }
 
 }  // namespace node

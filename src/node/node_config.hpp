@@ -9,6 +9,7 @@
 #include "ragdoll_sim/material.hpp"
 #include "ragdoll_sim/math.hpp"
 #include "ragdoll_sim/shape.hpp"
+#include "rviz_settings.hpp"
 
 namespace ros {
 class NodeHandle;
@@ -61,6 +62,9 @@ struct NodeConfig {
   JointSettings joint_defaults;        // ~joint_defaults (config/joints.yaml)
   std::vector<std::pair<std::string, JointSettings>> joints;  // ~joints: name -> settings
   BalanceConfig balance;               // ~balance/...
+  MarkerSettings markers;              // ~markers/... (publish_markers switches them all)
+  PokeSettings poke;                   // ~poke/...
+  DragSettings drag;                   // ~drag/...
 
   Transform spawnTransform() const;
 };

@@ -116,6 +116,8 @@ bool SimNode::applyImpulse(RagdollInstance& r, const ImpulseCommand& cmd) {
   }
   WorldImpulse w = toWorldImpulse(cmd, check, pose(check.link));
   world_->applyLinearImpulse(r.ragdoll.bodies[static_cast<size_t>(w.link)], w.impulse, w.point);
+  visualizer_->addImpulse(*world_, r.ragdoll.bodies[static_cast<size_t>(w.link)], w.point,
+                          w.impulse, simTime());
   ROS_DEBUG("impulse (%g, %g, %g) N*s on '%s/%s' at (%g, %g, %g), sim time %.6f s",
             w.impulse.x(), w.impulse.y(), w.impulse.z(), r.name.c_str(), cmd.link.c_str(),
             w.point.x(), w.point.y(), w.point.z(), simTime());
@@ -141,6 +143,10 @@ bool SimNode::applyForce(RagdollInstance& r, const ForceCommand& cmd) {
     return false;
   }
   r.forces.push_back(toActiveForce(cmd, check, pose(check.link), dt_));
+  const ActiveForce& f = r.forces.back();
+  visualizer_->addForce(*world_, r.ragdoll.bodies[static_cast<size_t>(f.link)],
+                        pose(f.link).apply(f.local_point), f.force, simTime(),
+                        f.steps_left < 0 ? -1.0 : static_cast<double>(f.steps_left) * dt_);
   ROS_DEBUG("force on '%s/%s' for %lld steps from sim time %.6f s", r.name.c_str(),
             cmd.link.c_str(), static_cast<long long>(r.forces.back().steps_left), simTime());
   return true;

@@ -80,6 +80,10 @@ bool SimNode::init(std::string* error) {
   broken_pub_ = pnh_.advertise<ragdoll_sim::JointBroken>("joint_broken", 20);
   markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 1, /*latch=*/true);
   link_states_pub_ = pnh_.advertise<ragdoll_sim::LinkStates>("link_states", 10);
+  visualizer_ = std::make_unique<Visualizer>(config_.markers, config_.world_frame);
+  interaction_ = std::make_unique<Interaction>(
+      nh_, pnh_, InteractionSettings{config_.poke, config_.drag, config_.world_frame, limits_},
+      visualizer_.get());
   structureChanged();
   target_sub_ = pnh_.subscribe("target_pose", 10, &SimNode::onTargetPose, this);
   impulse_sub_ = pnh_.subscribe("apply_impulse", 20, &SimNode::onImpulse, this);
@@ -133,6 +137,7 @@ void SimNode::restartPacing() {
 
 void SimNode::stepOnce() {
   applyDueCommands();
+  if (interaction_) interaction_->beforeStep(simTime());
   for (RagdollInstance& r : ragdolls_) {
     for (const ActiveForce& f : r.forces) {
       BodyId body = r.ragdoll.bodies[static_cast<size_t>(f.link)];

@@ -25,6 +25,7 @@
 
 #include "command_queue.hpp"
 #include "commands.hpp"
+#include "interaction.hpp"
 #include "joint_control.hpp"
 #include "node_config.hpp"
 #include "pacing.hpp"
@@ -40,6 +41,7 @@
 #include "ragdoll_sim/SpawnRagdoll.h"
 #include "ragdoll_sim/Step.h"
 #include "ragdoll_sim/world.hpp"
+#include "visualization.hpp"
 
 namespace ragdoll_sim {
 namespace node {
@@ -87,6 +89,7 @@ class SimNode {
   // Index of the ragdoll `name` ("" = the first), or -1.
   int findRagdoll(const std::string& name) const;
   void structureChanged();  // markers and link_states rebuilt after a spawn / delete / rebuild
+  std::vector<RagdollView> ragdollViews() const;  // for the Visualizer and the Interaction
 
   // --- commands (sim_commands.cpp) ---
   void onImpulse(const ragdoll_sim::ApplyImpulse::ConstPtr& msg);
@@ -122,7 +125,6 @@ class SimNode {
   // --- publishing (sim_publish.cpp) ---
   void buildTf(RagdollInstance& r);
   void buildJointState(RagdollInstance& r);
-  void buildMarkers();
   void buildLinkStates();
   void publish();  // TF, joint_states, link_states when sim time advanced; markers always
   void publishTf(const ros::Time& stamp);
@@ -161,12 +163,8 @@ class SimNode {
   // Publishing buffers.
   std::unique_ptr<tf2_ros::TransformBroadcaster> tf_broadcaster_;
   std::vector<geometry_msgs::TransformStamped> tf_all_;  // all ragdolls' TF, one message
-  struct MarkerSource {
-    BodyId body;
-    Transform local;  // marker frame in the body frame
-  };
-  visualization_msgs::MarkerArray markers_;
-  std::vector<MarkerSource> marker_sources_;
+  std::unique_ptr<Visualizer> visualizer_;     // ~markers: shapes, contacts, arrows
+  std::unique_ptr<Interaction> interaction_;   // /clicked_point pokes, ~drag marker
   bool markers_delete_all_ = false;  // the next marker message first clears the old ones
   ragdoll_sim::LinkStates link_states_;
   std::vector<BodyId> link_state_bodies_;

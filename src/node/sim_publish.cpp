@@ -38,26 +38,6 @@ void toMsg(const Vec3& v, geometry_msgs::Vector3* m) {
   m->z = v.z();
 }
 
-std_msgs::ColorRGBA color(float r, float g, float b, float a = 1.0f) {
-  std_msgs::ColorRGBA c;
-  c.r = r;
-  c.g = g;
-  c.b = b;
-  c.a = a;
-  return c;
-}
-
-// A few distinguishable colours: link i of the ragdoll with colour index k.
-std_msgs::ColorRGBA linkColor(int ragdoll, size_t link) {
-  static const float kPalette[][3] = {{0.90f, 0.60f, 0.30f}, {0.35f, 0.60f, 0.90f},
-                                      {0.45f, 0.80f, 0.45f}, {0.85f, 0.45f, 0.55f},
-                                      {0.75f, 0.70f, 0.35f}, {0.60f, 0.50f, 0.85f}};
-  const size_t n = sizeof(kPalette) / sizeof(kPalette[0]);
-  const float* p = kPalette[static_cast<size_t>(ragdoll) % n];
-  const float shade = (link % 2) ? 0.8f : 1.0f;  // neighbouring links a little apart
-  return color(p[0] * shade, p[1] * shade, p[2] * shade, 0.9f);
-}
-
 }  // namespace
 
 // ------------------------------------------------------------------------------------------
@@ -112,100 +92,8 @@ void SimNode::publishTf(const ros::Time& stamp) {
 // ------------------------------------------------------------------------------------------
 // Markers
 
-void SimNode::buildMarkers() {
-  markers_.markers.clear();
-  marker_sources_.clear();
-  auto add = [&](const std::string& ns, int id, BodyId body, const Transform& local, int type,
-                 const Vec3& scale, const std_msgs::ColorRGBA& c) -> visualization_msgs::Marker& {
-    visualization_msgs::Marker m;
-    m.header.frame_id = config_.world_frame;
-    m.ns = ns;
-    m.id = id;
-    m.type = type;
-    m.action = visualization_msgs::Marker::ADD;
-    m.scale.x = scale.x();
-    m.scale.y = scale.y();
-    m.scale.z = scale.z();
-    m.color = c;
-    m.pose.orientation.w = 1.0;
-    markers_.markers.push_back(m);
-    marker_sources_.push_back({body, local});
-    return markers_.markers.back();
-  };
-
-  using visualization_msgs::Marker;
-  for (const RagdollInstance& r : ragdolls_) {
-    for (size_t i = 0; i < r.ragdoll.bodies.size(); ++i) {
-      const BodyId body = r.ragdoll.bodies[i];
-      const std::string ns = r.frame(r.def.links[i].name);
-      const std_msgs::ColorRGBA c = linkColor(r.color_index, i);
-      int id = 0;
-      for (const ShapeDef& s : world_->bodyShapes(body)) {
-        const Geometry& g = s.geometry;
-        switch (g.type) {
-          case ShapeType::Sphere:
-            add(ns, id++, body, s.local, Marker::SPHERE, Vec3::Constant(2 * g.radius), c);
-            break;
-          case ShapeType::Box:
-            add(ns, id++, body, s.local, Marker::CUBE, 2 * g.half_extents, c);
-            break;
-          case ShapeType::Cylinder:
-            add(ns, id++, body, s.local, Marker::CYLINDER,
-                Vec3(2 * g.radius, 2 * g.radius, 2 * g.half_height), c);
-            break;
-          case ShapeType::Capsule: {
-            add(ns, id++, body, s.local, Marker::CYLINDER,
-                Vec3(2 * g.radius, 2 * g.radius, 2 * g.half_height), c);
-            for (double sign : {1.0, -1.0}) {
-              Transform cap = s.local * Transform(Vec3(0, 0, sign * g.half_height), Quat::Identity());
-              add(ns, id++, body, cap, Marker::SPHERE, Vec3::Constant(2 * g.radius), c);
-            }
-            break;
-          }
-          case ShapeType::ConvexHull: {
-            if (!g.hull) break;
-            Marker& m = add(ns, id++, body, s.local, Marker::TRIANGLE_LIST, Vec3::Ones(), c);
-            for (const HullData::Face& f : g.hull->faces) {
-              for (size_t k = 1; k + 1 < f.verts.size(); ++k) {
-                for (int v : {f.verts[0], f.verts[k], f.verts[k + 1]}) {
-                  geometry_msgs::Point p;
-                  p.x = g.hull->vertices[v].x();
-                  p.y = g.hull->vertices[v].y();
-                  p.z = g.hull->vertices[v].z();
-                  m.points.push_back(p);
-                }
-              }
-            }
-            break;
-          }
-          case ShapeType::Plane:
-            break;  // planes on ragdoll links make no sense to draw
-        }
-      }
-    }
-  }
-
-  if (ground_.valid()) {
-    // The plane as a thin 20 m x 20 m slab whose top face is the plane.
-    for (const ShapeDef& s : world_->bodyShapes(ground_)) {
-      if (s.geometry.type != ShapeType::Plane) continue;
-      const double thickness = 0.02;
-      const Vec3 n = s.geometry.normal.normalized();
-      Transform slab(n * (s.geometry.offset - 0.5 * thickness),
-                     Quat::FromTwoVectors(Vec3::UnitZ(), n));
-      add("ground", 0, ground_, s.local * slab, Marker::CUBE, Vec3(20.0, 20.0, thickness),
-          color(0.55f, 0.55f, 0.55f, 0.6f));
-      break;
-    }
-  }
-}
-
 void SimNode::publishMarkers(const ros::Time& stamp) {
-  for (size_t k = 0; k < markers_.markers.size(); ++k) {
-    visualization_msgs::Marker& m = markers_.markers[k];
-    m.header.stamp = stamp;
-    toMsg(world_->bodyPose(marker_sources_[k].body) * marker_sources_[k].local, &m.pose);
-  }
+  const visualization_msgs::MarkerArray& markers = visualizer_->update(*world_, stamp, simTime());
   if (markers_delete_all_) {
     // A deleted ragdoll's markers go away: DELETEALL first, then the current set.
     visualization_msgs::MarkerArray all;
@@ -214,12 +102,12 @@ void SimNode::publishMarkers(const ros::Time& stamp) {
     clear.header.stamp = stamp;
     clear.action = visualization_msgs::Marker::DELETEALL;
     all.markers.push_back(clear);
-    all.markers.insert(all.markers.end(), markers_.markers.begin(), markers_.markers.end());
+    all.markers.insert(all.markers.end(), markers.markers.begin(), markers.markers.end());
     markers_pub_.publish(all);
     markers_delete_all_ = false;
     return;
   }
-  markers_pub_.publish(markers_);
+  markers_pub_.publish(markers);
 }
 
 // ------------------------------------------------------------------------------------------
@@ -348,6 +236,7 @@ void SimNode::publish() {
     publishLinkStates(stamp);
     last_publish_step_ = steps_;
   }
+  interaction_->update(simTime());
   if (config_.publish_markers && markers_pub_.getNumSubscribers() > 0) publishMarkers(stamp);
 }
 

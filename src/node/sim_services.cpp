@@ -93,6 +93,7 @@ bool SimNode::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
 bool SimNode::onClearForces(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   ROS_INFO("cleared %zu active force(s)", activeForceCount());
   for (RagdollInstance& r : ragdolls_) r.forces.clear();
+  visualizer_->endForces(simTime());
   return true;
 }
 

@@ -170,12 +170,20 @@ int SimNode::findRagdoll(const std::string& name) const {
   return -1;
 }
 
+std::vector<RagdollView> SimNode::ragdollViews() const {
+  std::vector<RagdollView> views;
+  for (const RagdollInstance& r : ragdolls_) views.push_back({r.name, r.tf_prefix, &r.def, &r.ragdoll});
+  return views;
+}
+
 void SimNode::structureChanged() {
   for (RagdollInstance& r : ragdolls_) {
     buildTf(r);
     buildJointState(r);
   }
-  buildMarkers();
+  const std::vector<RagdollView> views = ragdollViews();
+  if (visualizer_) visualizer_->setScene(*world_, views, ground_);
+  if (interaction_) interaction_->setScene(world_.get(), views);
   buildLinkStates();
   last_publish_step_ = -1;  // publish the new set at once
 }

@@ -1,0 +1,103 @@
+// Visualizer: the node's rviz markers (visualization_msgs/MarkerArray) built from the World and
+// the list of ragdolls: every collision shape in its ragdoll's colour (namespace = ragdoll
+// name), the ground, optional contact points and normals, and arrows for applied impulses and
+// forces that fade out over sim time and are then deleted.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <string>
+#include <vector>
+
+#include <ros/time.h>
+#include <std_msgs/ColorRGBA.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "ragdoll_sim/world.hpp"
+#include "ragdoll_view.hpp"
+#include "rviz_settings.hpp"
+
+namespace ragdoll_sim {
+namespace node {
+
+struct Rgba {
+  float r = 1, g = 1, b = 1, a = 1;
+};
+
+// Colour of the i-th ragdoll: a palette of six well-separated hues (none near the arrow or
+// contact colours below), then golden-angle hues.
+Rgba ragdollColor(size_t i);
+Rgba impulseArrowColor();
+Rgba forceArrowColor();
+Rgba contactColor();
+
+// Opacity of an arrow whose push ended `since_end` s of sim time ago (negative: still going):
+// 1 until the end, then linear down to 0 at `fade`. Faded (delete it) when this is 0.
+double arrowAlpha(double since_end, double fade);
+
+class Visualizer {
+ public:
+  Visualizer(const MarkerSettings& settings, const std::string& frame);
+
+  // Rebuilds the shape markers for these ragdolls (and the ground plane of `ground`, if valid)
+  // and drops every arrow. Call after the world or the ragdoll list changed.
+  void setScene(const World& world, const std::vector<RagdollView>& ragdolls, BodyId ground);
+
+  // An arrow pointing at `world_point` on `body` (it moves with the body) along `vector`.
+  void addImpulse(const World& world, BodyId body, const Vec3& world_point, const Vec3& impulse,
+                  double sim_time);
+  // A force acting for `duration` s (negative: until endForces).
+  void addForce(const World& world, BodyId body, const Vec3& world_point, const Vec3& force,
+                double sim_time, double duration);
+  // Forces that act until cleared end now (~clear_forces): their arrows start to fade.
+  void endForces(double sim_time);
+  // A force that changes every step (a drag spring), shown by one arrow per `key` that is
+  // updated in place; endPull lets it fade. Not ended by endForces.
+  void setPull(int key, const World& world, BodyId body, const Vec3& world_point,
+               const Vec3& force);
+  void endPull(int key, double sim_time);
+
+  // The markers at this instant: shapes posed from the world, contacts, arrows (faded ones
+  // once as DELETE). The reference stays valid until the next call.
+  const visualization_msgs::MarkerArray& update(const World& world, const ros::Time& stamp,
+                                                double sim_time);
+
+  size_t shapeMarkerCount() const { return sources_.size(); }
+  size_t arrowCount() const { return arrows_.size(); }
+
+ private:
+  struct Source {
+    BodyId body;
+    Transform local;  // marker frame in the body frame
+  };
+  struct Arrow {
+    int id = 0;
+    bool impulse = true;
+    BodyId body;
+    Vec3 local_point = Vec3::Zero();  // head, fixed in the body
+    Vec3 vector = Vec3::Zero();       // world
+    double end = 0.0;                 // sim time the push ends (an impulse: when applied)
+    int pull = -1;                    // setPull key while the pull lasts
+  };
+  // The new arrow (null when the input is not finite or zero).
+  Arrow* addArrow(const World& world, BodyId body, const Vec3& world_point, const Vec3& vector,
+                  bool impulse, double end);
+  visualization_msgs::Marker& addShapeMarker(const std::string& ns, int id, BodyId body,
+                                             const Transform& local, int type, const Vec3& scale,
+                                             const Rgba& color);
+  void appendContacts(const World& world, const ros::Time& stamp);
+  void appendArrows(const World& world, const ros::Time& stamp, double sim_time);
+  visualization_msgs::Marker& appendMarker(const std::string& ns, int id, const ros::Time& stamp);
+
+  MarkerSettings settings_;
+  std::string frame_;
+  visualization_msgs::MarkerArray out_;  // shape markers first (updated in place), then extras
+  std::vector<Source> sources_;          // one per shape marker
+  std::deque<Arrow> arrows_;
+  std::vector<int> deleted_;             // arrow ids to send one DELETE for
+  int next_arrow_id_ = 0;
+  bool contacts_shown_ = false;          // contact markers are in rviz (DELETE them when none)
+};
+
+}  // namespace node
+}  // namespace ragdoll_sim

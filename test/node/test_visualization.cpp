@@ -1,0 +1,266 @@
+// Unit tests of the node's markers (src/node/visualization.*): colours per ragdoll, the arrow
+// fade law, and the MarkerArray the Visualizer builds from a World (no ROS master needed).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "scene_views.hpp"
+#include "visualization.hpp"
+
+using namespace ragdoll_sim;
+using namespace ragdoll_sim::node;
+using visualization_msgs::Marker;
+using visualization_msgs::MarkerArray;
+
+namespace {
+
+double dist(const Rgba& a, const Rgba& b) {
+  return std::sqrt((a.r - b.r) * (a.r - b.r) + (a.g - b.g) * (a.g - b.g) + (a.b - b.b) * (a.b - b.b));
+}
+
+std::vector<const Marker*> inNs(const MarkerArray& a, const std::string& ns) {
+  std::vector<const Marker*> out;
+  for (const Marker& m : a.markers)
+    if (m.ns == ns) out.push_back(&m);
+  return out;
+}
+
+Vec3 vec(const geometry_msgs::Point& p) { return Vec3(p.x, p.y, p.z); }
+
+}  // namespace
+
+TEST(RagdollColor, DistinctPerRagdollAndFromArrowsAndContacts) {
+  const std::vector<Rgba> others{impulseArrowColor(), forceArrowColor(), contactColor()};
+  // The palette's six are far apart; beyond it the golden-angle hues stay distinct.
+  for (size_t i = 0; i < 32; ++i) {
+    const Rgba c = ragdollColor(i);
+    EXPECT_EQ(c.a, 1.0f);
+    for (size_t j = 0; j < i; ++j)
+      EXPECT_GT(dist(c, ragdollColor(j)), i < 6 ? 0.3 : 0.03) << "ragdolls " << i << " and " << j;
+    if (i < 6) {
+      for (const Rgba& o : others) EXPECT_GT(dist(c, o), 0.3) << "ragdoll " << i;
+    }
+    // Saturated enough to be told from the grey ground and background in a screenshot.
+    const float mx = std::max({c.r, c.g, c.b}), mn = std::min({c.r, c.g, c.b});
+    EXPECT_GT((mx - mn) / mx, 0.4f) << "ragdoll " << i;
+  }
+}
+
+TEST(ArrowAlpha, OpaqueWhilePushingThenLinearToZero) {
+  EXPECT_EQ(arrowAlpha(-3.0, 1.0), 1.0);
+  EXPECT_EQ(arrowAlpha(0.0, 1.0), 1.0);
+  EXPECT_NEAR(arrowAlpha(0.25, 1.0), 0.75, 1e-12);
+  EXPECT_NEAR(arrowAlpha(1.0, 2.0), 0.5, 1e-12);
+  EXPECT_EQ(arrowAlpha(1.0, 1.0), 0.0);
+  EXPECT_EQ(arrowAlpha(5.0, 1.0), 0.0);
+  EXPECT_EQ(arrowAlpha(1e-6, 0.0), 0.0);  // no fade: gone once the push is over
+}
+
+TEST(Visualizer, ShapesColouredPerRagdollFollowTheBodies) {
+  test::TwoRagdolls scene(1.0);
+  Visualizer viz(MarkerSettings(), "world");
+  viz.setScene(scene.world, scene.views(), scene.ground);
+  // Per ragdoll: pelvis box (1) + torso capsule (cylinder + 2 spheres); plus the ground slab.
+  EXPECT_EQ(viz.shapeMarkerCount(), 9u);
+  MarkerArray a = viz.update(scene.world, ros::Time(10.0), 0.0);
+  ASSERT_EQ(a.markers.size(), 9u);
+  std::map<std::string, std::set<std::tuple<float, float, float>>> colours;
+  std::map<std::string, std::set<int>> ids;
+  for (const Marker& m : a.markers) {
+    EXPECT_EQ(m.header.frame_id, "world");
+    EXPECT_EQ(m.header.stamp, ros::Time(10.0));
+    EXPECT_EQ(m.action, Marker::ADD);
+    colours[m.ns].insert({m.color.r, m.color.g, m.color.b});
+    EXPECT_TRUE(ids[m.ns].insert(m.id).second) << "duplicate id " << m.id << " in " << m.ns;
+  }
+  ASSERT_EQ(colours.size(), 3u);
+  ASSERT_EQ(colours["first"].size(), 1u);
+  ASSERT_EQ(colours["second"].size(), 1u);
+  EXPECT_NE(*colours["first"].begin(), *colours["second"].begin());
+  const Rgba c0 = ragdollColor(0);
+  EXPECT_EQ(*colours["first"].begin(), std::make_tuple(c0.r, c0.g, c0.b));
+  EXPECT_EQ(inNs(a, "ground").size(), 1u);
+  // The first marker of "second" is its pelvis box at (0, 2, 1).
+  const Marker* box = inNs(a, "second")[0];
+  EXPECT_EQ(box->type, Marker::CUBE);
+  EXPECT_NEAR((Vec3(box->pose.position.x, box->pose.position.y, box->pose.position.z) -
+               Vec3(0, 2, 1)).norm(), 0.0, 1e-9);
+  // Moved body, moved marker.
+  scene.world.setBodyState(scene.b.bodies[0], Transform(Vec3(3, 2, 1), Quat::Identity()),
+                           Vec3::Zero(), Vec3::Zero());
+  a = viz.update(scene.world, ros::Time(10.1), 0.1);
+  box = inNs(a, "second")[0];
+  EXPECT_NEAR(box->pose.position.x, 3.0, 1e-9);
+}
+
+TEST(Visualizer, ImpulseArrowFadesOverSimTimeThenOneDelete) {
+  test::TwoRagdolls scene(1.0);
+  MarkerSettings s;
+  s.arrow_fade = 0.5;
+  Visualizer viz(s, "world");
+  viz.setScene(scene.world, scene.views(), scene.ground);
+  const BodyId torso = scene.a.bodies[1];
+  const Vec3 point(0.12, 0, 1.4);
+  viz.addImpulse(scene.world, torso, point, Vec3(-20, 0, 0), 2.0);
+  MarkerArray a = viz.update(scene.world, ros::Time(1), 2.0);
+  auto arrows = inNs(a, "arrows");
+  ASSERT_EQ(arrows.size(), 1u);
+  EXPECT_EQ(arrows[0]->type, Marker::ARROW);
+  EXPECT_EQ(arrows[0]->action, Marker::ADD);
+  EXPECT_FLOAT_EQ(arrows[0]->color.a, 1.0f);
+  ASSERT_EQ(arrows[0]->points.size(), 2u);
+  // Head at the point, tail 20 N*s * 0.02 m/(N*s) = 0.4 m against the impulse.
+  EXPECT_NEAR((vec(arrows[0]->points[1]) - point).norm(), 0.0, 1e-9);
+  EXPECT_NEAR((vec(arrows[0]->points[0]) - (point + Vec3(0.4, 0, 0))).norm(), 0.0, 1e-9);
+  const int id = arrows[0]->id;
+
+  // Half the fade time later: half transparent, and it moved with the torso.
+  scene.world.setBodyState(torso, Transform(Vec3(0, 0, 2.1), Quat::Identity()), Vec3::Zero(),
+                           Vec3::Zero());
+  a = viz.update(scene.world, ros::Time(2), 2.25);
+  arrows = inNs(a, "arrows");
+  ASSERT_EQ(arrows.size(), 1u);
+  EXPECT_NEAR(arrows[0]->color.a, 0.5, 1e-6);
+  EXPECT_NEAR(arrows[0]->points[1].z, 2.4, 1e-9);
+
+  // Past the fade time: one DELETE for its id, then nothing.
+  a = viz.update(scene.world, ros::Time(3), 2.5);
+  arrows = inNs(a, "arrows");
+  ASSERT_EQ(arrows.size(), 1u);
+  EXPECT_EQ(arrows[0]->action, Marker::DELETE);
+  EXPECT_EQ(arrows[0]->id, id);
+  EXPECT_EQ(viz.arrowCount(), 0u);
+  a = viz.update(scene.world, ros::Time(4), 2.6);
+  EXPECT_TRUE(inNs(a, "arrows").empty());
+  EXPECT_EQ(a.markers.size(), viz.shapeMarkerCount());
+}
+
+TEST(Visualizer, ForceArrowOpaqueForItsDurationOrUntilCleared) {
+  test::TwoRagdolls scene(1.0);
+  MarkerSettings s;
+  s.arrow_fade = 1.0;
+  Visualizer viz(s, "world");
+  viz.setScene(scene.world, scene.views(), scene.ground);
+  viz.addForce(scene.world, scene.a.bodies[0], Vec3(0, 0, 1), Vec3(0, 300, 0), 0.0, 2.0);
+  viz.addForce(scene.world, scene.b.bodies[0], Vec3(0, 2, 1), Vec3(0, 0, 100), 0.0, -1.0);
+  auto alphas = [&](double t) {
+    std::map<int, float> out;
+    for (const Marker* m : inNs(viz.update(scene.world, ros::Time(1), t), "arrows"))
+      out[m->id] = m->action == Marker::DELETE ? -1.0f : m->color.a;
+    return out;
+  };
+  auto al = alphas(1.9);
+  ASSERT_EQ(al.size(), 2u);
+  EXPECT_FLOAT_EQ(al[0], 1.0f);
+  EXPECT_FLOAT_EQ(al[1], 1.0f);
+  al = alphas(2.5);  // the 2 s force is over: fading; the other one lasts
+  EXPECT_NEAR(al[0], 0.5, 1e-6);
+  EXPECT_FLOAT_EQ(al[1], 1.0f);
+  viz.endForces(2.5);  // ~clear_forces
+  al = alphas(3.25);
+  EXPECT_EQ(al[0], -1.0f);
+  EXPECT_NEAR(al[1], 0.25, 1e-6);
+  al = alphas(3.6);
+  EXPECT_EQ(al.count(0), 0u);
+  EXPECT_EQ(al[1], -1.0f);
+}
+
+TEST(Visualizer, ContactsWhenEnabledDeletedWhenGone) {
+  test::TwoRagdolls scene(0.1, /*gravity=*/true);  // pelvis boxes resting on the ground
+  MarkerSettings s;
+  s.contacts = true;
+  Visualizer viz(s, "world");
+  viz.setScene(scene.world, scene.views(), scene.ground);
+  for (int i = 0; i < 50; ++i) scene.world.step(1e-3);
+  MarkerArray a = viz.update(scene.world, ros::Time(1), 0.05);
+  auto contacts = inNs(a, "contacts");
+  ASSERT_EQ(contacts.size(), 2u);
+  EXPECT_EQ(contacts[0]->type, Marker::SPHERE_LIST);
+  EXPECT_EQ(contacts[1]->type, Marker::LINE_LIST);
+  EXPECT_GE(contacts[0]->points.size(), 8u);  // 4 corners per box
+  EXPECT_EQ(contacts[1]->points.size(), 2 * contacts[0]->points.size());
+  for (const auto& p : contacts[0]->points) EXPECT_NEAR(p.z, 0.0, 0.01);
+
+  // Lift both ragdolls off the ground: the contact markers go with one DELETE each.
+  for (const Ragdoll* r : {&scene.a, &scene.b})
+    for (BodyId b : r->bodies) {
+      const Transform pose = scene.world.bodyPose(b);
+      scene.world.setBodyState(b, Transform(pose.p + Vec3(0, 0, 2), pose.q), Vec3::Zero(), Vec3::Zero());
+    }
+  scene.world.setGravity(Vec3::Zero());
+  scene.world.step(1e-3);
+  a = viz.update(scene.world, ros::Time(2), 0.051);
+  contacts = inNs(a, "contacts");
+  ASSERT_EQ(contacts.size(), 2u);
+  EXPECT_EQ(contacts[0]->action, Marker::DELETE);
+  EXPECT_EQ(contacts[1]->action, Marker::DELETE);
+  a = viz.update(scene.world, ros::Time(3), 0.052);
+  EXPECT_TRUE(inNs(a, "contacts").empty());
+
+  // Disabled: never any contact markers.
+  Visualizer off(MarkerSettings(), "world");
+  test::TwoRagdolls resting(0.1, true);
+  off.setScene(resting.world, resting.views(), resting.ground);
+  for (int i = 0; i < 50; ++i) resting.world.step(1e-3);
+  EXPECT_TRUE(inNs(off.update(resting.world, ros::Time(1), 0.05), "contacts").empty());
+}
+
+TEST(Visualizer, SceneChangeDropsArrowsAndOldestArrowsGoBeyondTheCap) {
+  test::TwoRagdolls scene(1.0);
+  MarkerSettings s;
+  s.max_arrows = 3;
+  Visualizer viz(s, "world");
+  viz.setScene(scene.world, scene.views(), scene.ground);
+  for (int i = 0; i < 5; ++i)
+    viz.addImpulse(scene.world, scene.a.bodies[0], Vec3(0, 0, 1), Vec3(1, 0, 0), 0.0);
+  EXPECT_EQ(viz.arrowCount(), 3u);
+  MarkerArray a = viz.update(scene.world, ros::Time(1), 0.0);
+  std::set<int> added, deleted;
+  for (const Marker* m : inNs(a, "arrows"))
+    (m->action == Marker::DELETE ? deleted : added).insert(m->id);
+  EXPECT_EQ(added, (std::set<int>{2, 3, 4}));
+  EXPECT_EQ(deleted, (std::set<int>{0, 1}));
+  viz.setScene(scene.world, scene.views(), scene.ground);  // e.g. ~reset
+  EXPECT_EQ(viz.arrowCount(), 0u);
+  deleted.clear();
+  for (const Marker* m : inNs(viz.update(scene.world, ros::Time(2), 0.0), "arrows")) {
+    EXPECT_EQ(m->action, Marker::DELETE);
+    deleted.insert(m->id);
+  }
+  EXPECT_EQ(deleted, (std::set<int>{2, 3, 4}));
+}
+
+TEST(Visualizer, PullArrowUpdatedInPlaceThenFades) {
+  test::TwoRagdolls scene(1.0);
+  MarkerSettings s;
+  s.arrow_fade = 1.0;
+  Visualizer viz(s, "world");
+  viz.setScene(scene.world, scene.views(), scene.ground);
+  const BodyId torso = scene.a.bodies[1];
+  viz.setPull(0, scene.world, torso, Vec3(0, 0, 1.4), Vec3(0, 100, 0));
+  viz.setPull(0, scene.world, torso, Vec3(0, 0, 1.4), Vec3(0, 0, 200));  // same arrow, new force
+  viz.endForces(0.0);  // ~clear_forces leaves a drag alone
+  ASSERT_EQ(viz.arrowCount(), 1u);
+  MarkerArray a = viz.update(scene.world, ros::Time(1), 5.0);
+  auto arrows = inNs(a, "arrows");
+  ASSERT_EQ(arrows.size(), 1u);
+  EXPECT_FLOAT_EQ(arrows[0]->color.a, 1.0f);
+  // 200 N * 0.002 m/N = 0.4 m, pointing up at the point.
+  EXPECT_NEAR((vec(arrows[0]->points[0]) - Vec3(0, 0, 1.0)).norm(), 0.0, 1e-9);
+  const int id = arrows[0]->id;
+  viz.endPull(0, 5.0);  // released
+  a = viz.update(scene.world, ros::Time(2), 5.5);
+  arrows = inNs(a, "arrows");
+  ASSERT_EQ(arrows.size(), 1u);
+  EXPECT_NEAR(arrows[0]->color.a, 0.5, 1e-6);
+  // A new drag with the same key is a new arrow; the old one fades on.
+  viz.setPull(0, scene.world, torso, Vec3(0, 0, 1.4), Vec3(50, 0, 0));
+  a = viz.update(scene.world, ros::Time(3), 5.6);
+  std::map<int, float> alpha;
+  for (const Marker* m : inNs(a, "arrows")) alpha[m->id] = m->color.a;
+  ASSERT_EQ(alpha.size(), 2u);
+  EXPECT_NEAR(alpha[id], 0.4, 1e-6);
+  EXPECT_FLOAT_EQ(alpha[id + 1], 1.0f);
+}
