@@ -88,6 +88,7 @@ bool SimNode::init(std::string* error) {
     return false;
   }
   for (const std::string& note : def_.notes) ROS_INFO("URDF: %s", note.c_str());
+  for (const std::string& w : def_.warnings) ROS_WARN("URDF: %s", w.c_str());
 
   // --- joints: springs, break forces and motor gains (~joint_defaults, ~joints) ---
   axes_ = AxisTable(def_);
@@ -480,7 +481,7 @@ void SimNode::buildJointState() {
   for (size_t j = 0; j < def_.joints.size(); ++j) {
     JointSource src;
     src.id = ragdoll_.joints[j];
-    src.ball = def_.joints[j].kind == RagdollJointKind::Ball;
+    src.kind = def_.joints[j].kind;
     src.first = axes_.first(static_cast<int>(j));
     joint_sources_.push_back(src);
   }
@@ -492,14 +493,16 @@ void SimNode::buildJointState() {
 void SimNode::publishJointState(const ros::Time& stamp) {
   std::vector<double>& q = joint_state_.position;
   for (const JointSource& s : joint_sources_) {
-    if (s.ball) {
+    if (s.kind == RagdollJointKind::Ball) {
       const std::array<double, 3> a = world_->ballAngles(s.id);
       q[s.first] = a[0];
       q[s.first + 1] = a[1];
       q[s.first + 2] = a[2];
-    } else {
+    } else if (s.kind == RagdollJointKind::Prismatic) {
+      q[s.first] = world_->prismaticPosition(s.id);
+    } else if (s.kind == RagdollJointKind::Hinge) {
       q[s.first] = world_->hingeAngle(s.id);
-    }
+    }  // fixed: no position
   }
   // Velocities: finite differences over the sim time since the last message.
   if (prev_joint_step_ >= 0 && steps_ > prev_joint_step_) {

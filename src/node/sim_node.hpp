@@ -124,7 +124,7 @@ class SimNode {
 
   struct JointSource {
     JointId id;
-    bool ball = false;
+    RagdollJointKind kind = RagdollJointKind::Hinge;
     int first = 0;     // index into joint_state_.position
   };
   sensor_msgs::JointState joint_state_;
