@@ -12,7 +12,7 @@ DEBS := build-essential cmake googletest libgtest-dev \
         libconsole-bridge-dev libeigen3-dev catkin python3-rostest librostest-dev ros-core \
         python3-rostopic rviz xvfb imagemagick \
         python3-geometry-msgs python3-std-srvs python3-sensor-msgs python3-tf2-msgs \
-        python3-visualization-msgs libassimp-dev libtinyxml2-dev
+        python3-visualization-msgs libassimp-dev libtinyxml2-dev rosbash
 
 deps:
 	@scripts/deps.sh $(DEBS)

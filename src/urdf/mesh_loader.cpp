@@ -1,6 +1,7 @@
 // See mesh_loader.hpp.
 #include "mesh_loader.hpp"
 
+#include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -90,6 +91,9 @@ std::string resolveUri(const std::string& uri, const std::string& base_dir,
 bool readVertices(const std::string& path, const Vec3& scale, std::vector<Vec3>* out,
                   std::string* error) {
   Assimp::Importer importer;
+  // URDF meshes live in the link frame as written: keep a Collada file's axes (assimp would
+  // turn a Z_UP file to its own Y-up); its <unit> scale still applies.
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
   // Only positions are needed: no normals, no triangulation beyond what the reader does.
   const aiScene* scene = importer.ReadFile(path, aiProcess_JoinIdenticalVertices);
   if (!scene || !scene->mRootNode) {

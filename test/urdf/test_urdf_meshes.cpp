@@ -168,3 +168,16 @@ TEST(UrdfMeshes, StlByFileUriAndRelativePath) {
   EXPECT_EQ(r.def.links[0].shapes.at(0).geometry.type, ShapeType::Box);
   fs::remove_all(dir);
 }
+
+TEST(UrdfMeshes, ColladaUnitsAppliedAndAxesKept) {
+  UrdfLoadOptions o;
+  o.package_paths = {kFixtures};
+  const UrdfLoadResult r =
+      loadUrdfString(oneMeshRobot("package://ragdoll_mesh_fixture/meshes/wedge_cm.dae"), o);
+  ASSERT_TRUE(r.ok) << r.error;
+  ASSERT_EQ(r.def.links[0].shapes.size(), 1u);
+  Vec3 lo, hi;
+  bounds(r.def.links[0].shapes[0], &lo, &hi);
+  EXPECT_LT(lo.norm(), 1e-6);
+  EXPECT_LT((hi - Vec3(0.2, 0.1, 0.05)).norm(), 1e-6);  // cm -> m, Z_UP not turned to Y up
+}
