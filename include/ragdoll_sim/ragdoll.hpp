@@ -16,12 +16,26 @@ struct LinkDef {
   Vec3 com = Vec3::Zero();                 // link frame
   Mat3 inertia = Mat3::Identity() * 0.01;  // about com, link-frame axes
   std::vector<ShapeDef> shapes;            // in the link frame
+  // Per shape (parallel to `shapes`, may be shorter): where the loader got it, e.g. "box",
+  // "capsule", "mesh hull of foo.stl (24 vertices)", "box fitted to the inertia (mesh ...
+  // unresolved)"; approximated shapes say so. For reports (ragdoll_check) only.
+  std::vector<std::string> shape_sources;
+  // URDF <gazebo reference> mu1 / mu2 of the link (mean of the two), applied to its own shapes'
+  // friction by spawnRagdoll even over a material override; < 0: not given.
+  std::vector<double> shape_friction;      // per shape, parallel to `shapes` (may be shorter)
   Transform rest_pose;                     // link frame relative to the root link, zero angles
   double linear_damping = 0.0;
   double angular_damping = 0.0;
 };
 
-enum class RagdollJointKind { Ball, Hinge };
+// Ball: a URDF revolute chain folded into one joint, or URDF `spherical`. Hinge: revolute /
+// continuous. Prismatic: URDF prismatic (axes[0], limits in m). Fixed: a URDF fixed joint kept
+// as a weld (gazebo <preserveFixedJoint>); other fixed joints are lumped by the loader.
+enum class RagdollJointKind { Ball, Hinge, Prismatic, Fixed };
+
+const char* jointKindName(RagdollJointKind kind);
+// Angles (or positions) the joint has: Ball 3, Hinge 1, Prismatic 1, Fixed 0.
+int jointAxisCount(RagdollJointKind kind);
 
 struct RagdollJointDef {
   std::string name;                        // ball: "<first>+<second>+<third>" revolute names
@@ -29,7 +43,7 @@ struct RagdollJointDef {
   int parent = -1, child = -1;             // link indices
   Transform frame_parent;                  // joint frame in the parent link frame
   Transform frame_child;                   // joint frame in the child link frame
-  // Hinge: axes[0]. Ball: the three chain axes in order (joint frame).
+  // Hinge, Prismatic: axes[0]. Ball: the three chain axes in order (joint frame). Fixed: none.
   std::vector<Vec3> axes;
   bool limited = false;
   std::vector<double> lower, upper;        // one per axis
@@ -52,7 +66,8 @@ struct RagdollDef {
   std::vector<LinkDef> links;
   std::vector<RagdollJointDef> joints;
   std::vector<std::pair<int, int>> no_collide;  // link index pairs that never collide
-  std::vector<std::string> notes;                // what the loader approximated or merged
+  std::vector<std::string> notes;                // what the loader merged or mapped
+  std::vector<std::string> warnings;             // what it approximated, repaired or ignored
 
   int findLink(const std::string& name) const;   // -1 if absent
   double totalMass() const;

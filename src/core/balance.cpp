@@ -7,7 +7,7 @@ BalanceController::BalanceController(World& world, const Ragdoll& ragdoll, const
     : ragdoll_(ragdoll), def_(def), balance_(balance) {
   for (const LinkDef& l : def.links) masses_.push_back(l.mass);
   for (size_t k = 0; k < def.joints.size(); ++k) {
-    const int axes = def.joints[k].kind == RagdollJointKind::Ball ? 3 : 1;
+    const int axes = jointAxisCount(def.joints[k].kind);
     for (int a = 0; a < axes; ++a) world.setJointMotor(ragdoll.joints[k], a, balance.hold);
   }
   for (const std::string& name : balance.ankles) {

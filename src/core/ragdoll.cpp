@@ -18,6 +18,24 @@ double RagdollDef::totalMass() const {
   return m;
 }
 
+const char* jointKindName(RagdollJointKind kind) {
+  switch (kind) {
+    case RagdollJointKind::Ball: return "ball";
+    case RagdollJointKind::Hinge: return "hinge";
+    case RagdollJointKind::Prismatic: return "prismatic";
+    case RagdollJointKind::Fixed: return "fixed";
+  }
+  return "?";
+}
+
+int jointAxisCount(RagdollJointKind kind) {
+  switch (kind) {
+    case RagdollJointKind::Ball: return 3;
+    case RagdollJointKind::Fixed: return 0;
+    default: return 1;
+  }
+}
+
 JointMotor passiveMotor(const RagdollJointDef& j, int axis) {
   JointMotor m;
   const size_t a = static_cast<size_t>(axis);
@@ -46,8 +64,14 @@ Ragdoll spawnRagdoll(World& world, const RagdollDef& def, const Transform& root_
     bd.linear_damping = l.linear_damping;
     bd.angular_damping = l.angular_damping;
     const BodyId id = world.createBody(bd);
-    for (ShapeDef s : l.shapes) {
+    for (size_t k = 0; k < l.shapes.size(); ++k) {
+      ShapeDef s = l.shapes[k];
       if (material) s.material = *material;
+      // The URDF's own friction for this link wins over a blanket material (no table entry).
+      if (k < l.shape_friction.size() && l.shape_friction[k] >= 0.0) {
+        s.material.static_friction = s.material.kinetic_friction = l.shape_friction[k];
+        s.material.id = 0;
+      }
       world.addShape(id, s);
     }
     r.bodies.push_back(id);
@@ -69,6 +93,29 @@ Ragdoll spawnRagdoll(World& world, const RagdollDef& def, const Transform& root_
       for (int k = 0; k < 3; ++k) bj.motors[k] = passiveMotor(j, k);
       bj.spring = j.spring;
       r.joints.push_back(world.createBallJoint(bj));
+    } else if (j.kind == RagdollJointKind::Prismatic) {
+      PrismaticJointDef pj;
+      pj.body_a = a;
+      pj.body_b = b;
+      pj.frame_a = j.frame_parent;
+      pj.frame_b = j.frame_child;
+      pj.axis = j.axes.empty() ? Vec3::UnitX() : j.axes[0];
+      pj.enable_limit = j.limited && !j.lower.empty() && !j.upper.empty();
+      if (pj.enable_limit) {
+        pj.lower = j.lower[0];
+        pj.upper = j.upper[0];
+      }
+      pj.motor = passiveMotor(j, 0);  // linear: N s/m damping, N friction
+      pj.spring.break_force = j.spring.break_force;  // a prismatic anchor has no spring
+      r.joints.push_back(world.createPrismaticJoint(pj));
+    } else if (j.kind == RagdollJointKind::Fixed) {
+      FixedJointDef fj;
+      fj.body_a = a;
+      fj.body_b = b;
+      fj.frame_a = j.frame_parent;
+      fj.frame_b = j.frame_child;
+      fj.spring = j.spring;
+      r.joints.push_back(world.createFixedJoint(fj));
     } else {
       HingeJointDef hj;
       hj.body_a = a;

@@ -52,7 +52,7 @@ AxisTable::AxisTable(const RagdollDef& def) {
   for (size_t j = 0; j < def.joints.size(); ++j) {
     const RagdollJointDef& jd = def.joints[j];
     first_.push_back(static_cast<int>(axes_.size()));
-    const size_t n = jd.kind == RagdollJointKind::Ball ? 3 : 1;
+    const size_t n = static_cast<size_t>(jointAxisCount(jd.kind));
     for (size_t k = 0; k < n; ++k) {
       AxisInfo a;
       if (k < jd.source_joints.size()) a.name = jd.source_joints[k];

@@ -47,7 +47,7 @@ struct RagdollInstance {
   sensor_msgs::JointState joint_state;
   struct JointSource {
     JointId id;
-    bool ball = false;
+    RagdollJointKind kind = RagdollJointKind::Hinge;
     int first = 0;  // index into joint_state.position
   };
   std::vector<JointSource> joint_sources;

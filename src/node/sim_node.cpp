@@ -40,6 +40,7 @@ bool SimNode::init(std::string* error) {
     return false;
   }
   for (const std::string& note : loaded.def.notes) ROS_INFO("URDF: %s", note.c_str());
+  for (const std::string& w : loaded.def.warnings) ROS_WARN("URDF: %s", w.c_str());
   std::string name = config_.ragdoll_name;
   if (name.empty()) name = loaded.def.name.empty() ? "ragdoll" : loaded.def.name;
   RagdollInstance first;

@@ -121,7 +121,7 @@ void SimNode::buildJointState(RagdollInstance& r) {
   for (size_t j = 0; j < r.def.joints.size(); ++j) {
     RagdollInstance::JointSource src;
     src.id = r.ragdoll.joints[j];
-    src.ball = r.def.joints[j].kind == RagdollJointKind::Ball;
+    src.kind = r.def.joints[j].kind;
     src.first = r.axes.first(static_cast<int>(j));
     r.joint_sources.push_back(src);
   }
@@ -135,14 +135,17 @@ void SimNode::publishJointStates(const ros::Time& stamp) {
   for (RagdollInstance& r : ragdolls_) {
     std::vector<double>& q = r.joint_state.position;
     for (const RagdollInstance::JointSource& s : r.joint_sources) {
-      if (s.ball) {
+      const size_t i = static_cast<size_t>(s.first);
+      if (s.kind == RagdollJointKind::Ball) {
         const std::array<double, 3> a = world_->ballAngles(s.id);
-        q[static_cast<size_t>(s.first)] = a[0];
-        q[static_cast<size_t>(s.first) + 1] = a[1];
-        q[static_cast<size_t>(s.first) + 2] = a[2];
-      } else {
-        q[static_cast<size_t>(s.first)] = world_->hingeAngle(s.id);
-      }
+        q[i] = a[0];
+        q[i + 1] = a[1];
+        q[i + 2] = a[2];
+      } else if (s.kind == RagdollJointKind::Prismatic) {
+        q[i] = world_->prismaticPosition(s.id);
+      } else if (s.kind == RagdollJointKind::Hinge) {
+        q[i] = world_->hingeAngle(s.id);
+      }  // fixed: no position
     }
     // Velocities: finite differences over the sim time since the last message.
     if (r.prev_joint_ns >= 0 && sim_ns_ > r.prev_joint_ns) {

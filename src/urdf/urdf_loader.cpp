@@ -1,18 +1,21 @@
 // URDF -> RagdollDef with urdfdom.
 //
-// Steps: parse (urdfdom's console_bridge errors are captured into the result), group links
-// joined by fixed joints into one body (mass properties and shapes lumped into the top link),
-// fold chains of 2-3 revolute joints through massless geometry-less links into ball joints,
-// turn the remaining revolute/continuous joints into hinges, and compute rest poses. Each
-// revolute joint's <dynamics> damping / friction goes to its axis (RagdollJointDef::damping,
-// ::friction); an empty <dynamics/> (which urdfdom alone rejects) means both 0.
-// Prismatic, planar and (non-root) floating joints are rejected for now.
+// Steps: a tinyxml2 pre-pass (urdf_xml.hpp: malformed files, capsules, spherical joints,
+// <gazebo> tags), parse (urdfdom's console_bridge errors are captured into the result), group
+// links joined by fixed joints (and moving joints that lead only to massless links) into one
+// body (mass properties and shapes lumped into the top link), fold chains of 2-3 revolute
+// joints through massless geometry-less links into ball joints, turn the remaining revolute /
+// continuous joints into hinges, prismatic into sliders, spherical into free balls, and
+// compute rest poses. Each joint's <dynamics> damping / friction goes to its axis
+// (RagdollJointDef::damping, ::friction). Planar and (non-root) floating joints are refused.
 //
 // Ball chain frames. URDF gives child-in-parent = O1 R(x1,t1) O2 R(x2,t2) O3 R(x3,t3) with joint
 // origins Ok and axes xk in each joint's child frame. When O2 = Q2 and O3 = Q3 are pure rotations,
 // moving them to the right (Q R(x,t) = R(Q x,t) Q) gives
 //   O1 R(a0,t1) R(a1,t2) R(a2,t3) Q2 Q3,  a0 = x1, a1 = Q2 x2, a2 = Q2 Q3 x3  (in O1's frame),
 // i.e. frame_parent = O1 and frame_child = (Q2 Q3)^-1, matching RagdollJointDef's convention.
+// A chain that cannot fold (offset or skew axes, > 3 joints) keeps its hinges; its massless
+// links then get a small nominal mass (a body cannot be massless).
 #include "ragdoll_sim/urdf_loader.hpp"
 
 #include <console_bridge/console.h>
@@ -23,11 +26,16 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <set>
 #include <sstream>
 #include <stdexcept>
+
+#include "mesh_loader.hpp"
+#include "urdf_xml.hpp"
 
 namespace ragdoll_sim {
 namespace {
@@ -36,12 +44,23 @@ constexpr double kDensity = 1000.0;     // kg/m^3 for links without <inertial>
 constexpr double kDummyFraction = 0.01; // chain links lighter than this share of a neighbour
 constexpr double kCoincident = 1e-9;    // m, ball chain inner origins
 constexpr double kOrthogonal = 1e-6;    // |cos| between ball chain axes
+constexpr double kMinDensity = 50.0;   // kg/m^3, plausible range of a box fitted to an inertia
+constexpr double kMaxDensity = 25000.0;
+constexpr double kTinyMass = 1e-4;      // kg; lighter links are massless (placeholder masses)
+constexpr double kNominalFraction = 0.1;  // a bridging massless link's share of its lighter neighbour
+constexpr int kHullDirections = 64;     // support directions sampled from a mesh for its hull
 
 struct LoadError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
+std::string quote(const std::string& s) { return "'" + s + "'"; }
+
+std::string num(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
 
 // Collects console_bridge messages (urdfdom reports parse errors only there) during a parse.
 class LogCapture : public console_bridge::OutputHandler {
@@ -80,8 +99,22 @@ Mat3 pointInertia(double m, const Vec3& c) {
   return m * (c.squaredNorm() * Mat3::Identity() - c * c.transpose());
 }
 
-bool positiveDefinite(const Mat3& I) {
-  return I.allFinite() && Eigen::SelfAdjointEigenSolver<Mat3>(I).eigenvalues().minCoeff() > 0;
+// A rigid body's principal moments are positive and each is at most the sum of the other two.
+// Repairs I in place (eigenvalues floored at 1e-4 of the largest, or a 2 cm sphere of mass m
+// when all vanish; the smaller two raised until they reach half the largest) and says why it
+// was needed, or returns "" when I is physical.
+std::string repairInertia(Mat3& I, double m) {
+  Eigen::SelfAdjointEigenSolver<Mat3> es(0.5 * (I + I.transpose()));
+  Vec3 l = es.eigenvalues();  // ascending
+  const double tol = 1e-9 * std::max(l[2], 0.0);
+  const bool positive = l[0] > 0;
+  const bool triangle = l[0] + l[1] >= l[2] - tol;
+  if (positive && triangle) return "";
+  const std::string why = !positive ? "is not positive definite" : "violates the triangle inequality";
+  if (!(l[2] > 0)) l = Vec3::Constant(0.4 * m * 0.02 * 0.02);
+  for (int i = 0; i < 2; ++i) l[i] = std::max({l[i], 1e-4 * l[2], 0.5 * l[2]});
+  I = es.eigenvectors() * l.asDiagonal() * es.eigenvectors().transpose();
+  return why;
 }
 
 // Mass properties accumulated about a body origin: mass, first moment, inertia about the origin.
@@ -104,28 +137,39 @@ struct Group {
   urdf::LinkConstSharedPtr top;
   MassAccumulator mass;
   std::vector<ShapeDef> shapes;
-  std::vector<urdf::JointConstSharedPtr> child_joints;  // revolute / continuous, leaving it
+  std::vector<std::string> sources;   // per shape
+  std::vector<double> friction;       // per shape, < 0: none
+  std::vector<urdf::JointConstSharedPtr> child_joints;  // moving joints leaving it
   int def_index = -1;                                     // index in RagdollDef::links
 };
 
+bool movesAsChain(const urdf::Joint& j) {
+  return j.type == urdf::Joint::REVOLUTE || j.type == urdf::Joint::CONTINUOUS;
+}
+
 class Loader {
  public:
-  explicit Loader(const urdf::ModelInterface& model) : model_(model) {}
+  Loader(const urdf::ModelInterface& model, const urdf_xml::Extras& extras,
+         const UrdfLoadOptions& options)
+      : model_(model), extras_(extras), options_(options) {
+    if (options_.package_paths.empty()) options_.package_paths = mesh::packagePathFromEnv();
+  }
 
   RagdollDef run() {
     def_.name = model_.getName();
     urdf::LinkConstSharedPtr root = model_.getRoot();
     // A massless root ("world") floating-jointed to the robot: the robot is the free root.
     if (root->child_joints.size() == 1 && root->child_joints[0]->type == urdf::Joint::FLOATING &&
-        !root->inertial && root->collision_array.empty()) {
-      def_.notes.push_back("floating joint " + quoted(root->child_joints[0]->name) +
-                           " dropped: " + quoted(root->child_joints[0]->child_link_name) +
+        !extras_.spherical_joints.count(root->child_joints[0]->name) && massless(*root)) {
+      def_.notes.push_back("floating joint " + quote(root->child_joints[0]->name) +
+                           " dropped: " + quote(root->child_joints[0]->child_link_name) +
                            " is the free root");
       root = model_.getLink(root->child_joints[0]->child_link_name);
     }
     addGroup(root);
     def_.root = 0;
-    emitBody(0, Transform());
+    emitBody(0, Transform(), -1);
+    excludeRestOverlaps();
     if (folded_links_ > 0) {
       std::ostringstream os;
       os << folded_links_ << " massless chain links folded into ball joints (" << folded_mass_
@@ -136,6 +180,55 @@ class Loader {
   }
 
  private:
+  // Links whose shapes already touch in the rest pose (fitted boxes, overlapping covers of a
+  // hip's motor stack) would push each other apart from the first step: they never collide
+  // (what an SRDF's "Default" pairs do). Found with one vanishing step in a world without
+  // gravity or ground.
+  void excludeRestOverlaps() {
+    WorldDef wd;
+    wd.gravity = Vec3::Zero();
+    wd.enable_sleep = false;
+    World world(wd);
+    const Ragdoll r = spawnRagdoll(world, def_, Transform());
+    world.step(1e-9);
+    std::set<std::pair<int, int>> pairs;
+    for (const ContactInfo& c : world.contacts()) {
+      if (c.separation >= 0) continue;
+      int a = -1, b = -1;
+      for (size_t i = 0; i < r.bodies.size(); ++i) {
+        if (r.bodies[i] == c.body_a) a = int(i);
+        if (r.bodies[i] == c.body_b) b = int(i);
+      }
+      if (a >= 0 && b >= 0) pairs.emplace(std::min(a, b), std::max(a, b));
+    }
+    std::string names;
+    for (const auto& [a, b] : pairs) {
+      if (std::find(def_.no_collide.begin(), def_.no_collide.end(), std::make_pair(a, b)) != def_.no_collide.end() ||
+          std::find(def_.no_collide.begin(), def_.no_collide.end(), std::make_pair(b, a)) != def_.no_collide.end())
+        continue;
+      def_.no_collide.emplace_back(a, b);
+      names += (names.empty() ? "" : ", ") + def_.links[a].name + "/" + def_.links[b].name;
+    }
+    if (!names.empty())
+      def_.notes.push_back("links overlapping in the rest pose never collide: " + names);
+  }
+
+  // ---- mass and massless links --------------------------------------------------------
+  // The link's own mass (<inertial>, tiny placeholder masses read as 0) or, without an
+  // <inertial>, whether it has collision geometry to take a volume mass from.
+  static double ownMass(const urdf::Link& l) {
+    if (l.inertial) return std::isfinite(l.inertial->mass) && l.inertial->mass >= kTinyMass ? l.inertial->mass : 0.0;
+    return l.collision_array.empty() ? 0.0 : 1.0;  // volume mass follows
+  }
+  static bool massless(const urdf::Link& l) { return !(ownMass(l) > 0); }
+  // No mass anywhere in the subtree of `l` (a sensor frame, a tool tip, an empty gripper link).
+  bool subtreeMassless(const urdf::Link& l) const {
+    if (!massless(l)) return false;
+    for (const auto& j : l.child_joints)
+      if (!subtreeMassless(*model_.getLink(j->child_link_name))) return false;
+    return true;
+  }
+
   // ---- links and fixed-joint lumping ---------------------------------------------------
   void addGroup(const urdf::LinkConstSharedPtr& link) {
     groups_.emplace_back();
@@ -149,90 +242,205 @@ class Loader {
     addMassAndShapes(g, *link, T);
     for (const auto& j : link->child_joints) {
       const urdf::LinkConstSharedPtr child = model_.getLink(j->child_link_name);
-      const std::string jn = "joint " + quoted(j->name);
-      switch (j->type) {
-        case urdf::Joint::FIXED:
-          def_.notes.push_back(jn + ": link " + quoted(child->name) + " lumped into " +
-                               quoted(groups_[g].top->name));
-          addLink(g, child, T * toTransform(j->parent_to_joint_origin_transform, jn));
-          break;
-        case urdf::Joint::REVOLUTE:
-        case urdf::Joint::CONTINUOUS:
-          groups_[g].child_joints.push_back(j);
-          addGroup(child);
-          break;
-        case urdf::Joint::PRISMATIC:
-          throw LoadError(jn + ": prismatic joints are not supported");
-        case urdf::Joint::PLANAR:
-          throw LoadError(jn + ": planar joints are not supported");
-        case urdf::Joint::FLOATING:
-          throw LoadError(jn + ": floating joints below the root are not supported");
-        default:
-          throw LoadError(jn + ": unknown joint type");
+      const std::string jn = "joint " + quote(j->name);
+      const bool spherical = extras_.spherical_joints.count(j->name) > 0;
+      const bool keep_fixed = extras_.preserved_fixed.count(j->name) > 0;
+      if (j->type == urdf::Joint::PLANAR)
+        throw LoadError(jn + ": planar joints are not supported (use a prismatic pair)");
+      if (j->type == urdf::Joint::FLOATING && !spherical)
+        throw LoadError(jn + ": floating joints are supported only from a massless root link");
+      if (j->type == urdf::Joint::UNKNOWN) throw LoadError(jn + ": unknown joint type");
+      const bool moving = j->type != urdf::Joint::FIXED || keep_fixed;
+      if (moving && subtreeMassless(*child)) {
+        def_.notes.push_back(jn + ": leads only to massless links, lumped like a fixed joint (" +
+                             quote(child->name) + " into " + quote(groups_[g].top->name) + ")");
+      } else if (moving) {
+        if (j->mimic)
+          def_.warnings.push_back(jn + ": <mimic> of " + quote(j->mimic->joint_name) +
+                                  " not enforced (the joint moves freely)");
+        groups_[g].child_joints.push_back(j);
+        addGroup(child);
+        continue;
+      } else {
+        def_.notes.push_back(jn + ": link " + quote(child->name) + " lumped into " +
+                             quote(groups_[g].top->name));
       }
-      if (j->mimic) def_.notes.push_back(jn + ": <mimic> ignored");
+      addLink(g, child, T * toTransform(j->parent_to_joint_origin_transform, jn));
     }
   }
 
-  void addMassAndShapes(int g, const urdf::Link& link, const Transform& T) {
-    const std::string ln = "link " + quoted(link.name);
+  // A primitive URDF geometry (capsule: a cylinder the pre-pass renamed), or false.
+  bool primitive(const urdf::Geometry& geom, bool capsule, Geometry* out) const {
+    switch (geom.type) {
+      case urdf::Geometry::SPHERE:
+        *out = Geometry::sphere(static_cast<const urdf::Sphere&>(geom).radius);
+        return true;
+      case urdf::Geometry::BOX:
+        *out = Geometry::box(0.5 * toVec(static_cast<const urdf::Box&>(geom).dim));
+        return true;
+      case urdf::Geometry::CYLINDER: {
+        const auto& cyl = static_cast<const urdf::Cylinder&>(geom);
+        *out = capsule ? Geometry::capsule(cyl.radius, 0.5 * cyl.length)
+                       : Geometry::cylinder(cyl.radius, 0.5 * cyl.length);
+        return true;
+      }
+      default:
+        return false;
+    }
+  }
+
+  // Convex hull of a mesh file, or false with *why.
+  bool meshHull(const urdf::Mesh& m, Geometry* out, std::string* source, std::string* why) const {
+    if (!options_.load_meshes) {
+      *why = "mesh loading is off";
+      return false;
+    }
+    const std::string path = mesh::resolveUri(m.filename, options_.base_dir, options_.package_paths, why);
+    if (path.empty()) return false;
+    std::vector<Vec3> points;
+    if (!mesh::readVertices(path, toVec(m.scale), &points, why)) return false;
+    const std::vector<Vec3> support = mesh::supportPoints(points, kHullDirections);
+    *out = Geometry::convexHull(support);
+    if (!out->hull) {
+      *why = path + " is flat (no volume)";
+      return false;
+    }
+    *source = "convex hull of " + m.filename + " (" + std::to_string(out->hull->vertices.size()) +
+              " of " + std::to_string(points.size()) + " vertices)";
+    return true;
+  }
+
+  void addShape(int g, const ShapeDef& s, const std::string& source, const std::string& link) {
     Group& grp = groups_[g];
-    bool has_mesh = false;
-    MassAccumulator from_volume;
-    for (const auto& c : link.collision_array) {
-      if (!c || !c->geometry) throw LoadError(ln + ": <collision> without <geometry>");
+    grp.shapes.push_back(s);
+    grp.sources.push_back(source);
+    auto f = extras_.link_friction.find(link);
+    grp.friction.push_back(f == extras_.link_friction.end() ? -1.0 : f->second);
+  }
+
+  // Geometry of a <collision> / <visual> list as shapes (meshes as hulls); sets *mesh_failure
+  // to the first mesh that did not resolve. Returns the volume mass accumulator.
+  MassAccumulator addGeometry(int g, const urdf::Link& link, const Transform& T, bool visual,
+                              std::string* mesh_failure, int* added) {
+    const std::string ln = "link " + quote(link.name);
+    const std::string what = visual ? "<visual>" : "<collision>";
+    const auto& caps = visual ? extras_.capsule_visuals : extras_.capsule_collisions;
+    const auto cap_it = caps.find(link.name);
+    MassAccumulator volume;
+    const size_t n = visual ? link.visual_array.size() : link.collision_array.size();
+    for (size_t k = 0; k < n; ++k) {
+      const urdf::GeometrySharedPtr geom =
+          visual ? link.visual_array[k]->geometry : link.collision_array[k]->geometry;
+      const urdf::Pose& origin = visual ? link.visual_array[k]->origin : link.collision_array[k]->origin;
+      if (!geom) throw LoadError(ln + ": " + what + " without <geometry>");
       ShapeDef s;
-      s.local = T * toTransform(c->origin, ln + " <collision>");
-      switch (c->geometry->type) {
-        case urdf::Geometry::SPHERE:
-          s.geometry = Geometry::sphere(static_cast<const urdf::Sphere&>(*c->geometry).radius);
-          break;
-        case urdf::Geometry::BOX:
-          s.geometry = Geometry::box(0.5 * toVec(static_cast<const urdf::Box&>(*c->geometry).dim));
-          break;
-        case urdf::Geometry::CYLINDER: {
-          const auto& cyl = static_cast<const urdf::Cylinder&>(*c->geometry);
-          s.geometry = Geometry::cylinder(cyl.radius, 0.5 * cyl.length);
-          break;
-        }
-        default:  // mesh: replaced below by a box fitted to the link inertia
-          has_mesh = true;
+      s.local = T * toTransform(origin, ln + " " + what);
+      const bool capsule = cap_it != caps.end() && cap_it->second.count(int(k));
+      std::string source;
+      if (primitive(*geom, capsule, &s.geometry)) {
+        source = shapeTypeName(s.geometry.type);
+        if (visual) source += " from <visual>";
+      } else if (geom->type == urdf::Geometry::MESH) {
+        std::string why;
+        if (!meshHull(static_cast<const urdf::Mesh&>(*geom), &s.geometry, &source, &why)) {
+          if (mesh_failure->empty())
+            *mesh_failure = static_cast<const urdf::Mesh&>(*geom).filename + ": " + why;
           continue;
+        }
+        if (visual) source += " from <visual>";
+      } else {
+        continue;
       }
       const double v = s.geometry.volume();
-      if (!(v > 0) || !std::isfinite(v))
-        throw LoadError(ln + ": <collision> geometry has a non-positive or non-finite size");
-      from_volume.add(kDensity * v, s.local.p, kDensity * rotated(s.geometry.unitInertia(), s.local.q));
-      grp.shapes.push_back(s);
+      if (!std::isfinite(v)) throw LoadError(ln + ": " + what + " geometry has a non-finite size");
+      if (!(v > 0)) {
+        def_.warnings.push_back(ln + ": " + what + " geometry of zero size ignored");
+        continue;
+      }
+      // Hulls: the vertex mean stands in for the volume centroid (only used without <inertial>).
+      const Vec3 c = s.geometry.hull ? s.geometry.hull->centroid : Vec3::Zero();
+      const Mat3 Ic = kDensity * (s.geometry.unitInertia() - pointInertia(v, c));
+      volume.add(kDensity * v, s.local.apply(c), rotated(Ic, s.local.q));
+      addShape(g, s, source, link.name);
+      ++*added;
     }
+    return volume;
+  }
 
+  void addMassAndShapes(int g, const urdf::Link& link, const Transform& T) {
+    const std::string ln = "link " + quote(link.name);
+    Group& grp = groups_[g];
+    std::string mesh_failure;
+    int added = 0;
+    MassAccumulator from_volume = addGeometry(g, link, T, false, &mesh_failure, &added);
+    bool has_mass = false;
+    double m = 0;
+    Transform F;
+    Mat3 I = Mat3::Zero();
     if (link.inertial) {
       const urdf::Inertial& in = *link.inertial;
-      const double m = in.mass;
-      if (!std::isfinite(m) || m < 0) throw LoadError(ln + ": mass must be finite and >= 0");
-      const Transform F = T * toTransform(in.origin, ln + " <inertial>");
-      Mat3 I;
+      m = in.mass;
+      if (!std::isfinite(m)) throw LoadError(ln + ": <mass> is not a finite number");
+      if (m < 0) throw LoadError(ln + ": negative <mass> " + num(m) + " kg");
+      F = T * toTransform(in.origin, ln + " <inertial>");
       I << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
-      if (m > 0) {
-        if (!positiveDefinite(I)) throw LoadError(ln + ": inertia is not positive definite");
-        grp.mass.add(m, F.p, rotated(I, F.q));
+      if (!I.allFinite()) throw LoadError(ln + ": <inertia> is not finite");
+      if (m > 0 && m < kTinyMass) {
+        def_.notes.push_back(ln + ": mass " + num(m) + " kg taken as massless");
+        m = 0;
       }
-      if (has_mesh) grp.shapes.push_back(fittedBox(link.name, m, F.p, rotated(I, F.q)));
-    } else if (has_mesh) {
-      throw LoadError(ln + ": mesh <collision> without <inertial>, cannot size an approximation");
-    } else if (from_volume.mass > 0) {
+      if (m > 0) {
+        const std::string why = repairInertia(I, m);
+        if (!why.empty()) {
+          const Vec3 l = Eigen::SelfAdjointEigenSolver<Mat3>(I).eigenvalues();
+          def_.warnings.push_back(ln + ": <inertia> " + why + "; repaired to principal moments " +
+                                  num(l[0]) + ", " + num(l[1]) + ", " + num(l[2]) + " kg m^2");
+        }
+        grp.mass.add(m, F.p, rotated(I, F.q));
+        has_mass = true;
+      }
+    }
+    if (!mesh_failure.empty()) {
+      // A mesh did not resolve: the visual geometry (when no collision shape did either), else
+      // a box fitted to the inertia.
+      std::string visual_failure;
+      int from_visual = 0;
+      MassAccumulator vis;
+      if (added == 0) vis = addGeometry(g, link, T, true, &visual_failure, &from_visual);
+      if (from_visual > 0) {
+        def_.warnings.push_back(ln + ": collision mesh " + mesh_failure + "; the <visual> geometry used instead");
+        if (!link.inertial) from_volume = vis;
+      } else if (has_mass) {
+        ShapeDef box = fittedBox(m, F.p, rotated(I, F.q));
+        Vec3& h = box.geometry.half_extents;
+        // Placeholder inertias (ixx=1 on a 0.1 kg part) give boxes metres wide: past a density
+        // range no real part has, a cube of water density stands in.
+        const double density = m / (8 * h.prod());
+        std::string how = "fitted to its inertia";
+        if (density < kMinDensity || density > kMaxDensity) {
+          h = Vec3::Constant(0.5 * std::cbrt(m / kDensity));
+          box.local.q = Quat::Identity();
+          how = "of water density (its inertia gives an implausible " + num(density) + " kg/m^3)";
+        }
+        addShape(g, box, "box " + how + " (mesh unresolved)", link.name);
+        def_.warnings.push_back(ln + ": collision mesh " + mesh_failure + "; replaced by a " +
+                                num(2 * h.x()) + " x " + num(2 * h.y()) + " x " + num(2 * h.z()) +
+                                " m box " + how);
+      } else {
+        def_.warnings.push_back(ln + ": collision mesh " + mesh_failure +
+                                "; no <visual> or mass to size a replacement: no collision shape");
+      }
+    }
+    if (!link.inertial && from_volume.mass > 0) {
       grp.mass.add(from_volume.mass, from_volume.com(), from_volume.inertia());
-      std::ostringstream os;
-      os << ln << ": no <inertial>, mass " << from_volume.mass
-         << " kg from the collision volume at 1000 kg/m^3";
-      def_.notes.push_back(os.str());
+      def_.notes.push_back(ln + ": no <inertial>, mass " + num(from_volume.mass) +
+                           " kg from the collision volume at 1000 kg/m^3");
     }
   }
 
   // Solid box with the same mass and principal moments, placed on the principal axes at the COM:
   // I1 = m/3 (b^2 + c^2) etc. for half extents (a, b, c)  =>  a^2 = 3/(2m) (I2 + I3 - I1).
-  ShapeDef fittedBox(const std::string& link, double m, const Vec3& com, const Mat3& I) {
-    if (!(m > 0)) throw LoadError("link " + quoted(link) + ": mesh <collision> with zero mass");
+  static ShapeDef fittedBox(double m, const Vec3& com, const Mat3& I) {
     Eigen::SelfAdjointEigenSolver<Mat3> es(I);
     const Vec3 l = es.eigenvalues();
     Mat3 R = es.eigenvectors();
@@ -243,10 +451,6 @@ class Loader {
     ShapeDef s;
     s.geometry = Geometry::box(h);
     s.local = Transform(com, Quat(R));
-    std::ostringstream os;
-    os << "link " << quoted(link) << ": mesh collision approximated by a " << 2 * h.x() << " x "
-       << 2 * h.y() << " x " << 2 * h.z() << " m box fitted to its inertia";
-    def_.notes.push_back(os.str());
     return s;
   }
 
@@ -254,18 +458,18 @@ class Loader {
   // Joint origin in the frame of the group holding its parent link.
   Transform origin(const urdf::Joint& j) const {
     return placement_.at(j.parent_link_name).second *
-           toTransform(j.parent_to_joint_origin_transform, "joint " + quoted(j.name));
+           toTransform(j.parent_to_joint_origin_transform, "joint " + quote(j.name));
   }
   int groupOf(const std::string& link) const { return placement_.at(link).first; }
 
   static Vec3 unitAxis(const urdf::Joint& j) {
     const Vec3 a = toVec(j.axis);
-    if (!a.allFinite() || a.norm() < 1e-9) throw LoadError("joint " + quoted(j.name) + ": zero <axis>");
+    if (!a.allFinite() || a.norm() < 1e-9) throw LoadError("joint " + quote(j.name) + ": zero <axis>");
     return a.normalized();
   }
 
-  // Limits of one revolute / continuous joint (continuous: +-pi, not limited).
-  static bool limits(const urdf::Joint& j, double& lo, double& hi) {
+  // Limits of one joint (continuous and without <limit>: +-pi, not limited).
+  static bool limits(const urdf::Joint& j, double& lo, double& hi, std::vector<std::string>* warnings) {
     if (j.type == urdf::Joint::CONTINUOUS || !j.limits) {
       lo = -M_PI;
       hi = M_PI;
@@ -273,8 +477,28 @@ class Loader {
     }
     lo = j.limits->lower;
     hi = j.limits->upper;
-    if (!std::isfinite(lo) || !std::isfinite(hi) || lo > hi)
-      throw LoadError("joint " + quoted(j.name) + ": invalid <limit> (need lower <= upper)");
+    if (!std::isfinite(lo) || !std::isfinite(hi))
+      throw LoadError("joint " + quote(j.name) + ": <limit> lower / upper not finite");
+    if (lo > hi)
+      throw LoadError("joint " + quote(j.name) + ": <limit> lower " + num(lo) + " > upper " + num(hi));
+    if (j.type == urdf::Joint::PRISMATIC) return true;
+    // Angles are measured in (-pi, pi]: a range reaching past +-pi would put a limit at the
+    // wrap, where the angle jumps by 2 pi and the limit kicks. Clip it short of the wrap.
+    const double kWrap = M_PI - 0.05;
+    if (hi - lo >= 2 * M_PI - 1e-9) {
+      warnings->push_back("joint " + quote(j.name) + ": <limit> range " + num(lo) + ".." + num(hi) +
+                          " covers a full turn; unlimited");
+      lo = -M_PI;
+      hi = M_PI;
+      return false;
+    }
+    if (lo < -kWrap || hi > kWrap) {
+      warnings->push_back("joint " + quote(j.name) + ": <limit> " + num(lo) + ".." + num(hi) +
+                          " rad clipped to +-" + num(kWrap) + " (angles wrap at +-pi)");
+      lo = std::max(lo, -kWrap);
+      hi = std::min(hi, kWrap);
+      if (lo > hi) lo = hi = std::abs(lo) < std::abs(hi) ? lo : hi;
+    }
     return true;
   }
 
@@ -283,31 +507,72 @@ class Loader {
     damping = j.dynamics ? j.dynamics->damping : 0.0;
     friction = j.dynamics ? j.dynamics->friction : 0.0;
     if (!std::isfinite(damping) || damping < 0 || !std::isfinite(friction) || friction < 0)
-      throw LoadError("joint " + quoted(j.name) +
+      throw LoadError("joint " + quote(j.name) +
                       ": <dynamics> damping and friction must be finite and >= 0");
   }
 
   bool isChainLink(const Group& g, double parent_mass) const {
-    return g.shapes.empty() && g.child_joints.size() == 1 &&
+    return g.shapes.empty() && g.child_joints.size() == 1 && movesAsChain(*g.child_joints[0]) &&
+           !extras_.preserved_fixed.count(g.child_joints[0]->name) &&
            g.mass.mass < kDummyFraction * parent_mass;
   }
 
   // Creates the LinkDef of group g at rest pose `rest`, then its joints and child bodies.
-  void emitBody(int g, const Transform& rest) {
+  // A group without mass gets a nominal one (`neighbour`: the parent group, -1 at the root).
+  void emitBody(int g, const Transform& rest, int neighbour) {
     Group& grp = groups_[g];
-    const std::string ln = "link " + quoted(grp.top->name);
+    const std::string ln = "link " + quote(grp.top->name);
+    if (!(grp.mass.mass > 0)) {
+      double ref = neighbour >= 0 ? groups_[neighbour].mass.mass : 0.0;
+      for (const auto& j : grp.child_joints) {
+        const double c = groups_[groupOf(j->child_link_name)].mass.mass;
+        if (c > 0 && (!(ref > 0) || c < ref)) ref = c;
+      }
+      const double m = std::max(kNominalFraction * ref, 1e-3);
+      const double r = 0.03;
+      grp.mass.add(m, Vec3::Zero(), 0.4 * m * r * r * Mat3::Identity());
+      def_.warnings.push_back(ln + ": massless but joined by moving joints on both sides (" +
+                              std::string(neighbour < 0 ? "the root" : "not foldable into a ball") +
+                              "); given " + num(m) + " kg");
+    }
     LinkDef link;
     link.name = grp.top->name;
     link.mass = grp.mass.mass;
     link.com = grp.mass.com();
     link.inertia = grp.mass.inertia();
+    if (!repairInertia(link.inertia, link.mass).empty())
+      def_.warnings.push_back(ln + ": lumped inertia repaired (not physical)");
     link.shapes = grp.shapes;
+    link.shape_sources = grp.sources;
+    link.shape_friction = grp.friction;
     link.rest_pose = rest;
-    if (!(link.mass > 0)) throw LoadError(ln + ": no mass (no <inertial> mass and no <collision>)");
-    if (!positiveDefinite(link.inertia)) throw LoadError(ln + ": inertia is not positive definite");
     grp.def_index = int(def_.links.size());
     def_.links.push_back(std::move(link));
     for (const auto& j : grp.child_joints) emitJoint(g, j, rest);
+  }
+
+  // A chain of joints through massless links, or why it cannot be one ball joint.
+  std::string foldProblem(const std::vector<urdf::JointConstSharedPtr>& chain,
+                          const std::vector<std::string>& dummies, int child) const {
+    if (chain.size() > 3) return "more than 3 joints through massless links";
+    for (const auto& d : dummies)
+      if (!(groups_[groupOf(d)].mass.mass < kDummyFraction * groups_[child].mass.mass))
+        return "link " + quote(d) + " is not negligible next to " + quote(groups_[child].top->name);
+    std::vector<Vec3> axes;
+    Quat Q = Quat::Identity();
+    for (size_t k = 0; k < chain.size(); ++k) {
+      if (k > 0) {
+        const Transform O = origin(*chain[k]);
+        if (O.p.norm() > kCoincident)
+          return "joint " + quote(chain[k]->name) + " has a translated origin (" + num(O.p.norm()) + " m)";
+        Q = Q * O.q;
+      }
+      axes.push_back(Q * unitAxis(*chain[k]));
+    }
+    for (size_t a = 0; a < axes.size(); ++a)
+      for (size_t b = a + 1; b < axes.size(); ++b)
+        if (std::abs(axes[a].dot(axes[b])) > kOrthogonal) return "axes are not orthogonal";
+    return "";
   }
 
   void emitJoint(int parent, const urdf::JointConstSharedPtr& first, const Transform& parent_rest) {
@@ -316,74 +581,106 @@ class Loader {
     std::vector<std::string> dummies;
     const double parent_mass = groups_[parent].mass.mass;
     int child = groupOf(first->child_link_name);
-    while (isChainLink(groups_[child], parent_mass)) {
-      dummies.push_back(groups_[child].top->name);
-      chain.push_back(groups_[child].child_joints[0]);
-      child = groupOf(chain.back()->child_link_name);
+    const bool spherical = extras_.spherical_joints.count(first->name) > 0;
+    const bool fixed = first->type == urdf::Joint::FIXED;
+    const bool prismatic = first->type == urdf::Joint::PRISMATIC;
+    if (movesAsChain(*first) && !spherical) {
+      while (isChainLink(groups_[child], parent_mass)) {
+        dummies.push_back(groups_[child].top->name);
+        chain.push_back(groups_[child].child_joints[0]);
+        child = groupOf(chain.back()->child_link_name);
+      }
     }
     std::string names;
     for (const auto& j : chain) names += (names.empty() ? "" : "+") + j->name;
-    const std::string where = "joint chain " + quoted(names);
-    if (chain.size() > 3) throw LoadError(where + ": more than 3 joints through massless links");
-    for (const auto& d : dummies)
-      if (!(groups_[groupOf(d)].mass.mass < kDummyFraction * groups_[child].mass.mass))
-        throw LoadError(where + ": link " + quoted(d) + " is not negligible next to " +
-                        quoted(groups_[child].top->name));
+    if (chain.size() > 1) {
+      const std::string problem = foldProblem(chain, dummies, child);
+      if (!problem.empty()) {
+        // Keep the first joint as a hinge; its massless child becomes a (nominal) body and the
+        // rest of the chain is tried again from there.
+        def_.warnings.push_back("joint chain " + quote(names) + ": not a ball joint (" + problem +
+                                "); kept as separate hinges");
+        // The first massless link becomes a body: a nominal share of the chain's lighter end.
+        Group& mid = groups_[groupOf(first->child_link_name)];
+        const double m = kNominalFraction * std::min(parent_mass, groups_[child].mass.mass);
+        const double r = 0.03;
+        mid.mass.add(m, Vec3::Zero(), 0.4 * m * r * r * Mat3::Identity());
+        def_.warnings.push_back("link " + quote(mid.top->name) + ": massless link between hinges given " +
+                                num(m) + " kg");
+        chain.resize(1);
+        dummies.clear();
+        child = groupOf(first->child_link_name);
+        names = first->name;
+      }
+    }
 
     RagdollJointDef jd;
     jd.name = names;
     jd.parent = groups_[parent].def_index;
     jd.frame_parent = origin(*first);
     jd.chain_links = dummies;
-    Quat Q = Quat::Identity();  // Q2 Q3 ... accumulated (see the derivation at the top)
-    for (size_t k = 0; k < chain.size(); ++k) {
-      const urdf::Joint& j = *chain[k];
-      if (k > 0) {
-        const Transform O = origin(j);
-        if (O.p.norm() > kCoincident)
-          throw LoadError(where + ": joint " + quoted(j.name) +
-                          " has a translated origin, cannot form a ball joint");
-        Q = Q * O.q;
+    if (spherical || fixed) {
+      jd.kind = spherical ? RagdollJointKind::Ball : RagdollJointKind::Fixed;
+      if (spherical) {
+        double damping, friction;
+        dynamics(*first, damping, friction);
+        jd.axes = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
+        jd.lower.assign(3, -M_PI);
+        jd.upper.assign(3, M_PI);
+        jd.damping.assign(3, damping);
+        jd.friction.assign(3, friction);
+        jd.source_joints = {first->name};
+        def_.notes.push_back("joint " + quote(first->name) + ": spherical, a ball joint without limits");
+      } else {
+        jd.source_joints = {first->name};
+        def_.notes.push_back("joint " + quote(first->name) + ": fixed, kept as a weld (<preserveFixedJoint>)");
       }
-      double lo, hi;
-      jd.limited |= limits(j, lo, hi);
-      double damping, friction;
-      dynamics(j, damping, friction);
-      jd.damping.push_back(damping);
-      jd.friction.push_back(friction);
-      jd.axes.push_back(Q * unitAxis(j));
-      jd.lower.push_back(lo);
-      jd.upper.push_back(hi);
-      jd.source_joints.push_back(j.name);
-      if (k < dummies.size()) jd.chain_offsets.emplace_back(Vec3::Zero(), Q);  // dummy k's frame
-    }
-    jd.frame_child = Transform(Vec3::Zero(), Q.conjugate());
-    if (chain.size() == 1) {
-      jd.kind = RagdollJointKind::Hinge;
+      jd.frame_child = Transform();
     } else {
-      jd.kind = RagdollJointKind::Ball;
-      for (size_t a = 0; a < jd.axes.size(); ++a)
-        for (size_t b = a + 1; b < jd.axes.size(); ++b)
-          if (std::abs(jd.axes[a].dot(jd.axes[b])) > kOrthogonal)
-            throw LoadError(where + ": axes are not orthogonal, cannot form a ball joint");
-      // The Euler decomposition of the chain is singular where the middle angle reaches
-      // +-pi/2; keep its range clear of that (the solver cannot hold a limit through it).
-      const double kMiddleMax = M_PI / 2 - 0.05;
-      if (jd.axes.size() == 3 && (jd.lower[1] < -kMiddleMax || jd.upper[1] > kMiddleMax)) {
-        jd.lower[1] = std::max(jd.lower[1], -kMiddleMax);
-        jd.upper[1] = std::min(jd.upper[1], kMiddleMax);
-        jd.limited = true;
-        def_.notes.push_back(where + ": middle axis range clamped to +-" + std::to_string(kMiddleMax) +
-                             " rad (the chain is singular at +-pi/2)");
+      Quat Q = Quat::Identity();  // Q2 Q3 ... accumulated (see the derivation at the top)
+      for (size_t k = 0; k < chain.size(); ++k) {
+        const urdf::Joint& j = *chain[k];
+        if (k > 0) Q = Q * origin(j).q;
+        double lo, hi;
+        jd.limited |= limits(j, lo, hi, &def_.warnings);
+        double damping, friction;
+        dynamics(j, damping, friction);
+        jd.damping.push_back(damping);
+        jd.friction.push_back(friction);
+        jd.axes.push_back(Q * unitAxis(j));
+        jd.lower.push_back(lo);
+        jd.upper.push_back(hi);
+        jd.source_joints.push_back(j.name);
+        if (k < dummies.size()) jd.chain_offsets.emplace_back(Vec3::Zero(), Q);  // dummy k's frame
       }
-      if (chain.size() == 2) {
-        jd.axes.push_back(jd.axes[0].cross(jd.axes[1]).normalized());
-        jd.lower.push_back(0.0);
-        jd.upper.push_back(0.0);
-        jd.damping.push_back(0.0);
-        jd.friction.push_back(0.0);
-        jd.limited = true;
-        def_.notes.push_back(where + ": 2-joint chain, ball joint with the third axis locked");
+      jd.frame_child = Transform(Vec3::Zero(), Q.conjugate());
+      if (prismatic) {
+        jd.kind = RagdollJointKind::Prismatic;
+        if (!first->limits) jd.limited = false;
+      } else if (chain.size() == 1) {
+        jd.kind = RagdollJointKind::Hinge;
+      } else {
+        jd.kind = RagdollJointKind::Ball;
+        const std::string where = "joint chain " + quote(names);
+        // The Euler decomposition of the chain is singular where the middle angle reaches
+        // +-pi/2; keep its range clear of that (the solver cannot hold a limit through it).
+        const double kMiddleMax = M_PI / 2 - 0.05;
+        if (jd.axes.size() == 3 && (jd.lower[1] < -kMiddleMax || jd.upper[1] > kMiddleMax)) {
+          jd.lower[1] = std::max(jd.lower[1], -kMiddleMax);
+          jd.upper[1] = std::min(jd.upper[1], kMiddleMax);
+          jd.limited = true;
+          def_.notes.push_back(where + ": middle axis range clamped to +-" + std::to_string(kMiddleMax) +
+                               " rad (the chain is singular at +-pi/2)");
+        }
+        if (chain.size() == 2) {
+          jd.axes.push_back(jd.axes[0].cross(jd.axes[1]).normalized());
+          jd.lower.push_back(0.0);
+          jd.upper.push_back(0.0);
+          jd.damping.push_back(0.0);
+          jd.friction.push_back(0.0);
+          jd.limited = true;
+          def_.notes.push_back(where + ": 2-joint chain, ball joint with the third axis locked");
+        }
       }
     }
     jd.child = int(def_.links.size());  // emitBody appends the child next
@@ -392,10 +689,12 @@ class Loader {
     def_.joints.push_back(std::move(jd));
     folded_links_ += dummies.size();
     for (const auto& d : dummies) folded_mass_ += groups_[groupOf(d)].mass.mass;
-    emitBody(child, rest);
+    emitBody(child, rest, parent);
   }
 
   const urdf::ModelInterface& model_;
+  const urdf_xml::Extras& extras_;
+  UrdfLoadOptions options_;
   RagdollDef def_;
   std::vector<Group> groups_;
   std::map<std::string, std::pair<int, Transform>> placement_;  // link -> (group, frame in group)
@@ -403,118 +702,19 @@ class Loader {
   double folded_mass_ = 0;
 };
 
-// urdfdom rejects a joint's <dynamics/> that has neither damping nor friction (the whole
-// model then fails to parse); URDF gives both a default of 0. This pass over the XML gives such
-// an element damping="0" so that it means "no damping, no friction", and notes the attributes
-// of a joint's <dynamics> that the simulator ignores (only damping and friction are used, e.g.
-// Gazebo's spring_stiffness). Returns true and sets *out when it changed the text.
-// A small scanner, enough for URDF: comments, CDATA, <? ?> and <! > are skipped; quoted
-// attribute values may hold '>'. Only <dynamics> of a <robot>'s <joint> is touched.
-bool normalizeDynamics(const std::string& xml, std::string* out, std::vector<std::string>* notes) {
-  auto isNameChar = [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == ':' || c == '.';
-  };
-  std::vector<std::string> stack;  // open elements
-  std::vector<size_t> inserts;     // positions after "<dynamics"
-  std::string joint;               // name of the innermost open <joint>
-  size_t i = 0;
-  while ((i = xml.find('<', i)) != std::string::npos) {
-    auto skipTo = [&](const char* end) {
-      const size_t e = xml.find(end, i);
-      i = e == std::string::npos ? xml.size() : e + std::strlen(end);
-    };
-    if (xml.compare(i, 4, "<!--") == 0) { skipTo("-->"); continue; }
-    if (xml.compare(i, 9, "<![CDATA[") == 0) { skipTo("]]>"); continue; }
-    if (xml.compare(i, 2, "<?") == 0) { skipTo("?>"); continue; }
-    if (xml.compare(i, 2, "<!") == 0) { skipTo(">"); continue; }
-    const bool closing = xml.compare(i, 2, "</") == 0;
-    size_t p = i + (closing ? 2 : 1);
-    const size_t name_start = p;
-    while (p < xml.size() && isNameChar(xml[p])) ++p;
-    const std::string name = xml.substr(name_start, p - name_start);
-    const size_t name_end = p;
-    // Attributes up to '>' (quotes respected).
-    std::vector<std::pair<std::string, std::string>> attrs;
-    bool self_closing = false;
-    while (p < xml.size() && xml[p] != '>') {
-      const char c = xml[p];
-      if (c == '/') { self_closing = true; ++p; continue; }
-      if (std::isspace(static_cast<unsigned char>(c))) { ++p; continue; }
-      self_closing = false;
-      const size_t a = p;
-      while (p < xml.size() && isNameChar(xml[p])) ++p;
-      std::string attr = xml.substr(a, p - a), value;
-      while (p < xml.size() && std::isspace(static_cast<unsigned char>(xml[p]))) ++p;
-      if (p < xml.size() && xml[p] == '=') {
-        ++p;
-        while (p < xml.size() && std::isspace(static_cast<unsigned char>(xml[p]))) ++p;
-        if (p < xml.size() && (xml[p] == '"' || xml[p] == '\'')) {
-          const char q = xml[p];
-          const size_t e = xml.find(q, p + 1);
-          const size_t end = e == std::string::npos ? xml.size() : e;
-          value = xml.substr(p + 1, end - p - 1);
-          p = std::min(xml.size(), end + 1);
-        }
-      }
-      if (attr.empty()) ++p;  // stray character: step over it
-      else attrs.emplace_back(attr, value);
-    }
-    i = std::min(xml.size(), p + 1);
-    if (closing) {
-      while (!stack.empty()) {  // tolerate unbalanced input; urdfdom reports it
-        const std::string top = stack.back();
-        stack.pop_back();
-        if (top == name) break;
-      }
-      if (name == "joint") joint.clear();
-      continue;
-    }
-    if (name == "joint") {
-      joint.clear();
-      for (const auto& [k, v] : attrs)
-        if (k == "name") joint = v;
-    }
-    if (name == "dynamics" && stack.size() >= 2 && stack.back() == "joint" &&
-        stack[stack.size() - 2] == "robot") {
-      bool has = false;
-      for (const auto& [k, v] : attrs) {
-        if (k == "damping" || k == "friction") has = true;
-        else notes->push_back("joint " + quoted(joint) + ": <dynamics> attribute " + quoted(k) +
-                              " ignored (only damping and friction are used)");
-      }
-      if (!has) {
-        inserts.push_back(name_end);
-        notes->push_back("joint " + quoted(joint) +
-                         ": <dynamics> without damping or friction, both taken as 0");
-      }
-    }
-    if (!self_closing) stack.push_back(name);
-  }
-  if (inserts.empty()) return false;
-  out->clear();
-  out->reserve(xml.size() + 12 * inserts.size());
-  size_t from = 0;
-  for (size_t at : inserts) {
-    out->append(xml, from, at - from);
-    out->append(" damping=\"0\"");
-    from = at;
-  }
-  out->append(xml, from, std::string::npos);
-  return true;
-}
-
 }  // namespace
 
-UrdfLoadResult loadUrdfString(const std::string& xml) {
+UrdfLoadResult loadUrdfString(const std::string& xml, const UrdfLoadOptions& options) {
   UrdfLoadResult result;
+  urdf_xml::Extras extras;
+  result.error = urdf_xml::preprocess(xml, &extras);
+  if (!result.error.empty()) return result;
   urdf::ModelInterfaceSharedPtr model;
-  std::vector<std::string> notes;  // from normalizeDynamics
   {
     static std::mutex mutex;  // the console_bridge output handler is global
     std::lock_guard<std::mutex> lock(mutex);
     LogCapture capture;
-    std::string normalized;
-    model = urdf::parseURDF(normalizeDynamics(xml, &normalized, &notes) ? normalized : xml);
+    model = urdf::parseURDF(extras.text);
     if (!model || !model->getRoot()) {
       result.error = "URDF <robot> could not be parsed: " +
                      (capture.errors().empty() ? std::string("unknown error") : capture.errors());
@@ -522,8 +722,8 @@ UrdfLoadResult loadUrdfString(const std::string& xml) {
     }
   }
   try {
-    result.def = Loader(*model).run();
-    result.def.notes.insert(result.def.notes.begin(), notes.begin(), notes.end());
+    result.def = Loader(*model, extras, options).run();
+    result.def.notes.insert(result.def.notes.begin(), extras.notes.begin(), extras.notes.end());
     result.ok = true;
   } catch (const LoadError& e) {
     result.error = e.what();
@@ -531,16 +731,18 @@ UrdfLoadResult loadUrdfString(const std::string& xml) {
   return result;
 }
 
-UrdfLoadResult loadUrdfFile(const std::string& path) {
+UrdfLoadResult loadUrdfFile(const std::string& path, UrdfLoadOptions options) {
   std::ifstream in(path);
   if (!in) {
     UrdfLoadResult result;
-    result.error = "cannot open URDF file " + quoted(path);
+    result.error = "cannot open URDF file " + quote(path);
     return result;
   }
   std::stringstream ss;
   ss << in.rdbuf();
-  UrdfLoadResult result = loadUrdfString(ss.str());
+  if (options.base_dir.empty())
+    options.base_dir = std::filesystem::path(path).parent_path().string();
+  UrdfLoadResult result = loadUrdfString(ss.str(), options);
   if (!result.ok) result.error = path + ": " + result.error;
   return result;
 }

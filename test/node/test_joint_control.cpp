@@ -88,6 +88,40 @@ TEST(AxisTable, NamesAreTheJointStateNames) {
   EXPECT_EQ(t.count(2), 3);
 }
 
+TEST(AxisTable, SliderHasOneAxisWeldNoneSphericalThree) {
+  RagdollDef def = model();
+  LinkDef extra;
+  for (const char* n : {"slider", "welded", "head"}) {
+    extra.name = n;
+    def.links.push_back(extra);
+  }
+  RagdollJointDef slide, weld, neck;
+  slide.name = "slide";
+  slide.kind = RagdollJointKind::Prismatic;
+  slide.source_joints = {"slide"};
+  slide.axes = {Vec3::UnitZ()};
+  weld.name = "weld";
+  weld.kind = RagdollJointKind::Fixed;
+  weld.source_joints = {"weld"};
+  neck.name = "neck";  // URDF spherical: one source joint, three axes
+  neck.kind = RagdollJointKind::Ball;
+  neck.source_joints = {"neck"};
+  neck.axes = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
+  def.joints.push_back(slide);
+  def.joints.push_back(weld);
+  def.joints.push_back(neck);
+  const AxisTable t(def);
+  ASSERT_EQ(t.size(), 7 + 1 + 0 + 3);
+  EXPECT_EQ(t.count(3), 1);
+  EXPECT_EQ(t.count(4), 0);
+  EXPECT_EQ(t.count(5), 3);
+  EXPECT_EQ(t.find("slide"), 7);
+  EXPECT_EQ(t.find("weld"), -1);
+  EXPECT_EQ(t.find("neck"), 8);
+  EXPECT_EQ(t.find("neck_1"), 9);
+  EXPECT_EQ(t.find("neck_2"), 10);
+}
+
 TEST(JointSettings, ValidationNamesTheField) {
   JointSettings s;
   EXPECT_EQ(validateJointSettings(s, "x"), "");

@@ -317,14 +317,24 @@ TEST(UrdfLoader, RotatedChainsBecomeBallsWithMatchingFrames) {
   EXPECT_EQ(r.def.no_collide.size(), 3u);
 }
 
-TEST(UrdfLoader, NonOrthogonalChainIsRejected) {
+TEST(UrdfLoader, NonOrthogonalChainKeepsItsHinges) {
   const UrdfLoadResult r = loadUrdfString(robot(
       boxLink("a", 2) + boxLink("b", 3) + dummyLink("d1") + dummyLink("d2") +
       joint("j1", "revolute", "a", "d1", "0 0 0", "0 0 0", "1 0 0") +
       joint("j2", "revolute", "d1", "d2", "0 0 0", "0 0 0", "1 1 0") +
       joint("j3", "revolute", "d2", "b", "0 0 0", "0 0 0", "0 0 1")));
-  EXPECT_FALSE(r.ok);
-  EXPECT_NE(r.error.find("j1+j2+j3"), std::string::npos) << r.error;
+  ASSERT_TRUE(r.ok) << r.error;
+  // j1 stays a hinge (d1 gets a nominal mass); j2 and j3 are orthogonal: a 2-joint ball.
+  ASSERT_EQ(r.def.joints.size(), 2u);
+  EXPECT_EQ(r.def.joints[0].name, "j1");
+  EXPECT_EQ(r.def.joints[0].kind, RagdollJointKind::Hinge);
+  EXPECT_EQ(r.def.joints[1].name, "j2+j3");
+  EXPECT_EQ(r.def.joints[1].kind, RagdollJointKind::Ball);
+  EXPECT_NEAR(r.def.links[r.def.findLink("d1")].mass, 0.2 + 0.001, 1e-12);
+  int warned = 0;
+  for (const auto& w : r.def.warnings)
+    warned += w.find("j1+j2+j3") != std::string::npos && w.find("not orthogonal") != std::string::npos;
+  EXPECT_EQ(warned, 1);
 }
 
 TEST(UrdfLoader, FixedJointLumpsMassPropertiesAndShapes) {
@@ -371,9 +381,11 @@ TEST(UrdfLoader, VolumeMassAndMeshApproximationsAreNoted) {
   EXPECT_NEAR(r.def.links[0].inertia(0, 0), 0.4 * r.def.links[0].mass * 0.01, 1e-12);
   ASSERT_EQ(r.def.links[1].shapes.size(), 2u);
   EXPECT_EQ(r.def.links[1].shapes[1].geometry.type, ShapeType::Box);
-  int noted = 0;
+  int noted = 0, warned = 0;
   for (const auto& n : r.def.notes) noted += n.find("'a'") != std::string::npos || n.find("'b'") != std::string::npos;
-  EXPECT_EQ(noted, 2);
+  for (const auto& w : r.def.warnings) warned += w.find("'b'") != std::string::npos;
+  EXPECT_EQ(noted, 1);   // a: volume mass
+  EXPECT_EQ(warned, 1);  // b: the unresolved mesh
 }
 
 // ---- other models ----------------------------------------------------------------------------
@@ -390,23 +402,13 @@ TEST(PeerRagdoll, Ragdoll15Loads) {
   checkChainKinematics(readFile(path));
 }
 
-TEST(UrdfZoo, EveryRobotLoadsOrNamesTheProblem) {
+TEST(UrdfZoo, EveryRobotLoads) {
   const std::string dir = kShared + "/urdf_zoo";
   if (!std::filesystem::is_directory(dir)) GTEST_SKIP() << dir << " not present";
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     if (entry.path().extension() != ".urdf") continue;
     const UrdfLoadResult r = loadUrdfFile(entry.path().string());
-    const std::string file = entry.path().filename().string();
-    RecordProperty(file, r.ok ? "ok: " + std::to_string(r.def.links.size()) + " links" : r.error);
-    std::cout << "[ zoo ] " << file << ": "
-              << (r.ok ? "ok, " + std::to_string(r.def.links.size()) + " links, " +
-                             std::to_string(r.def.notes.size()) + " notes"
-                       : r.error)
-              << "\n";
-    if (!r.ok) {
-      EXPECT_TRUE(r.error.find('\'') != std::string::npos || r.error.find('[') != std::string::npos)
-          << r.error;
-    }
+    EXPECT_TRUE(r.ok) << r.error;  // the drop itself: test_urdf_zoo.cpp
   }
 }
 
@@ -414,19 +416,20 @@ TEST(UrdfZoo, EveryRobotLoadsOrNamesTheProblem) {
 TEST(UrdfLoader, MalformedInputsFailWithNamedElements) {
   const std::string good_link = boxLink("a", 1);
   const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
-      {"", {"robot"}},
-      {"not xml", {"robot"}},
+      {"", {"empty"}},
+      {"not xml", {"XML", "line 1"}},
       {"<foo/>", {"robot"}},
       {robot(good_link + "<link name='b'/>" + joint("j", "revolute", "a", "ghost", "0 0 0", "0 0 0", "1 0 0")),
        {"ghost", "j"}},
       {robot(boxLink("heavy", -2)), {"heavy"}},
       {robot(good_link + boxLink("b", 1) + joint("j", "revolute", "a", "b", "0 nan 0", "0 0 0", "1 0 0")),
        {"j"}},
-      {robot(good_link + boxLink("b", 1)), {"a", "b"}},  // two roots
-      {robot(good_link + boxLink("b", 1) + joint("slide", "prismatic", "a", "b", "0 0 0", "0 0 0", "1 0 0")),
-       {"slide"}},
-      {robot(good_link + "<link name='b'/>" + joint("j", "revolute", "a", "b", "0 0 0", "0 0 0", "1 0 0")),
-       {"'b'"}},  // massless body
+      {robot(good_link + boxLink("b", 1)), {"'a'", "'b'"}},  // two roots
+      {robot(good_link + boxLink("b", 1) + joint("flat", "planar", "a", "b", "0 0 0", "0 0 0", "1 0 0")),
+       {"flat", "planar"}},
+      {robot(good_link + boxLink("b", 1) + joint("j", "revolute", "a", "b", "0 0 0", "0 0 0", "1 0 0") +
+             boxLink("c", 1) + joint("free", "floating", "b", "c", "0 0 0", "0 0 0", "1 0 0")),
+       {"free", "floating"}},  // floating below the root
   };
   for (const auto& [xml, names] : cases) {
     const UrdfLoadResult r = loadUrdfString(xml);

@@ -1,0 +1,33 @@
+// Drop test of a RagdollDef (ROS-free): spawn it just above a ground plane, let it fall and
+// measure how well the solver holds it together. Used by ragdoll_check and the URDF zoo test.
+#pragma once
+
+#include "ragdoll_sim/ragdoll.hpp"
+
+namespace ragdoll_sim {
+
+struct DropSettings {
+  double seconds = 3.0;      // sim time
+  double dt = 1e-3;          // s, physics step (the node's default rate)
+  int substeps = 4;
+  double clearance = 0.05;   // m between the lowest shape point and the ground at spawn
+};
+
+struct DropReport {
+  bool finite = true;            // every body state stayed finite (no NaN / inf)
+  double spawn_z = 0;            // m, root link height at spawn (rest pose, upright)
+  double max_penetration = 0;    // m, deepest contact (ground or self) over the run
+  double max_anchor_error = 0;   // m, largest joint anchor separation over the run
+  double rest_height = 0;        // m, root link origin z at the end
+  double lowest_point = 0;       // m, lowest shape point at the end
+  double min_lowest_point = 0;   // m, lowest shape point over the run
+  double final_speed = 0;        // m/s, fastest body (COM speed + angular speed x 0.1 m) at the end
+  double seconds = 0;            // sim time actually run (less when a state went non-finite)
+};
+
+// Lowest world z of a shape (planes: +inf) whose body frame is at `body_pose`.
+double lowestPoint(const ShapeDef& shape, const Transform& body_pose);
+
+DropReport dropTest(const RagdollDef& def, const DropSettings& settings = DropSettings());
+
+}  // namespace ragdoll_sim

@@ -1,0 +1,88 @@
+// See drop_check.hpp.
+#include "ragdoll_sim/drop_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ragdoll_sim {
+
+double lowestPoint(const ShapeDef& shape, const Transform& body_pose) {
+  const Transform W = body_pose * shape.local;
+  const Geometry& g = shape.geometry;
+  const Mat3 R = W.q.toRotationMatrix();
+  const Vec3 up = R.row(2).transpose();  // world z in shape axes
+  switch (g.type) {
+    case ShapeType::Sphere: return W.p.z() - g.radius;
+    case ShapeType::Capsule: return W.p.z() - g.half_height * std::abs(up.z()) - g.radius;
+    case ShapeType::Box: return W.p.z() - g.half_extents.dot(up.cwiseAbs());
+    case ShapeType::Cylinder:
+      return W.p.z() - g.half_height * std::abs(up.z()) - g.radius * up.head<2>().norm();
+    case ShapeType::ConvexHull: {
+      double z = std::numeric_limits<double>::infinity();
+      if (g.hull)
+        for (const Vec3& v : g.hull->vertices) z = std::min(z, W.apply(v).z());
+      return z;
+    }
+    case ShapeType::Plane: break;
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+namespace {
+double lowest(const World& world, const Ragdoll& r, const RagdollDef& def) {
+  double z = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < r.bodies.size(); ++i)
+    for (const ShapeDef& s : def.links[i].shapes) z = std::min(z, lowestPoint(s, world.bodyPose(r.bodies[i])));
+  return z;
+}
+}  // namespace
+
+DropReport dropTest(const RagdollDef& def, const DropSettings& settings) {
+  DropReport rep;
+  WorldDef wd;
+  wd.substeps = settings.substeps;
+  World world(wd);
+  BodyDef gd;
+  gd.type = BodyType::Static;
+  gd.name = "ground";
+  ShapeDef ground;
+  ground.geometry = Geometry::plane(Vec3::UnitZ(), 0.0);
+  world.addShape(world.createBody(gd), ground);
+
+  // Rest pose with the root at the origin: lift it so the lowest point is `clearance` up.
+  const Transform root_inv = def.links.at(def.root).rest_pose.inverse();
+  double z0 = std::numeric_limits<double>::infinity();
+  for (const LinkDef& l : def.links)
+    for (const ShapeDef& s : l.shapes) z0 = std::min(z0, lowestPoint(s, root_inv * l.rest_pose));
+  if (!std::isfinite(z0)) z0 = 0.0;  // no shapes at all
+  rep.spawn_z = settings.clearance - z0;
+  const Ragdoll r = spawnRagdoll(world, def, Transform(Vec3(0, 0, rep.spawn_z), Quat::Identity()));
+
+  rep.min_lowest_point = std::numeric_limits<double>::infinity();
+  const int steps = int(std::lround(settings.seconds / settings.dt));
+  for (int s = 0; s < steps; ++s) {
+    world.step(settings.dt);
+    for (BodyId b : r.bodies) {
+      const BodyState st = world.bodyState(b);
+      rep.finite = rep.finite && st.pose.p.allFinite() && st.pose.q.coeffs().allFinite() &&
+                   st.linear_velocity.allFinite() && st.angular_velocity.allFinite();
+    }
+    if (!rep.finite) break;
+    rep.seconds = world.time();
+    for (const ContactInfo& c : world.contacts())
+      rep.max_penetration = std::max(rep.max_penetration, -c.separation);
+    for (JointId j : r.joints)
+      rep.max_anchor_error = std::max(rep.max_anchor_error, world.jointAnchorError(j).norm());
+    rep.min_lowest_point = std::min(rep.min_lowest_point, lowest(world, r, def));
+  }
+  rep.rest_height = world.bodyPose(r.bodies.at(def.root)).p.z();
+  rep.lowest_point = lowest(world, r, def);
+  for (BodyId b : r.bodies) {
+    const BodyState st = world.bodyState(b);
+    rep.final_speed = std::max(rep.final_speed, st.linear_velocity.norm() + 0.1 * st.angular_velocity.norm());
+  }
+  return rep;
+}
+
+}  // namespace ragdoll_sim

@@ -1,0 +1,149 @@
+// See mesh_loader.hpp.
+#include "mesh_loader.hpp"
+
+#include <assimp/config.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <assimp/Importer.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace ragdoll_sim {
+namespace mesh {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool isPackage(const fs::path& dir, const std::string& pkg) {
+  std::error_code ec;
+  const fs::path manifest = dir / "package.xml";
+  if (!fs::is_regular_file(manifest, ec)) return false;
+  std::ifstream in(manifest);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str().find("<name>" + pkg + "</name>") != std::string::npos;
+}
+
+// A package folder named pkg at or below root (depth levels), or "".
+std::string findPackage(const fs::path& root, const std::string& pkg, int depth) {
+  std::error_code ec;
+  if (!fs::is_directory(root, ec)) return "";
+  if (isPackage(root, pkg)) return root.string();
+  if (depth == 0) return "";
+  for (fs::directory_iterator it(root, ec), end; !ec && it != end; it.increment(ec)) {
+    if (!it->is_directory(ec) || it->path().filename().string().rfind('.', 0) == 0) continue;
+    const std::string found = findPackage(it->path(), pkg, depth - 1);
+    if (!found.empty()) return found;
+  }
+  return "";
+}
+
+}  // namespace
+
+std::vector<std::string> packagePathFromEnv() {
+  std::vector<std::string> out;
+  const char* env = std::getenv("ROS_PACKAGE_PATH");
+  std::stringstream ss(env ? env : "");
+  for (std::string p; std::getline(ss, p, ':');)
+    if (!p.empty()) out.push_back(p);
+  return out;
+}
+
+std::string resolveUri(const std::string& uri, const std::string& base_dir,
+                       const std::vector<std::string>& package_paths, std::string* why) {
+  std::error_code ec;
+  auto existing = [&](const fs::path& p) -> std::string {
+    if (fs::is_regular_file(p, ec)) return p.lexically_normal().string();
+    *why = "file " + p.string() + " not found";
+    return "";
+  };
+  const std::string kPackage = "package://", kFile = "file://";
+  if (uri.rfind(kPackage, 0) == 0) {
+    const std::string rest = uri.substr(kPackage.size());
+    const size_t slash = rest.find('/');
+    const std::string pkg = rest.substr(0, slash);
+    const std::string rel = slash == std::string::npos ? "" : rest.substr(slash + 1);
+    // The URDF inside its own package (pkg/urdf/robot.urdf) needs no package path.
+    if (!base_dir.empty())
+      for (fs::path p = fs::absolute(base_dir, ec); !p.empty() && p != p.root_path(); p = p.parent_path())
+        if (p.filename() == pkg) {
+          const std::string f = existing(p / rel);
+          if (!f.empty()) return f;
+        }
+    for (const std::string& root : package_paths) {
+      const std::string dir = findPackage(root, pkg, 4);
+      if (!dir.empty()) return existing(fs::path(dir) / rel);
+    }
+    *why = "package " + pkg + " not found (next to the URDF or in ROS_PACKAGE_PATH)";
+    return "";
+  }
+  if (uri.rfind(kFile, 0) == 0) return existing(uri.substr(kFile.size()));
+  const fs::path p(uri);
+  if (p.is_absolute() || base_dir.empty()) return existing(p);
+  return existing(fs::path(base_dir) / p);
+}
+
+bool readVertices(const std::string& path, const Vec3& scale, std::vector<Vec3>* out,
+                  std::string* error) {
+  Assimp::Importer importer;
+  // URDF meshes live in the link frame as written: keep a Collada file's axes (assimp would
+  // turn a Z_UP file to its own Y-up); its <unit> scale still applies.
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
+  // Only positions are needed: no normals, no triangulation beyond what the reader does.
+  const aiScene* scene = importer.ReadFile(path, aiProcess_JoinIdenticalVertices);
+  if (!scene || !scene->mRootNode) {
+    *error = "assimp cannot read " + path + ": " + importer.GetErrorString();
+    return false;
+  }
+  out->clear();
+  // Walk the node tree so that node transforms (DAE unit and placement) are applied.
+  struct Walk {
+    const aiScene* scene;
+    const Vec3& scale;
+    std::vector<Vec3>* out;
+    void operator()(const aiNode* node, const aiMatrix4x4& parent) const {
+      const aiMatrix4x4 T = parent * node->mTransformation;
+      for (unsigned m = 0; m < node->mNumMeshes; ++m) {
+        const aiMesh* mesh = scene->mMeshes[node->mMeshes[m]];
+        for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+          const aiVector3D p = T * mesh->mVertices[v];
+          const Vec3 x = Vec3(p.x, p.y, p.z).cwiseProduct(scale);
+          if (x.allFinite()) out->push_back(x);
+        }
+      }
+      for (unsigned c = 0; c < node->mNumChildren; ++c) (*this)(node->mChildren[c], T);
+    }
+  };
+  Walk{scene, scale, out}(scene->mRootNode, aiMatrix4x4());
+  if (out->empty()) {
+    *error = path + " holds no vertices";
+    return false;
+  }
+  return true;
+}
+
+std::vector<Vec3> supportPoints(const std::vector<Vec3>& points, int directions) {
+  std::vector<int> best;
+  for (int i = 0; i < directions; ++i) {  // Fibonacci sphere
+    const double z = 1 - 2 * (i + 0.5) / directions, r = std::sqrt(1 - z * z);
+    const double phi = i * 2.399963229728653;
+    const Vec3 d(r * std::cos(phi), r * std::sin(phi), z);
+    int arg = 0;
+    for (int k = 1; k < int(points.size()); ++k)
+      if (points[k].dot(d) > points[arg].dot(d)) arg = k;
+    best.push_back(arg);
+  }
+  std::sort(best.begin(), best.end());
+  best.erase(std::unique(best.begin(), best.end()), best.end());
+  std::vector<Vec3> out;
+  for (int k : best) out.push_back(points[k]);
+  return out;
+}
+
+}  // namespace mesh
+}  // namespace ragdoll_sim
