@@ -123,6 +123,9 @@ TEST(Replay, RecordedCommandsReplayToTheSamePoses) {
   const Trajectory recorded = sample(rec, links);
   kill(recorder, SIGINT);
   finish(recorder);
+  // /usr/bin/rosbag is a Python wrapper: its `record` child closes the bag (renames
+  // <bag>.active to <bag>) after the wrapper has exited, so wait for the file (bounded).
+  for (int i = 0; i < 600 && access(bag.c_str(), R_OK) != 0; ++i) ros::WallDuration(0.05).sleep();
   ASSERT_EQ(access(bag.c_str(), R_OK), 0) << "rosbag record wrote no " << bag;
 
   // The commands acted: the torso moved on in x after the impulse at 0.2 s.
