@@ -5,6 +5,8 @@
 
 #include <visualization_msgs/InteractiveMarker.h>
 
+#include "msg_convert.hpp"
+
 namespace ragdoll_sim {
 namespace node {
 
@@ -169,7 +171,7 @@ void Interaction::onDragFeedback(const visualization_msgs::InteractiveMarkerFeed
         release(d);
         return;
       }
-      const Vec3 handle(fb->pose.position.x, fb->pose.position.y, fb->pose.position.z);
+      const Vec3 handle = toVec(fb->pose.position);
       if (!handle.allFinite()) {
         ROS_WARN_THROTTLE(1.0, "drag of '%s': handle position %s is not finite; drag dropped",
                           d->marker.c_str(), fmt(handle).c_str());

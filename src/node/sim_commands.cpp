@@ -2,15 +2,13 @@
 // the future, at the start of the first step that begins at that sim time (CommandQueue).
 #include <algorithm>
 
+#include "msg_convert.hpp"
 #include "sim_node.hpp"
 
 namespace ragdoll_sim {
 namespace node {
 
 namespace {
-
-Vec3 toVec(const geometry_msgs::Vector3& v) { return Vec3(v.x, v.y, v.z); }
-Vec3 toVec(const geometry_msgs::Point& v) { return Vec3(v.x, v.y, v.z); }
 
 // ragdoll name for messages: "'name'" or "the first ragdoll"
 std::string which(const std::string& ragdoll) {

@@ -5,40 +5,11 @@
 
 #include <rosgraph_msgs/Clock.h>
 
+#include "msg_convert.hpp"
 #include "sim_node.hpp"
 
 namespace ragdoll_sim {
 namespace node {
-
-namespace {
-
-void toMsg(const Transform& t, geometry_msgs::Transform* m) {
-  m->translation.x = t.p.x();
-  m->translation.y = t.p.y();
-  m->translation.z = t.p.z();
-  m->rotation.x = t.q.x();
-  m->rotation.y = t.q.y();
-  m->rotation.z = t.q.z();
-  m->rotation.w = t.q.w();
-}
-
-void toMsg(const Transform& t, geometry_msgs::Pose* m) {
-  m->position.x = t.p.x();
-  m->position.y = t.p.y();
-  m->position.z = t.p.z();
-  m->orientation.x = t.q.x();
-  m->orientation.y = t.q.y();
-  m->orientation.z = t.q.z();
-  m->orientation.w = t.q.w();
-}
-
-void toMsg(const Vec3& v, geometry_msgs::Vector3* m) {
-  m->x = v.x();
-  m->y = v.y();
-  m->z = v.z();
-}
-
-}  // namespace
 
 // ------------------------------------------------------------------------------------------
 // TF

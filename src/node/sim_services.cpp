@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "ragdoll_sim/urdf_loader.hpp"
+#include "msg_convert.hpp"
 #include "sim_node.hpp"
 
 namespace ragdoll_sim {
@@ -19,22 +20,6 @@ bool fromMsg(const geometry_msgs::Pose& m, Transform* t) {
   if (q.norm() < 1e-9) q = Quat::Identity();
   *t = Transform(p, q.normalized());
   return true;
-}
-
-void toMsg(const Transform& t, geometry_msgs::Pose* m) {
-  m->position.x = t.p.x();
-  m->position.y = t.p.y();
-  m->position.z = t.p.z();
-  m->orientation.x = t.q.x();
-  m->orientation.y = t.q.y();
-  m->orientation.z = t.q.z();
-  m->orientation.w = t.q.w();
-}
-
-void toMsg(const Vec3& v, geometry_msgs::Vector3* m) {
-  m->x = v.x();
-  m->y = v.y();
-  m->z = v.z();
 }
 
 template <class Res>

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "msg_convert.hpp"
+
 namespace ragdoll_sim {
 namespace node {
 
@@ -18,24 +20,6 @@ std_msgs::ColorRGBA toMsg(const Rgba& c, double alpha_scale = 1.0) {
   m.b = c.b;
   m.a = static_cast<float>(c.a * alpha_scale);
   return m;
-}
-
-void toMsg(const Transform& t, geometry_msgs::Pose* m) {
-  m->position.x = t.p.x();
-  m->position.y = t.p.y();
-  m->position.z = t.p.z();
-  m->orientation.x = t.q.x();
-  m->orientation.y = t.q.y();
-  m->orientation.z = t.q.z();
-  m->orientation.w = t.q.w();
-}
-
-geometry_msgs::Point toPoint(const Vec3& v) {
-  geometry_msgs::Point p;
-  p.x = v.x();
-  p.y = v.y();
-  p.z = v.z();
-  return p;
 }
 
 // HSV (h in degrees, s and v in [0, 1]) to RGB.
