@@ -263,16 +263,5 @@ TEST(Drag, E_MenuPicksAnotherLink) {
 }
 
 int main(int argc, char** argv) {
-  std::unique_ptr<Fixture> fixture;
-  return runRosTests(
-      argc, argv, "drag_test", 2,
-      [&] {
-        fixture = std::make_unique<Fixture>();
-        fx = fixture.get();
-        fx->init();
-      },
-      [&] {
-        fx = nullptr;
-        fixture.reset();
-      });
+  return runFixtureTests(argc, argv, "drag_test", 2, fx);
 }

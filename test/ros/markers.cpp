@@ -199,16 +199,5 @@ TEST(Markers, D_ForceArrowOpaqueForItsDurationThenFades) {
 }
 
 int main(int argc, char** argv) {
-  std::unique_ptr<Fixture> fixture;
-  return runRosTests(
-      argc, argv, "markers_test", 2,
-      [&] {
-        fixture = std::make_unique<Fixture>();
-        fx = fixture.get();
-        fx->init();
-      },
-      [&] {
-        fx = nullptr;
-        fixture.reset();
-      });
+  return runFixtureTests(argc, argv, "markers_test", 2, fx);
 }

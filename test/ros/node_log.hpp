@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -77,6 +78,24 @@ int runRosTests(int argc, char** argv, const char* name, int spinners, Setup set
   spinner.stop();
   teardown();
   return rc;
+}
+
+// The usual main of a rostest client: a Fixture (with init()) built after ros::init, reachable
+// through `global` while the tests run, destroyed before the spinner's threads go.
+template <class Fixture>
+int runFixtureTests(int argc, char** argv, const char* name, int spinners, Fixture*& global) {
+  std::unique_ptr<Fixture> fixture;
+  return runRosTests(
+      argc, argv, name, spinners,
+      [&] {
+        fixture = std::make_unique<Fixture>();
+        global = fixture.get();
+        global->init();
+      },
+      [&] {
+        global = nullptr;
+        fixture.reset();
+      });
 }
 
 }  // namespace ragdoll_test

@@ -122,16 +122,5 @@ TEST(Poke, B_BadPointsOnlyWarn) {
 }
 
 int main(int argc, char** argv) {
-  std::unique_ptr<Fixture> fixture;
-  return runRosTests(
-      argc, argv, "poke_test", 2,
-      [&] {
-        fixture = std::make_unique<Fixture>();
-        fx = fixture.get();
-        fx->init();
-      },
-      [&] {
-        fx = nullptr;
-        fixture.reset();
-      });
+  return runFixtureTests(argc, argv, "poke_test", 2, fx);
 }

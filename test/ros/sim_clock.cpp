@@ -141,16 +141,5 @@ TEST(SimClock, B_StampedCommandActsAtItsSimTime) {
 }
 
 int main(int argc, char** argv) {
-  std::unique_ptr<Fixture> fixture;
-  return runRosTests(
-      argc, argv, "sim_clock_test", 2,
-      [&] {
-        fixture = std::make_unique<Fixture>();
-        fx = fixture.get();
-        fx->init();
-      },
-      [&] {
-        fx = nullptr;
-        fixture.reset();
-      });
+  return runFixtureTests(argc, argv, "sim_clock_test", 2, fx);
 }

@@ -134,16 +134,5 @@ TEST(TargetPose, B_BadNamesAndNaNAreDropped) {
 }
 
 int main(int argc, char** argv) {
-  std::unique_ptr<Fixture> fixture;
-  return runRosTests(
-      argc, argv, "target_pose_test", 2,
-      [&] {
-        fixture = std::make_unique<Fixture>();
-        fx = fixture.get();
-        fx->init();
-      },
-      [&] {
-        fx = nullptr;
-        fixture.reset();
-      });
+  return runFixtureTests(argc, argv, "target_pose_test", 2, fx);
 }
