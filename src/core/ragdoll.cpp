@@ -50,6 +50,33 @@ JointMotor passiveMotor(const RagdollJointDef& j, int axis) {
   return m;
 }
 
+namespace {
+
+// A joint def of type D between bodies a and b at the joint's frames.
+template <class D>
+D connected(BodyId a, BodyId b, const RagdollJointDef& j) {
+  D d;
+  d.body_a = a;
+  d.body_b = b;
+  d.frame_a = j.frame_parent;
+  d.frame_b = j.frame_child;
+  return d;
+}
+
+// Hinge / prismatic: the axis, its limit and the passive motor of axis 0.
+template <class D>
+void singleAxis(const RagdollJointDef& j, const Vec3& default_axis, D* d) {
+  d->axis = j.axes.empty() ? default_axis : j.axes[0];
+  d->enable_limit = j.limited && !j.lower.empty() && !j.upper.empty();
+  if (d->enable_limit) {
+    d->lower = j.lower[0];
+    d->upper = j.upper[0];
+  }
+  d->motor = passiveMotor(j, 0);
+}
+
+}  // namespace
+
 Ragdoll spawnRagdoll(World& world, const RagdollDef& def, const Transform& root_pose,
                      const Material* material) {
   Ragdoll r;
@@ -79,11 +106,7 @@ Ragdoll spawnRagdoll(World& world, const RagdollDef& def, const Transform& root_
   for (const RagdollJointDef& j : def.joints) {
     const BodyId a = r.bodies.at(j.parent), b = r.bodies.at(j.child);
     if (j.kind == RagdollJointKind::Ball) {
-      BallJointDef bj;
-      bj.body_a = a;
-      bj.body_b = b;
-      bj.frame_a = j.frame_parent;
-      bj.frame_b = j.frame_child;
+      BallJointDef bj = connected<BallJointDef>(a, b, j);
       for (int k = 0; k < 3 && k < int(j.axes.size()); ++k) bj.axes[k] = j.axes[k];
       bj.enable_limits = j.limited && j.lower.size() >= 3 && j.upper.size() >= 3;
       for (int k = 0; bj.enable_limits && k < 3; ++k) {
@@ -94,41 +117,17 @@ Ragdoll spawnRagdoll(World& world, const RagdollDef& def, const Transform& root_
       bj.spring = j.spring;
       r.joints.push_back(world.createBallJoint(bj));
     } else if (j.kind == RagdollJointKind::Prismatic) {
-      PrismaticJointDef pj;
-      pj.body_a = a;
-      pj.body_b = b;
-      pj.frame_a = j.frame_parent;
-      pj.frame_b = j.frame_child;
-      pj.axis = j.axes.empty() ? Vec3::UnitX() : j.axes[0];
-      pj.enable_limit = j.limited && !j.lower.empty() && !j.upper.empty();
-      if (pj.enable_limit) {
-        pj.lower = j.lower[0];
-        pj.upper = j.upper[0];
-      }
-      pj.motor = passiveMotor(j, 0);  // linear: N s/m damping, N friction
+      PrismaticJointDef pj = connected<PrismaticJointDef>(a, b, j);
+      singleAxis(j, Vec3::UnitX(), &pj);
       pj.spring.break_force = j.spring.break_force;  // a prismatic anchor has no spring
-      r.joints.push_back(world.createPrismaticJoint(pj));
+      r.joints.push_back(world.createPrismaticJoint(pj));  // motor: N s/m damping, N friction
     } else if (j.kind == RagdollJointKind::Fixed) {
-      FixedJointDef fj;
-      fj.body_a = a;
-      fj.body_b = b;
-      fj.frame_a = j.frame_parent;
-      fj.frame_b = j.frame_child;
+      FixedJointDef fj = connected<FixedJointDef>(a, b, j);
       fj.spring = j.spring;
       r.joints.push_back(world.createFixedJoint(fj));
     } else {
-      HingeJointDef hj;
-      hj.body_a = a;
-      hj.body_b = b;
-      hj.frame_a = j.frame_parent;
-      hj.frame_b = j.frame_child;
-      hj.axis = j.axes.empty() ? Vec3::UnitZ() : j.axes[0];
-      hj.enable_limit = j.limited && !j.lower.empty() && !j.upper.empty();
-      if (hj.enable_limit) {
-        hj.lower = j.lower[0];
-        hj.upper = j.upper[0];
-      }
-      hj.motor = passiveMotor(j, 0);
+      HingeJointDef hj = connected<HingeJointDef>(a, b, j);
+      singleAxis(j, Vec3::UnitZ(), &hj);
       hj.spring = j.spring;
       r.joints.push_back(world.createHingeJoint(hj));
     }
