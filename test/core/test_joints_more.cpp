@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <cstdio>
 
 #include "joint_angles.hpp"
@@ -38,6 +39,22 @@ Weld hangOnWeld(World& w, double m, const Vec3& com, double break_force,
   f.spring.break_force = break_force;
   f.spring.break_torque = break_torque;
   return {f.body_b, w.createFixedJoint(f)};
+}
+
+// Pulls bob down with F = k t at its COM until the joint breaks (at most 2 s): the break time
+// (-1 if none) and the last reading of `load` while the joint held.
+template <class Load>
+std::pair<double, double> pullUntilBroken(World& w, BodyId bob, JointId j, double k, Load load) {
+  double broke_at = -1.0, last = 0.0;
+  for (int i = 0; i < 2000 && broke_at < 0; ++i) {
+    w.applyForce(bob, Vec3(0, 0, -k * w.time()), w.comPosition(bob));
+    w.step(kDt);
+    if (w.isJointBroken(j))
+      broke_at = w.time();
+    else
+      last = load();
+  }
+  return {broke_at, last};
 }
 
 double angleBetween(const Quat& a, const Quat& b) { return a.angularDistance(b); }
@@ -166,15 +183,8 @@ TEST(FixedJoint, BreaksWhenRisingLoadPassesLimit) {
   World w;
   const double limit = 1.5 * weight;
   const auto [bob, j] = hangOnWeld(w, m, Vec3(0.2, 0.0, -0.3), limit);
-  double broke_at = -1.0, last_force = 0.0;
-  for (int i = 0; i < 2000 && broke_at < 0; ++i) {
-    w.applyForce(bob, Vec3(0, 0, -k * w.time()), w.comPosition(bob));
-    w.step(kDt);
-    if (w.isJointBroken(j))
-      broke_at = w.time();
-    else
-      last_force = w.jointForce(j);
-  }
+  const auto [broke_at, last_force] =
+      pullUntilBroken(w, bob, j, k, [&] { return w.jointForce(j); });
   const double expected = 0.5 * weight / k;
   ASSERT_GT(broke_at, 0.0);
   EXPECT_NEAR(broke_at, expected, 2 * kDt);
@@ -205,15 +215,8 @@ TEST(FixedJoint, BreaksWhenTorquePassesLimit) {
   World w;
   const double limit = 1.5 * weight * d;
   const auto [bob, j] = hangOnWeld(w, m, Vec3(d, 0.0, 0.0), inf, limit);
-  double broke_at = -1.0, last_torque = 0.0;
-  for (int i = 0; i < 2000 && broke_at < 0; ++i) {
-    w.applyForce(bob, Vec3(0, 0, -k * w.time()), w.comPosition(bob));
-    w.step(kDt);
-    if (w.isJointBroken(j))
-      broke_at = w.time();
-    else
-      last_torque = w.jointTorque(j);
-  }
+  const auto [broke_at, last_torque] =
+      pullUntilBroken(w, bob, j, k, [&] { return w.jointTorque(j); });
   const double expected = 0.5 * weight / k;
   ASSERT_GT(broke_at, 0.0);
   EXPECT_NEAR(broke_at, expected, 0.1 * expected);
