@@ -3,54 +3,18 @@
 // checked by the rostest bad_urdf.)
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "malformed_cases.hpp"
 #include "ragdoll_sim/urdf_loader.hpp"
 
 using namespace ragdoll_sim;
-
-namespace {
-
-const std::string kFixtures = std::string(RAGDOLL_SIM_SOURCE_DIR) + "/test/urdf/fixtures/";
-
-struct BadCase {
-  const char* file;
-  std::vector<std::string> words;  // the error must name these
-};
-
-const std::vector<BadCase>& badCases() {
-  static const std::vector<BadCase> cases = {
-      {"bad_empty.urdf", {"empty"}},
-      {"bad_not_xml.urdf", {"not well-formed XML", "line 1"}},
-      {"bad_no_robot.urdf", {"<model>", "<robot>"}},
-      {"bad_cycle.urdf", {"cycle", "'wrist'"}},
-      {"bad_duplicate_link.urdf", {"duplicate link", "'upper_arm'"}},
-      {"bad_duplicate_joint.urdf", {"duplicate joint", "'elbow'"}},
-      {"bad_missing_parent.urdf", {"joint 'elbow'", "<parent"}},
-      {"bad_missing_child.urdf", {"joint 'elbow'", "'ghost'"}},
-      {"bad_nan_origin.urdf", {"joint 'elbow'", "<origin>", "nan"}},
-  };
-  return cases;
-}
-
-// Runs a command, returns its exit status and stdout + stderr.
-int run(const std::string& cmd, std::string* out) {
-  out->clear();
-  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-  if (!p) return -1;
-  std::array<char, 512> buf;
-  while (fgets(buf.data(), buf.size(), p)) *out += buf.data();
-  const int status = pclose(p);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-}  // namespace
+using malformed::BadCase;
+using malformed::badCases;
+using malformed::kFixtures;
+using malformed::run;
 
 TEST(MalformedUrdf, EveryFixtureIsCovered) {
   int files = 0;
