@@ -170,6 +170,7 @@ int main(int argc, char** argv) {
   int steps = -1, n_ragdolls = -1;
   WorldDef wd;
   bool metrics = true;
+  double rolling = 0.0;
   std::string urdf = "../shared/peers/ragdoll15.urdf";
   for (int i = 1; i < argc; ++i) {
     const std::string s = argv[i];
@@ -196,6 +197,10 @@ int main(int argc, char** argv) {
         else if (k == "position_iterations") wd.position_iterations = int(v);
         else if (k == "relax") wd.contact_relax_iterations = int(v);
         else if (k == "joint_relax") wd.joint_relax_iterations = int(v);
+        else if (k == "sleep_speed") wd.sleep_speed = v;
+        else if (k == "time_to_sleep") wd.time_to_sleep = v;
+        else if (k == "static_friction_speed") wd.static_friction_speed = v;
+        else if (k == "rolling") rolling = v;
         else {
           std::fprintf(stderr, "unknown option %s\n", k.c_str());
           return 2;
@@ -235,6 +240,7 @@ int main(int argc, char** argv) {
   ground.type = BodyType::Static;
   Material mat;
   mat.static_friction = mat.kinetic_friction = 0.8;
+  mat.rolling_resistance = rolling;
   world.addShape(world.createBody(ground), {Geometry::plane(Vec3::UnitZ(), 0.0), Transform(), mat});
   std::vector<Ragdoll> ragdolls;
   for (const Transform& root : sc.roots) ragdolls.push_back(spawnRagdoll(world, def, root, &mat));
@@ -293,12 +299,12 @@ int main(int argc, char** argv) {
       "body_steps_per_s=%.0f us_per_body_step=%.3f max_anchor_err_m=%.3g max_ground_pen_m=%.4f "
       "max_limit_viol_rad=%.3g pelvis_z_3s_mean=%.4f pelvis_z_3s_min=%.4f pelvis_z_3s_max=%.4f "
       "ground_pen_3s_m=%.4f anchor_err_3s_m=%.3g vmax_3s=%.3g worst_limit=%s@%d nan=%d "
-      "loop_wall_s=%.3f substeps=%d joint_hertz=%g contact_hertz=%g sleep=%d threads=%d max_contacts=%zu "
+      "loop_wall_s=%.3f substeps=%d joint_hertz=%g contact_hertz=%g sleep=%d threads=%d rolling=%g max_contacts=%zu "
       "us_per_step_first_1s=%.1f us_per_step_last_1s=%.1f awake_bodies_end=%d%s\n",
       sc.id, n, bodies, steps, wall, sps, sps * bodies, 1e6 * wall / (steps * double(bodies)),
       m.max_anchor, m.max_pen, m.max_limit, m.pel_mean, m.pel_min, m.pel_max, m.pen3, m.anchor3,
       m.vmax3, m.worst_joint.c_str(), m.worst_step, m.nan ? 1 : 0, loop_wall, wd.substeps,
-      wd.joint_hertz, wd.contact_hertz, wd.enable_sleep ? 1 : 0, wd.threads, world.contacts().size(),
+      wd.joint_hertz, wd.contact_hertz, wd.enable_sleep ? 1 : 0, wd.threads, rolling, world.contacts().size(),
       1e6 * wall_first / window, 1e6 * wall_last / window, world.awakeBodyCount(), pit.c_str());
   return 0;
 }

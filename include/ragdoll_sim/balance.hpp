@@ -30,22 +30,24 @@ class BalanceController {
                     const BalanceDef& balance = BalanceDef());
   // Call before each World::step.
   void update(World& world);
-  // Sets the held angle of one URDF revolute joint (a hinge, or one axis of a ball chain).
+  // Sets the held angle of one URDF revolute joint (a hinge, or one axis of a ball chain),
+  // with the hold motor's gains.
   bool setTarget(World& world, const std::string& urdf_joint, double angle);
+  // The same with the joint's own motor gains (and motor.target as the angle): an ankle keeps
+  // these gains under the balance law.
+  bool setTarget(World& world, const std::string& urdf_joint, const JointMotor& motor);
+  // The motor the balance law drives an ankle with (its gains; the target is the law's).
+  const JointMotor& ankleMotor(size_t i) const { return ankle_motors_.at(i); }
   const std::vector<std::string>& missing() const { return missing_; }
 
  private:
-  struct Axis {
-    JointId joint;
-    int axis;
-  };
   const Ragdoll& ragdoll_;
   const RagdollDef& def_;
   BalanceDef balance_;
   std::vector<double> masses_;
   std::vector<int> ankles_;   // RagdollDef joint indices
   std::vector<BodyId> feet_;
-  std::vector<double> ankle_targets_;
+  std::vector<JointMotor> ankle_motors_;  // gains and base target of each ankle
   std::vector<std::string> missing_;
 };
 

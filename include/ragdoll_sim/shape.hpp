@@ -59,6 +59,11 @@ struct Material {
   double static_friction = 0.8;
   double kinetic_friction = 0.8;
   double restitution = 0.0;
+  // Rolling resistance: a round shape (sphere, capsule, cylinder) touching at a point rolls
+  // against a torque of at most rolling_resistance * radius * normal force, the flattened
+  // contact patch of soft bodies such as limbs and heads (Box2D v3's rollingResistance).
+  // Dimensionless; pairs combine with max. Boxes and hulls roll on their edges, not radii.
+  double rolling_resistance = 0.0;
   int id = 0;  // index in the material table; 0 = unnamed
 };
 

@@ -22,20 +22,24 @@ BalanceController::BalanceController(World& world, const Ragdoll& ragdoll, const
     if (l < 0) missing_.push_back("foot link '" + name + "'");
     else feet_.push_back(ragdoll.bodies[l]);
   }
-  ankle_targets_.assign(ankles_.size(), 0.0);
+  ankle_motors_.assign(ankles_.size(), balance.hold);
   if (!missing_.empty()) ankles_.clear();
 }
 
 bool BalanceController::setTarget(World& world, const std::string& urdf_joint, double angle) {
+  JointMotor m = balance_.hold;
+  m.target = angle;
+  return setTarget(world, urdf_joint, m);
+}
+
+bool BalanceController::setTarget(World& world, const std::string& urdf_joint, const JointMotor& motor) {
   for (size_t k = 0; k < def_.joints.size(); ++k) {
     const auto& names = def_.joints[k].source_joints;
     for (size_t a = 0; a < names.size(); ++a) {
       if (names[a] != urdf_joint) continue;
       for (size_t i = 0; i < ankles_.size(); ++i)
-        if (ankles_[i] == int(k)) ankle_targets_[i] = angle;
-      JointMotor m = balance_.hold;
-      m.target = angle;
-      world.setJointMotor(ragdoll_.joints[k], int(a), m);
+        if (ankles_[i] == int(k)) ankle_motors_[i] = motor;
+      world.setJointMotor(ragdoll_.joints[k], int(a), motor);
       return true;
     }
   }
@@ -63,8 +67,8 @@ void BalanceController::update(World& world) {
     forward.z() = 0.0;
     if (forward.norm() < 1e-6) continue;
     forward.normalize();
-    JointMotor m = balance_.hold;
-    m.target = ankle_targets_[i] + balance_.kp * (c - s).dot(forward) + balance_.kd * v.dot(forward);
+    JointMotor m = ankle_motors_[i];
+    m.target = ankle_motors_[i].target + balance_.kp * (c - s).dot(forward) + balance_.kd * v.dot(forward);
     world.setJointMotor(ragdoll_.joints[ankles_[i]], 0, m);
   }
 }

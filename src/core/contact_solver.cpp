@@ -22,6 +22,11 @@
 //   the slop is moved out by the position impulse m_n * min(s + slop, 0) * position_factor
 //   along n (non-linear Gauss-Seidel, Box2D v2's solvePositionConstraints): it removes depth
 //   left by a hard landing without giving the bodies any velocity.
+// Rolling resistance (Contact::rolling = coefficient * radius > 0): the relative angular
+//   velocity in the tangent plane, Cdot_k = t_k.(wB - wA), k = 0, 1, is driven to 0 by an
+//   angular impulse L = sum_k lambda_k t_k with K_kl = t_k.(IA^-1 + IB^-1) t_l, clamped to the
+//   disc |lambda| <= rolling * sum of the normal impulses (a torque <= c r N). A sphere rolling
+//   on a plane then decelerates at 5/7 c g, like a disc of friction on the rotation.
 // Restitution: after the substeps, points that approached faster than the threshold get
 //   lambda = -m_n (vn + e vn_before), accumulated and clamped like the normal row.
 #include "contact_solver.hpp"
@@ -51,6 +56,10 @@ void applyRow(SolverBody& A, SolverBody& B, const ContactRow& r, const Vec3& d, 
   A.w -= lambda * r.iangA;
   B.v += (B.inv_mass * lambda) * d;
   B.w += lambda * r.iangB;
+}
+void applyRolling(SolverBody& A, SolverBody& B, const ContactConstraint& cc, double l0, double l1) {
+  A.w -= l0 * cc.roll_iA[0] + l1 * cc.roll_iA[1];
+  B.w += l0 * cc.roll_iB[0] + l1 * cc.roll_iB[1];
 }
 Vec3 relativeVelocity(const SolverBody& A, const SolverBody& B, const Vec3& rA, const Vec3& rB) {
   return B.v + B.w.cross(rB) - A.v - A.w.cross(rA);
@@ -101,6 +110,19 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
       }
     }
     cc.friction = max_slip < def.static_friction_speed ? c.static_friction : c.kinetic_friction;
+    cc.rolling = c.rolling;
+    cc.rolling_impulse[0] = cc.rolling_impulse[1] = 0.0;
+    if (cc.rolling > 0.0) {
+      Eigen::Matrix2d K;
+      for (int k = 0; k < 2; ++k) {
+        cc.roll_iA[k] = A.inv_inertia * cc.tangent[k];
+        cc.roll_iB[k] = B.inv_inertia * cc.tangent[k];
+        cc.rolling_impulse[k] = c.rolling_impulse.dot(cc.tangent[k]);
+      }
+      for (int k = 0; k < 2; ++k)
+        for (int l = 0; l < 2; ++l) K(k, l) = cc.tangent[k].dot(cc.roll_iA[l] + cc.roll_iB[l]);
+      cc.roll_mass = K.determinant() > 1e-300 ? Eigen::Matrix2d(K.inverse()) : Eigen::Matrix2d::Zero();
+    }
     constraints_.push_back(cc);
   }
 }
@@ -116,6 +138,7 @@ void ContactSolver::warmStart(const StepContext& ctx, int begin, int end) {
       applyRow(A, B, p.tangent_row[0], cc.tangent[0], p.tangent_impulse[0]);
       applyRow(A, B, p.tangent_row[1], cc.tangent[1], p.tangent_impulse[1]);
     }
+    if (cc.rolling > 0.0) applyRolling(A, B, cc, cc.rolling_impulse[0], cc.rolling_impulse[1]);
   }
 }
 
@@ -166,6 +189,18 @@ void ContactSolver::solve(const StepContext& ctx, bool use_bias, int begin, int 
       applyRow(A, B, p.tangent_row[0], cc.tangent[0], t0 - old0);
       applyRow(A, B, p.tangent_row[1], cc.tangent[1], t1 - old1);
     }
+    if (cc.rolling > 0.0) {
+      double total_normal = 0.0;
+      for (int i = 0; i < cc.count; ++i) total_normal += cc.points[i].normal_impulse;
+      const Eigen::Vector2d cdot((B.w - A.w).dot(cc.tangent[0]), (B.w - A.w).dot(cc.tangent[1]));
+      const Eigen::Vector2d old(cc.rolling_impulse[0], cc.rolling_impulse[1]);
+      Eigen::Vector2d next = old - cc.roll_mass * cdot;
+      const double limit = cc.rolling * total_normal, mag = next.norm();
+      if (mag > limit) next *= mag > 0.0 ? limit / mag : 0.0;
+      cc.rolling_impulse[0] = next[0];
+      cc.rolling_impulse[1] = next[1];
+      applyRolling(A, B, cc, next[0] - old[0], next[1] - old[1]);
+    }
   }
 }
 
@@ -213,6 +248,7 @@ void ContactSolver::storeImpulses(std::vector<Contact>& contacts) const {
       c.normal_impulse[i] = p.normal_impulse;
       c.friction_impulse[i] = p.tangent_impulse[0] * cc.tangent[0] + p.tangent_impulse[1] * cc.tangent[1];
     }
+    c.rolling_impulse = cc.rolling_impulse[0] * cc.tangent[0] + cc.rolling_impulse[1] * cc.tangent[1];
   }
 }
 

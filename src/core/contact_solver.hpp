@@ -30,6 +30,12 @@ struct ContactConstraint {
   int a, b, contact;
   Vec3 normal, tangent[2];
   double friction, restitution;
+  // Rolling resistance (rolling > 0 only): angular rows J = [0, -t_k, 0, t_k] along the two
+  // tangents, IA^-1 t_k and IB^-1 t_k premultiplied, the 2x2 effective mass, the impulses.
+  double rolling;
+  Vec3 roll_iA[2], roll_iB[2];
+  Eigen::Matrix2d roll_mass;
+  double rolling_impulse[2];
   int count;
   ContactConstraintPoint points[Manifold::kMaxPoints];
 };

@@ -72,6 +72,7 @@ Material MaterialTable::resolve(const Material& a, const Material& b) const {
   m.static_friction = combine(friction_rule, a.static_friction, b.static_friction);
   m.kinetic_friction = combine(friction_rule, a.kinetic_friction, b.kinetic_friction);
   m.restitution = combine(restitution_rule, a.restitution, b.restitution);
+  m.rolling_resistance = std::max(a.rolling_resistance, b.rolling_resistance);
   return m;
 }
 

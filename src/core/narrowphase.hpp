@@ -37,5 +37,11 @@ Aabb computeAabb(const Geometry& g, const Transform& x);
 inline bool isUnbounded(const Geometry& g) { return g.type == ShapeType::Plane; }
 // Distance from `point` to the farthest point of the shape at pose x (0 for a plane).
 double maxExtent(const Geometry& g, const Transform& x, const Vec3& point);
+// Radius a shape rolls on (sphere, capsule, cylinder); 0 for shapes that tip over edges.
+inline double rollingRadius(const Geometry& g) {
+  return g.type == ShapeType::Sphere || g.type == ShapeType::Capsule || g.type == ShapeType::Cylinder
+             ? g.radius
+             : 0.0;
+}
 
 }  // namespace ragdoll_sim

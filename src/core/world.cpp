@@ -214,6 +214,9 @@ void World::Impl::collide(double dt) {
     c.static_friction = pair.static_friction;
     c.kinetic_friction = pair.kinetic_friction;
     c.restitution = pair.restitution;
+    c.rolling = pair.rolling_resistance > 0.0
+                    ? pair.rolling_resistance * std::max(rollingRadius(da.geometry), rollingRadius(db.geometry))
+                    : 0.0;
     matchImpulses(o >= 0 ? contacts[o] : Contact(), c);
   }
   contacts.swap(next_contacts);

@@ -37,6 +37,8 @@ std::string validateJointSettings(const JointSettings& s, const std::string& whe
     return where + "/damping must be a finite number >= 0 (N s/m), got " + num(*s.damping);
   if (s.break_force && !(*s.break_force > 0.0))
     return where + "/break_force must be a number > 0 (N) or .inf, got " + num(*s.break_force);
+  if (s.break_torque && !(*s.break_torque > 0.0))
+    return where + "/break_torque must be a number > 0 (N m) or .inf, got " + num(*s.break_torque);
   if (s.hertz && !(std::isfinite(*s.hertz) && *s.hertz > 0.0))
     return where + "/motor/hertz must be a finite number > 0 (Hz), got " + num(*s.hertz);
   if (s.damping_ratio && !(std::isfinite(*s.damping_ratio) && *s.damping_ratio >= 0.0))
@@ -101,10 +103,11 @@ JointSettingsResult applyJointSettings(RagdollDef* def, const AxisTable& axes,
   if (defaults.stiffness) spring_default.stiffness = *defaults.stiffness;
   if (defaults.damping) spring_default.damping = *defaults.damping;
   if (defaults.break_force) spring_default.break_force = *defaults.break_force;
+  if (defaults.break_torque) spring_default.break_torque = *defaults.break_torque;
   for (RagdollJointDef& j : def->joints) j.spring = spring_default;
 
   // Which entry set which spring field of which joint (for conflicts).
-  std::vector<std::array<std::string, 3>> set_by(def->joints.size());
+  std::vector<std::array<std::string, 4>> set_by(def->joints.size());
   // Motor gains: whole-joint entries first, then per-axis entries on top.
   std::vector<const JointSettings*> joint_level(def->joints.size(), nullptr);
   std::vector<const JointSettings*> axis_level(static_cast<size_t>(axes.size()), nullptr);
@@ -124,10 +127,12 @@ JointSettingsResult applyJointSettings(RagdollDef* def, const AxisTable& axes,
     // A hinge's name is both the joint and its only axis: treat it as the joint.
     if (axis >= 0 && axes.count(joint) == 1) axis = -1;
     RagdollJointDef& jd = def->joints[static_cast<size_t>(joint)];
-    const std::optional<double>* fields[3] = {&s.stiffness, &s.damping, &s.break_force};
-    const char* field_names[3] = {"stiffness", "damping", "break_force"};
-    double* targets[3] = {&jd.spring.stiffness, &jd.spring.damping, &jd.spring.break_force};
-    for (int f = 0; f < 3; ++f) {
+    const std::optional<double>* fields[4] = {&s.stiffness, &s.damping, &s.break_force,
+                                              &s.break_torque};
+    const char* field_names[4] = {"stiffness", "damping", "break_force", "break_torque"};
+    double* targets[4] = {&jd.spring.stiffness, &jd.spring.damping, &jd.spring.break_force,
+                          &jd.spring.break_torque};
+    for (int f = 0; f < 4; ++f) {
       if (!*fields[f]) continue;
       std::string& who = set_by[static_cast<size_t>(joint)][static_cast<size_t>(f)];
       if (!who.empty()) {

@@ -36,8 +36,9 @@ std::string validateMotorGains(const MotorGains& g, const std::string& where);
 
 // One entry of ~joints (or ~joint_defaults): only the fields that are present are set.
 struct JointSettings {
-  // Anchor (JointSpring): stiffness N/m (0 = rigid), damping N s/m, break_force N (.inf = never).
-  std::optional<double> stiffness, damping, break_force;
+  // Anchor (JointSpring): stiffness N/m (0 = rigid), damping N s/m, break_force N (.inf = never);
+  // break_torque N m (.inf = never), the rotation lock of a fixed joint.
+  std::optional<double> stiffness, damping, break_force, break_torque;
   // Motor gains (the entry's `motor` map).
   std::optional<double> hertz, damping_ratio, max_torque;
 };

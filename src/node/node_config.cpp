@@ -36,19 +36,23 @@ double number(XmlRpc::XmlRpcValue& v) {
   return std::nan("");
 }
 
-// [static_friction, kinetic_friction, restitution] starting at list index `first`.
+// [static_friction, kinetic_friction, restitution(, rolling_resistance)] from list index `first`.
 bool coefficients(XmlRpc::XmlRpcValue& list, int first, Material* m) {
-  if (list.getType() != XmlRpc::XmlRpcValue::TypeArray || list.size() != first + 3) return false;
+  if (list.getType() != XmlRpc::XmlRpcValue::TypeArray ||
+      (list.size() != first + 3 && list.size() != first + 4))
+    return false;
   m->static_friction = number(list[first]);
   m->kinetic_friction = number(list[first + 1]);
   m->restitution = number(list[first + 2]);
+  if (list.size() == first + 4) m->rolling_resistance = number(list[first + 3]);
   return std::isfinite(m->static_friction) && m->static_friction >= 0 &&
          std::isfinite(m->kinetic_friction) && m->kinetic_friction >= 0 &&
-         std::isfinite(m->restitution) && m->restitution >= 0 && m->restitution <= 1;
+         std::isfinite(m->restitution) && m->restitution >= 0 && m->restitution <= 1 &&
+         std::isfinite(m->rolling_resistance) && m->rolling_resistance >= 0;
 }
 
-// ~materials: {combine: {friction, restitution}, surfaces: {name: [mu_s, mu_k, e]},
-//              pairs: [[a, b, mu_s, mu_k, e], ...]}
+// ~materials: {combine: {friction, restitution}, surfaces: {name: [mu_s, mu_k, e(, c_r)]},
+//              pairs: [[a, b, mu_s, mu_k, e(, c_r)], ...]}
 bool loadMaterials(const ros::NodeHandle& pnh, MaterialTable* t, std::string* error) {
   XmlRpc::XmlRpcValue root;
   if (!pnh.getParam("materials", root)) return true;
@@ -75,7 +79,8 @@ bool loadMaterials(const ros::NodeHandle& pnh, MaterialTable* t, std::string* er
         Material m;
         if (!coefficients(value, 0, &m)) {
           *error = where + "/surfaces/" + name +
-                   " must be [static_friction, kinetic_friction, restitution] (>= 0, e <= 1)";
+                   " must be [static_friction, kinetic_friction, restitution(, rolling_resistance)] "
+                   "(>= 0, e <= 1)";
           return false;
         }
         t->add(name, m);
@@ -88,7 +93,8 @@ bool loadMaterials(const ros::NodeHandle& pnh, MaterialTable* t, std::string* er
         const std::string item = where + "/pairs[" + std::to_string(i) + "]";
         if (!coefficients(pairs[i], 2, &m) || pairs[i][0].getType() != XmlRpc::XmlRpcValue::TypeString ||
             pairs[i][1].getType() != XmlRpc::XmlRpcValue::TypeString) {
-          *error = item + " must be [a, b, static_friction, kinetic_friction, restitution]";
+          *error = item + " must be [a, b, static_friction, kinetic_friction, restitution(, "
+                   "rolling_resistance)]";
           return false;
         }
         const int a = t->find(pairs[i][0]), b = t->find(pairs[i][1]);
@@ -106,13 +112,13 @@ bool loadMaterials(const ros::NodeHandle& pnh, MaterialTable* t, std::string* er
   return true;
 }
 
-// One ~joints entry (or ~joint_defaults): {stiffness, damping, break_force,
+// One ~joints entry (or ~joint_defaults): {stiffness, damping, break_force, break_torque,
 // motor: {hertz, damping_ratio, max_torque}}, every key optional, no other keys.
 bool jointSettings(XmlRpc::XmlRpcValue& v, const std::string& where, JointSettings* s,
                    std::string* error) {
   if (v.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
-    *error = where + " must be a dictionary {stiffness, damping, break_force, motor: {hertz, "
-                     "damping_ratio, max_torque}}";
+    *error = where + " must be a dictionary {stiffness, damping, break_force, break_torque, "
+                     "motor: {hertz, damping_ratio, max_torque}}";
     return false;
   }
   auto field = [&](XmlRpc::XmlRpcValue& value, const std::string& name,
@@ -130,6 +136,7 @@ bool jointSettings(XmlRpc::XmlRpcValue& v, const std::string& where, JointSettin
     if (key == "stiffness") ok = field(value, key, &s->stiffness);
     else if (key == "damping") ok = field(value, key, &s->damping);
     else if (key == "break_force") ok = field(value, key, &s->break_force);
+    else if (key == "break_torque") ok = field(value, key, &s->break_torque);
     else if (key == "motor") {
       if (value.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
         *error = where + "/motor must be a dictionary {hertz, damping_ratio, max_torque}";
@@ -148,7 +155,7 @@ bool jointSettings(XmlRpc::XmlRpcValue& v, const std::string& where, JointSettin
       }
     } else {
       *error = where + " has an unknown key '" + key +
-               "' (known: stiffness, damping, break_force, motor)";
+               "' (known: stiffness, damping, break_force, break_torque, motor)";
       return false;
     }
     if (!ok) return false;
@@ -169,7 +176,8 @@ bool loadJointSettings(const ros::NodeHandle& pnh, NodeConfig* c, std::string* e
     if (!pnh.getParam("joints", joints)) return true;
     const std::string where = "parameter " + pnh.resolveName("joints");
     if (joints.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
-      *error = where + " must be a dictionary: joint name -> {stiffness, damping, break_force, motor}";
+      *error = where + " must be a dictionary: joint name -> {stiffness, damping, break_force, "
+                       "break_torque, motor}";
       return false;
     }
     for (auto& [name, value] : joints) {
@@ -241,6 +249,7 @@ bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* c, std::string* erro
             read(pnh, "static_friction", "a number", &c->material.static_friction, error) &&
             read(pnh, "kinetic_friction", "a number", &c->material.kinetic_friction, error) &&
             read(pnh, "restitution", "a number", &c->material.restitution, error) &&
+            read(pnh, "rolling_resistance", "a number", &c->material.rolling_resistance, error) &&
             read(pnh, "paused", "a bool", &c->paused, error) &&
             read(pnh, "urdf_file", "a string", &c->urdf_file, error) &&
             read(pnh, "world_frame", "a string", &c->world_frame, error) &&
@@ -315,6 +324,7 @@ std::string validateNodeConfig(const NodeConfig& c) {
   if (!(e = nonneg("kinetic_friction", c.material.kinetic_friction)).empty()) return e;
   if (!(e = nonneg("restitution", c.material.restitution)).empty()) return e;
   if (c.material.restitution > 1.0) return "parameter ~restitution must be <= 1";
+  if (!(e = nonneg("rolling_resistance", c.material.rolling_resistance)).empty()) return e;
   if (c.world_frame.empty()) return "parameter ~world_frame must not be empty";
   if (!(e = positive("max_impulse", c.max_impulse)).empty()) return e;
   if (!(e = positive("max_force", c.max_force)).empty()) return e;

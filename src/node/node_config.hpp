@@ -41,7 +41,7 @@ struct NodeConfig {
   int substeps = 4;                    // solver substeps per physics step
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);
   SpawnPose spawn;
-  Material material{0.8, 0.6, 0.0};    // static_friction, kinetic_friction, restitution
+  Material material{0.8, 0.6, 0.0, 0.05};  // static/kinetic friction, restitution, rolling
   MaterialTable materials;             // ~materials (config/materials.yaml)
   std::string ragdoll_material;        // surface names in `materials`; "" = `material`
   std::string ground_material;

@@ -189,11 +189,13 @@ void SimNode::publishBrokenJoints() {
       msg.parent_link = r.def.links[static_cast<size_t>(j.parent)].name;
       msg.child_link = r.def.links[static_cast<size_t>(j.child)].name;
       msg.force = world_->jointForce(id);
+      msg.torque = world_->jointTorque(id);
       broken_pub_.publish(msg);
       ROS_INFO("joint '%s' of '%s' broke at sim time %.3f s: '%s' came off '%s' (anchor force "
-               "%.1f N, break_force %g N)",
+               "%.1f N, break_force %g N; lock torque %.1f N m, break_torque %g N m)",
                j.name.c_str(), r.name.c_str(), simTime(), msg.child_link.c_str(),
-               msg.parent_link.c_str(), msg.force, j.spring.break_force);
+               msg.parent_link.c_str(), msg.force, j.spring.break_force, msg.torque,
+               j.spring.break_torque);
       break;
     }
   }

@@ -300,7 +300,8 @@ void SimNode::onReconfigure(ragdoll_sim::PhysicsConfig& cfg, uint32_t) {
     log << " friction " << cfg.static_friction << " / " << cfg.kinetic_friction
         << ", restitution " << cfg.restitution << " (every shape and the ground; named "
         << "materials off)";
-    config_.material = Material{cfg.static_friction, cfg.kinetic_friction, cfg.restitution};
+    config_.material = Material{cfg.static_friction, cfg.kinetic_friction, cfg.restitution,
+                                config_.material.rolling_resistance};
     config_.ragdoll_surface = config_.material;
     config_.ground_surface = config_.material;
     config_.materials = MaterialTable();  // pair entries would override the new values

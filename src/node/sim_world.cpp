@@ -35,10 +35,12 @@ bool SimNode::makeInstance(RagdollDef def, const std::string& name, const std::s
   r.links = LinkTable(r.def);
   r.color_index = next_color_++;
   for (const RagdollJointDef& j : r.def.joints) {
-    if (j.spring.stiffness > 0.0 || std::isfinite(j.spring.break_force))
-      ROS_INFO("%s: joint '%s': anchor stiffness %g N/m, damping %g N*s/m, break_force %g N",
+    if (j.spring.stiffness > 0.0 || std::isfinite(j.spring.break_force) ||
+        std::isfinite(j.spring.break_torque))
+      ROS_INFO("%s: joint '%s': anchor stiffness %g N/m, damping %g N*s/m, break_force %g N, "
+               "break_torque %g N*m",
                r.name.c_str(), j.name.c_str(), j.spring.stiffness, j.spring.damping,
-               j.spring.break_force);
+               j.spring.break_force, j.spring.break_torque);
   }
   return true;
 }
@@ -144,10 +146,10 @@ void SimNode::applyAxisMotor(RagdollInstance& r, int i) {
   if (t.active) {
     m = targetMotor(t, a, r.gains[static_cast<size_t>(i)], passive, simTime());
     // The controller keeps its own ankle targets (its balance law adds to them).
-    if (r.balance && t.has_position) r.balance->setTarget(*world_, a.name, m.target);
+    if (r.balance && t.has_position) r.balance->setTarget(*world_, a.name, m);
   } else if (r.balance) {
     m = holdMotor(0.0, r.gains[static_cast<size_t>(i)], passive);
-    r.balance->setTarget(*world_, a.name, 0.0);
+    r.balance->setTarget(*world_, a.name, m);
   }
   world_->setJointMotor(r.ragdoll.joints[static_cast<size_t>(a.joint)], a.axis, m);
 }

@@ -41,6 +41,46 @@ TEST_P(Slide, StopsAfterClosedFormDistance) {
 }
 INSTANTIATE_TEST_SUITE_P(Friction, Slide, ::testing::Values(0.3, 0.5, 0.8));
 
+// A sphere rolling on flat ground against rolling resistance c: the torque c r N about the
+// contact point decelerates it at a = c r N r / (I + m r^2) = (5/7) c g, so it stops after
+// v0^2 / (2 a); on a slope it stays put iff tan(theta) < c (gravity's torque m g sin r vs c r N).
+TEST(RollingResistance, SphereStopsAfterClosedFormDistanceAndHoldsOnGentleSlope) {
+  const double r = 0.15, mass = 3.0, v0 = 1.5;
+  const Mat3 inertia = Mat3::Identity() * 0.4 * mass * r * r;
+  for (double c : {0.05, 0.1, 0.2}) {
+    World w;
+    Material m = friction(1.0, 1.0);
+    m.rolling_resistance = c;
+    addGround(w, m);
+    const BodyId ball = addDynamic(w, mass, inertia, Transform(Vec3(0, 0, r), Quat::Identity()),
+                                   Vec3::Zero(), Vec3(v0, 0, 0), Vec3(0, v0 / r, 0));
+    w.addShape(ball, {Geometry::sphere(r), Transform(), m});
+    const double x0 = w.comPosition(ball).x();
+    for (int i = 0; i < 5000; ++i) w.step(kDt);
+    const double d = w.comPosition(ball).x() - x0, expected = v0 * v0 / (2 * 5.0 / 7.0 * c * kG);
+    EXPECT_NEAR(d, expected, 0.02 * expected) << "c=" << c;
+    EXPECT_LT(w.bodyState(ball).angular_velocity.norm(), 1e-3);
+    std::printf("[ rolling resistance ] c %.2f: %.4f m (closed form %.4f)\n", c, d, expected);
+  }
+  const double c = 0.1, critical = std::atan(c);
+  for (double theta : {critical - 0.02, critical + 0.02}) {
+    World w;
+    Material m = friction(1.0, 1.0);
+    m.rolling_resistance = c;
+    const Quat slope(Eigen::AngleAxisd(theta, Vec3::UnitY()));
+    addGround(w, m, slope);
+    const BodyId ball = addBody(w, Geometry::sphere(r), mass, inertia,
+                                Transform(slope * Vec3(0, 0, r), Quat::Identity()), m);
+    const Vec3 p0 = w.comPosition(ball);
+    for (int i = 0; i < 2000; ++i) w.step(kDt);
+    const double moved = (w.comPosition(ball) - p0).norm();
+    if (theta < critical) EXPECT_LT(moved, 2e-3) << "theta " << theta;
+    else EXPECT_GT(moved, 0.05) << "theta " << theta;
+    std::printf("[ rolling resistance ] slope %.4f (critical %.4f): moved %.4f m in 2 s\n", theta,
+                critical, moved);
+  }
+}
+
 // A box on a slope stays put iff tan(theta) < mu_s.
 TEST(Incline, StaysBelowAndSlidesAboveFrictionAngle) {
   const double mu_s = 0.6, mu_k = 0.5, critical = std::atan(mu_s);

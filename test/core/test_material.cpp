@@ -18,6 +18,10 @@ TEST(MaterialTable, ListedPairsAndCombineRules) {
   const Material b = t.resolve(t.material(steel), t.material(rubber));
   EXPECT_DOUBLE_EQ(b.static_friction, std::sqrt(0.74 * 1.0));
   EXPECT_DOUBLE_EQ(b.restitution, 0.6);
+  EXPECT_DOUBLE_EQ(b.rolling_resistance, 0.0);
+  Material soft = t.material(rubber);
+  soft.rolling_resistance = 0.07;
+  EXPECT_DOUBLE_EQ(t.resolve(t.material(steel), soft).rolling_resistance, 0.07);  // max
   t.friction_rule = CombineRule::Min;
   EXPECT_DOUBLE_EQ(t.resolve(t.material(steel), t.material(rubber)).kinetic_friction, 0.57);
   EXPECT_EQ(t.find("rubber"), rubber);

@@ -131,6 +131,10 @@ TEST(JointSettings, ValidationNamesTheField) {
   s.break_force = 0.0;
   EXPECT_NE(validateJointSettings(s, "x").find("x/break_force"), std::string::npos);
   s.break_force = 10.0;
+  s.break_torque = -2.0;
+  EXPECT_NE(validateJointSettings(s, "x").find("x/break_torque"), std::string::npos);
+  s.break_torque = kInf;
+  EXPECT_EQ(validateJointSettings(s, "x"), "");
   s.stiffness = -1.0;
   EXPECT_NE(validateJointSettings(s, "x").find("x/stiffness"), std::string::npos);
   s.stiffness = 1.0;
@@ -152,9 +156,11 @@ TEST(JointSettings, DefaultsEntriesAndBallSourceNames) {
   const AxisTable t(def);
   JointSettings defaults;
   defaults.break_force = 1000.0;
+  defaults.break_torque = 400.0;
   JointSettings elbow;
   elbow.stiffness = 5e4;
   elbow.damping = 10.0;
+  elbow.break_torque = 80.0;
   const JointSettingsResult r =
       applyJointSettings(&def, t, defaults, {{"elbow", elbow}, {"waist_x", breakAt(50.0)}}, MotorGains());
   EXPECT_EQ(r.error, "");
@@ -165,6 +171,8 @@ TEST(JointSettings, DefaultsEntriesAndBallSourceNames) {
   EXPECT_DOUBLE_EQ(def.joints[1].spring.damping, 10.0);
   EXPECT_DOUBLE_EQ(def.joints[1].spring.break_force, 1000.0);  // default kept
   EXPECT_DOUBLE_EQ(def.joints[2].spring.break_force, 1000.0);
+  EXPECT_DOUBLE_EQ(def.joints[1].spring.break_torque, 80.0);
+  EXPECT_DOUBLE_EQ(def.joints[0].spring.break_torque, 400.0);  // default kept
 }
 
 TEST(JointSettings, UnknownNamesWarnAndConflictsFail) {

@@ -9,35 +9,70 @@
 
 using namespace ragdoll_sim;
 
-TEST(ActiveRagdoll, StandsAndRecoversFromShove) {
+namespace {
+
+struct ShoveResult {
+  double min_z, min_after, max_tilt, final_tilt;
+};
+
+double tilt(const Transform& p) {
+  return std::acos(std::clamp((p.q * Vec3::UnitZ()).z(), -1.0, 1.0));
+}
+
+// Stands the bundled ragdoll for 2 s, shoves the torso with 20 N s, runs 4 s more. With
+// `ankle_torque` > 0 the ankles get their own motor gains capped at that torque.
+ShoveResult standAndShove(double ankle_torque) {
   const UrdfLoadResult r = loadUrdfFile(std::string(RAGDOLL_SIM_SOURCE_DIR) + "/urdf/ragdoll.urdf");
-  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(r.ok) << r.error;
   World w;
   BodyDef g;
   g.type = BodyType::Static;
   w.addShape(w.createBody(g), {Geometry::plane(Vec3::UnitZ(), 0.0), Transform(), Material()});
   const Ragdoll rd = spawnRagdoll(w, r.def, Transform(Vec3(0, 0, 1.0005), Quat::Identity()));
   BalanceController balance(w, rd, r.def);
-  ASSERT_TRUE(balance.missing().empty());
+  EXPECT_TRUE(balance.missing().empty());
+  if (ankle_torque > 0.0) {
+    JointMotor weak = BalanceDef().hold;
+    weak.max_torque = ankle_torque;
+    EXPECT_TRUE(balance.setTarget(w, "ankle_l", weak));
+    EXPECT_TRUE(balance.setTarget(w, "ankle_r", weak));
+    EXPECT_DOUBLE_EQ(balance.ankleMotor(0).max_torque, ankle_torque);
+  }
   const BodyId pelvis = rd.bodies[r.def.findLink("pelvis")], torso = rd.bodies[r.def.findLink("torso")];
-  double min_z = 10.0;
+  ShoveResult out{10.0, 10.0, 0.0, 0.0};
   for (int i = 0; i < 2000; ++i) {
     balance.update(w);
     w.step(1e-3);
-    min_z = std::min(min_z, w.bodyPose(pelvis).p.z());
+    out.min_z = std::min(out.min_z, w.bodyPose(pelvis).p.z());
   }
-  EXPECT_GT(min_z, 0.95) << "did not stand";
   w.applyLinearImpulse(torso, Vec3(20.0, 0, 0), w.comPosition(torso));
-  double min_after = 10.0, max_tilt = 0.0;
   for (int i = 0; i < 4000; ++i) {
     balance.update(w);
     w.step(1e-3);
     const Transform p = w.bodyPose(pelvis);
-    min_after = std::min(min_after, p.p.z());
-    max_tilt = std::max(max_tilt, std::acos(std::clamp((p.q * Vec3::UnitZ()).z(), -1.0, 1.0)));
+    out.min_after = std::min(out.min_after, p.p.z());
+    out.max_tilt = std::max(out.max_tilt, tilt(p));
   }
-  EXPECT_GT(min_after, 0.9) << "fell";
-  EXPECT_LT(std::acos(std::clamp((w.bodyPose(pelvis).q * Vec3::UnitZ()).z(), -1.0, 1.0)), 0.05);
+  out.final_tilt = tilt(w.bodyPose(pelvis));
+  return out;
+}
+
+}  // namespace
+
+TEST(ActiveRagdoll, StandsAndRecoversFromShove) {
+  const ShoveResult s = standAndShove(0.0);
+  EXPECT_GT(s.min_z, 0.95) << "did not stand";
+  EXPECT_GT(s.min_after, 0.9) << "fell";
+  EXPECT_LT(s.final_tilt, 0.05);
   std::printf("[ active   ] standing pelvis min z %.3f; after 20 N s shove: min z %.3f, max tilt %.3f rad\n",
-              min_z, min_after, max_tilt);
+              s.min_z, s.min_after, s.max_tilt);
+}
+
+// The balance law drives each ankle with that joint's own gains (config/joints.yaml): ankles
+// capped at 3 N m cannot hold the body against the shove, so it falls.
+TEST(ActiveRagdoll, AnklesKeepTheirOwnGains) {
+  const ShoveResult s = standAndShove(3.0);
+  EXPECT_LT(s.min_after, 0.9) << "weak ankles held the shove: their gains were not used";
+  std::printf("[ active   ] ankles capped at 3 N m: after the shove min z %.3f, max tilt %.3f rad\n",
+              s.min_after, s.max_tilt);
 }
