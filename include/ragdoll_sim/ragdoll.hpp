@@ -60,10 +60,19 @@ struct RagdollJointDef {
   JointSpring spring;
 };
 
+// A URDF link the loader lumped into a body through fixed joints (a sensor frame, a hand's
+// palm link): it has no body of its own but a fixed pose in the body's link frame (for TF).
+struct FixedFrameDef {
+  std::string name;
+  int link = -1;        // RagdollDef::links index of the body that carries it
+  Transform offset;     // its frame in that link's frame
+};
+
 struct RagdollDef {
   std::string name;
   int root = 0;
   std::vector<LinkDef> links;
+  std::vector<FixedFrameDef> fixed_frames;
   std::vector<RagdollJointDef> joints;
   std::vector<std::pair<int, int>> no_collide;  // link index pairs that never collide
   std::vector<std::string> notes;                // what the loader merged or mapped

@@ -54,10 +54,12 @@ struct RagdollInstance {
   std::vector<double> prev_positions;
   int64_t prev_joint_ns = -1;  // sim time of prev_positions; -1: none yet
 
-  // TF: one transform per link, then the ball joints' dummy chain links.
+  // TF: one transform per link, then the ball joints' dummy chain links, then the links the
+  // loader lumped into bodies (RagdollDef::fixed_frames).
   std::vector<geometry_msgs::TransformStamped> tf_msgs;
   std::vector<int> ball_joints;     // indices of ball joints with chain links
   std::vector<int> ball_tf_offset;  // first tf_msgs slot of each one's chain links
+  size_t fixed_tf_offset = 0;       // tf_msgs slot of fixed_frames[0]
 
   // The TF frame of a URDF link.
   std::string frame(const std::string& link) const {

@@ -36,6 +36,13 @@ void SimNode::buildTf(RagdollInstance& r) {
       r.tf_msgs.push_back(t);
     }
   }
+  r.fixed_tf_offset = r.tf_msgs.size();
+  for (const FixedFrameDef& f : r.def.fixed_frames) {
+    geometry_msgs::TransformStamped t;
+    t.header.frame_id = config_.world_frame;
+    t.child_frame_id = r.frame(f.name);
+    r.tf_msgs.push_back(t);
+  }
 }
 
 void SimNode::publishTf(const ros::Time& stamp) {
@@ -54,6 +61,12 @@ void SimNode::publishTf(const ros::Time& stamp) {
         t.header.stamp = stamp;
         toMsg(poses[c], &t.transform);
       }
+    }
+    for (size_t k = 0; k < r.def.fixed_frames.size(); ++k) {
+      const FixedFrameDef& f = r.def.fixed_frames[k];
+      geometry_msgs::TransformStamped& t = r.tf_msgs[r.fixed_tf_offset + k];
+      t.header.stamp = stamp;
+      toMsg(world_->bodyPose(r.ragdoll.bodies[static_cast<size_t>(f.link)]) * f.offset, &t.transform);
     }
     tf_all_.insert(tf_all_.end(), r.tf_msgs.begin(), r.tf_msgs.end());
   }

@@ -170,6 +170,12 @@ class Loader {
     def_.root = 0;
     emitBody(0, Transform(), -1);
     excludeRestOverlaps();
+    // Lumped links of bodies become fixed frames (links folded into ball chains have theirs).
+    for (const auto& [name, placed] : placement_) {
+      const Group& grp = groups_[size_t(placed.first)];
+      if (grp.def_index >= 0 && grp.top->name != name)
+        def_.fixed_frames.push_back({name, grp.def_index, placed.second});
+    }
     if (folded_links_ > 0) {
       std::ostringstream os;
       os << folded_links_ << " massless chain links folded into ball joints (" << folded_mass_

@@ -1,4 +1,5 @@
-// rostest: robot_state_publisher accepts our /joint_states. For every URDF joint it publishes
+// rostest: robot_state_publisher accepts our /joint_states. For every URDF joint (revolute, and
+// fixed: our TF carries the links the loader lumped into bodies) it publishes
 // parent -> child from our joint positions; that must equal the same transform taken from our
 // own TF (sim/parent -> sim/child) at the same stamp, up to the solver's joint error (the
 // bodies' relative rotation off the joint's own axes, ~1e-4 rad in a fall, which joint angles
@@ -45,10 +46,12 @@ TEST(RspJointStates, PublishesEveryLinkFromOurJointStates) {
          buffer.lookupTransform("world", "sim/pelvis", ros::Time(0)).header.stamp < start + ros::Duration(1.5))
     ros::WallDuration(0.05).sleep();
 
-  int compared = 0, bent = 0;
+  int compared = 0, bent = 0, fixed_compared = 0;
   double worst = 0.0;
   for (const auto& [name, joint] : model->joints_) {
-    if (joint->type != urdf::Joint::REVOLUTE && joint->type != urdf::Joint::CONTINUOUS) continue;
+    const bool fixed = joint->type == urdf::Joint::FIXED;  // a lumped link: a fixed frame on TF
+    if (joint->type != urdf::Joint::REVOLUTE && joint->type != urdf::Joint::CONTINUOUS && !fixed)
+      continue;
     const std::string& parent = joint->parent_link_name;
     const std::string& child = joint->child_link_name;
     EXPECT_TRUE(buffer.canTransform(parent, child, ros::Time(0), ros::Duration(10.0), &err))
@@ -68,11 +71,13 @@ TEST(RspJointStates, PublishesEveryLinkFromOurJointStates) {
     EXPECT_LT(dr, 2e-3) << name << ": rotation differs by " << dr << " rad";
     if (Eigen::AngleAxisd(a.linear()).angle() > 0.01) ++bent;
     ++compared;
+    fixed_compared += fixed;
   }
   EXPECT_GE(compared, 20);
+  EXPECT_GE(fixed_compared, 1) << "the bundled ragdoll's fixed head_camera frame was not compared";
   EXPECT_GE(bent, 3) << "the joints did not move: the comparison proves little";
-  std::printf("[ rsp      ] %d joints compared, %d bent by > 0.01 rad, worst difference %.3g\n",
-              compared, bent, worst);
+  std::printf("[ rsp      ] %d joints compared (%d fixed), %d bent by > 0.01 rad, worst difference "
+              "%.3g\n", compared, fixed_compared, bent, worst);
 }
 
 int main(int argc, char** argv) {

@@ -369,6 +369,11 @@ TEST(UrdfLoader, FixedJointLumpsMassPropertiesAndShapes) {
   EXPECT_LT((l.inertia - I).norm(), 1e-12);
   expectNear(l.shapes[1].local, Tb * Transform(Vec3(0, 0, 0.1), Quat::Identity()), 1e-12);
   EXPECT_FALSE(r.def.notes.empty());
+  // b keeps its frame for TF: fixed on a's body at the joint origin.
+  ASSERT_EQ(r.def.fixed_frames.size(), 1u);
+  EXPECT_EQ(r.def.fixed_frames[0].name, "b");
+  EXPECT_EQ(r.def.fixed_frames[0].link, 0);
+  expectNear(r.def.fixed_frames[0].offset, Tb, 1e-12);
 }
 
 TEST(UrdfLoader, VolumeMassAndMeshApproximationsAreNoted) {
