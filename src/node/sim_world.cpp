@@ -49,6 +49,8 @@ WorldDef SimNode::worldDef() const {
   wd.substeps = config_.substeps;
   wd.position_iterations = config_.position_iterations;
   wd.materials = config_.materials;
+  wd.max_linear_speed = config_.max_linear_speed;
+  wd.max_angular_speed = config_.max_angular_speed;
   return wd;
 }
 
