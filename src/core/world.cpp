@@ -565,6 +565,9 @@ BodyId World::createBody(const BodyDef& def) {
   m.local_com = def.com;
   m.q = def.pose.q.normalized();
   m.x = def.pose.p + m.q * def.com;
+  if (!m.x.allFinite() || !def.com.allFinite())
+    throw std::invalid_argument("ragdoll_sim: body '" + def.name +
+                                "' has a non-finite centre of mass position");
   m.inertia_local = def.inertia;
   m.linear_damping = def.linear_damping;
   m.angular_damping = def.angular_damping;

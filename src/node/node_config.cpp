@@ -253,6 +253,7 @@ bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* c, std::string* erro
             read(pnh, "max_linear_speed", "a number (m/s)", &c->max_linear_speed, error) &&
             read(pnh, "max_angular_speed", "a number (rad/s)", &c->max_angular_speed, error) &&
             read(pnh, "max_steps_per_call", "an integer", &c->max_steps_per_call, error) &&
+            read(pnh, "max_position", "a number (m)", &c->max_position, error) &&
             read(pnh, "max_queued_commands", "an integer", &c->max_queued_commands, error) &&
             read(pnh, "publish_markers", "a bool", &c->publish_markers, error) &&
             read(pnh, "ragdoll_material", "a string", &c->ragdoll_material, error) &&
@@ -327,6 +328,7 @@ std::string validateNodeConfig(const NodeConfig& c) {
   if (!(e = positive("max_catchup", c.max_catchup)).empty()) return e;
   if (!(e = positive("max_linear_speed", c.max_linear_speed)).empty()) return e;
   if (!(e = positive("max_angular_speed", c.max_angular_speed)).empty()) return e;
+  if (!(e = positive("max_position", c.max_position)).empty()) return e;
   if (c.max_steps_per_call < 1)
     return "parameter ~max_steps_per_call must be >= 1, got " +
            std::to_string(c.max_steps_per_call);

@@ -60,6 +60,8 @@ struct NodeConfig {
   double max_linear_speed = 100.0;     // m/s, every body's speed is clamped to it (WorldDef)
   double max_angular_speed = 200.0;    // rad/s
   int max_steps_per_call = 100000;     // ~step refuses more steps than this in one call
+  double max_position = 1e4;           // m from the origin: farther poses (~spawn,
+                                       // ~set_ragdoll_state) are refused
   int max_queued_commands = 4096;      // commands waiting (zero stamps: until the next loop
                                        // iteration; future stamps: until due); beyond: dropped
   bool publish_markers = true;

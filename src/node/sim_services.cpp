@@ -18,10 +18,11 @@ namespace {
 constexpr double kUnitQuatTolerance = 0.01;
 
 // A pose from a message, or "" and the error naming the problem (*problem: its throttle key):
-// position finite; orientation finite and a unit quaternion within kUnitQuatTolerance
-// (normalized then), or all zeros, which means identity (an unset Pose, e.g. rosservice call
-// without an orientation).
-std::string poseFromMsg(const geometry_msgs::Pose& m, Transform* t, std::string* problem) {
+// position finite and within max_position of the origin; orientation finite and a unit
+// quaternion within kUnitQuatTolerance (normalized then), or all zeros, which means identity
+// (an unset Pose, e.g. rosservice call without an orientation).
+std::string poseFromMsg(const geometry_msgs::Pose& m, double max_position, Transform* t,
+                        std::string* problem) {
   const Vec3 p(m.position.x, m.position.y, m.position.z);
   Quat q(m.orientation.w, m.orientation.x, m.orientation.y, m.orientation.z);
   std::ostringstream e;
@@ -29,6 +30,10 @@ std::string poseFromMsg(const geometry_msgs::Pose& m, Transform* t, std::string*
   if (!p.allFinite()) {
     *problem = "position not finite";
     e << "the position (" << p.x() << ", " << p.y() << ", " << p.z() << ") is not finite";
+  } else if (p.norm() > max_position) {
+    *problem = "position above cap";
+    e << "the position (" << p.x() << ", " << p.y() << ", " << p.z() << ") is " << p.norm()
+      << " m from the origin, more than ~max_position = " << max_position << " m";
   } else if (!q.coeffs().allFinite()) {
     *problem = "orientation not finite";
     e << "the orientation is not finite";
@@ -137,7 +142,7 @@ bool SimNode::onSpawn(ragdoll_sim::SpawnRagdoll::Request& req,
                     what + "ragdoll '" + r.name + "' already has TF prefix '" + prefix + "'");
   Transform pose;
   std::string problem;
-  e = poseFromMsg(req.pose, &pose, &problem);
+  e = poseFromMsg(req.pose, config_.max_position, &pose, &problem);
   if (!e.empty()) return refuse(res, "spawn/" + problem, what + e);
   UrdfLoadResult loaded;
   std::string xml = req.urdf;
@@ -224,7 +229,7 @@ bool SimNode::onSetState(ragdoll_sim::SetRagdollState::Request& req,
                   "set_ragdoll_state rejected: no ragdoll named '" + req.ragdoll + "'");
   Transform target;
   std::string problem;
-  const std::string e = poseFromMsg(req.pose, &target, &problem);
+  const std::string e = poseFromMsg(req.pose, config_.max_position, &target, &problem);
   if (!e.empty())
     return refuse(res, "set_ragdoll_state/" + problem, "set_ragdoll_state rejected: " + e);
   const Vec3 v(req.twist.linear.x, req.twist.linear.y, req.twist.linear.z);
@@ -315,6 +320,17 @@ void SimNode::startReconfigure() {
 void SimNode::onReconfigure(ragdoll_sim::PhysicsConfig& cfg, uint32_t) {
   // Runs in spinOnce, between steps: changes take effect at the next step.
   const ragdoll_sim::PhysicsConfig old = currentPhysics();
+  // The server clamps to the .cfg ranges, but NaN passes every comparison: refuse it whole
+  // (the answer then holds the values in force).
+  for (double v : {cfg.gravity_x, cfg.gravity_y, cfg.gravity_z, cfg.time_step,
+                   cfg.static_friction, cfg.kinetic_friction, cfg.restitution,
+                   cfg.real_time_factor}) {
+    if (std::isfinite(v)) continue;
+    warn("reconfigure/not finite", "reconfigure rejected: a value is not finite (NaN or inf); "
+                                   "the physics parameters stay as they were");
+    cfg = old;
+    return;
+  }
   std::ostringstream log;
   const Vec3 g(cfg.gravity_x, cfg.gravity_y, cfg.gravity_z);
   if (g != config_.gravity) {

@@ -55,7 +55,12 @@ WorldDef SimNode::worldDef() const {
 }
 
 bool SimNode::spawnInWorld(RagdollInstance& r, std::string* error) {
-  r.ragdoll = spawnRagdoll(*world_, r.def, r.spawn_pose, &config_.ragdoll_surface);
+  try {  // the World refuses what it cannot simulate (e.g. a non-finite pose) by throwing
+    r.ragdoll = spawnRagdoll(*world_, r.def, r.spawn_pose, &config_.ragdoll_surface);
+  } catch (const std::exception& e) {
+    *error = e.what();
+    return false;
+  }
   if (r.ragdoll.bodies.size() != r.def.links.size() ||
       r.ragdoll.joints.size() != r.def.joints.size()) {
     *error = "spawnRagdoll returned " + std::to_string(r.ragdoll.bodies.size()) + " bodies / " +

@@ -264,4 +264,9 @@ TEST(BodyFaults, NonFiniteBodyDefIsRefused) {
   d.pose.p.setZero();
   d.linear_velocity = Vec3(kInf, 0, 0);
   EXPECT_THROW(w.createBody(d), std::invalid_argument);
+  d.linear_velocity.setZero();
+  d.pose.p = Vec3(1.7e308, 0, 0);  // finite, but its centre of mass is not
+  d.com = Vec3(1.7e308, 0, 0);
+  EXPECT_THROW(w.createBody(d), std::invalid_argument);
+  EXPECT_EQ(w.bodyCount(), 0);
 }

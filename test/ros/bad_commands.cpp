@@ -14,6 +14,7 @@
 #include <memory>
 #include <mutex>
 
+#include <dynamic_reconfigure/Reconfigure.h>
 #include <geometry_msgs/PointStamped.h>
 #include <ragdoll_sim/ApplyForce.h>
 #include <ragdoll_sim/ApplyImpulse.h>
@@ -340,6 +341,13 @@ TEST(BadCommands, F_Services) {
   spawn.request.name = "nan_quat";
   spawn.request.pose.orientation.x = kNaN;
   callRefused("spawn", spawn, {"spawn 'nan_quat' rejected: the orientation is not finite"});
+  spawn.request.name = "far_away";
+  spawn.request.pose.orientation.x = 0.0;
+  spawn.request.pose.orientation.w = 1.0;
+  spawn.request.pose.position.y = 1e6;
+  callRefused("spawn", spawn, {"spawn 'far_away' rejected: the position (0, 1e+06, 5) is",
+                               "more than ~max_position = 10000 m"});
+  spawn.request.pose.position.y = 0.0;
   spawn.request.name = "2bad";
   spawn.request.pose.orientation.x = 0.0;
   spawn.request.pose.orientation.w = 1.0;
@@ -354,6 +362,9 @@ TEST(BadCommands, F_Services) {
   set.request.pose.position.x = kInf;
   set.request.pose.orientation.w = 1.0;
   callRefused("set_ragdoll_state", set, {"set_ragdoll_state rejected: the position (inf, 0, 0)"});
+  set.request.pose.position.x = -2e4;
+  callRefused("set_ragdoll_state", set, {"set_ragdoll_state rejected: the position (-20000, 0, 0)",
+                                         "~max_position"});
   set.request.pose.position.x = 3.0;
   set.request.pose.position.z = 5.0;
   set.request.pose.orientation.w = 0.5;
@@ -375,6 +386,23 @@ TEST(BadCommands, F_Services) {
   callRefused("get_link_state", get, {"ragdoll 'second' has no simulated link 'no_such_link'"});
   get.request.ragdoll = "nobody";
   callRefused("get_link_state", get, {"get_link_state: no ragdoll named 'nobody'"});
+
+  // NaN passes dynamic_reconfigure's range clamp: the node refuses it and answers the values
+  // in force (gravity 0 here).
+  dynamic_reconfigure::Reconfigure rc;
+  dynamic_reconfigure::DoubleParameter g;
+  g.name = "gravity_z";
+  g.value = kNaN;
+  rc.request.config.doubles.push_back(g);
+  EXPECT_TRUE(ros::service::call(kNode + "/set_parameters", rc));
+  bool answered = false;
+  for (const auto& d : rc.response.config.doubles)
+    if (d.name == "gravity_z") {
+      answered = true;
+      EXPECT_EQ(d.value, 0.0) << "the refused NaN gravity is in force";
+    }
+  EXPECT_TRUE(answered) << "no gravity_z in the answer";
+  fx->expectWarn({"reconfigure rejected: a value is not finite"});
 
   const double t0 = fx->sim.step(0).sim_time;
   ragdoll_sim::Step step;
