@@ -87,9 +87,9 @@ void SimNode::submit(QueuedCommand q, const ros::Time& stamp, const char* what) 
   const std::string ragdoll = q.ragdoll;
   if (!queue_.push(std::move(q))) {
     warn("queue full", std::string(what) + " for " + which(ragdoll) + " dropped: " +
-                           std::to_string(queue_.size()) + " commands are already waiting (~max_"
-                           "queued_commands); " + std::to_string(queue_.dropped()) +
-                           " dropped so far");
+                           std::to_string(queue_.size()) +
+                           " commands are already waiting (~max_queued_commands); " +
+                           std::to_string(queue_.dropped()) + " dropped so far");
     return;
   }
   if (due_ns > sim_ns_)
