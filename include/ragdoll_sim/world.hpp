@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -33,7 +34,9 @@ struct WorldDef {
   double static_friction_speed = 0.02;  // m/s, below this tangential speed static friction holds
   double speculative_distance = 0.02;   // m, contacts are made this far before touching
   double linear_slop = 0.0005;          // m, penetration allowed to keep contacts warm
-  double max_linear_speed = 100.0;      // m/s, clamp against blow-ups
+  // Clamps against blow-ups, applied to every body before the step (a huge impulse never
+  // enters the solver) and after it.
+  double max_linear_speed = 100.0;      // m/s
   double max_angular_speed = 200.0;     // rad/s
   bool enable_sleep = true;
   double time_to_sleep = 0.5;           // s an island must stay slow before it sleeps
@@ -53,6 +56,20 @@ struct ContactInfo {
   Vec3 normal;         // world, from A to B
   double separation;   // negative when penetrating
   double normal_impulse;
+};
+
+// A body whose state was not finite (NaN / inf), found and undone by World::step: the body is
+// back at its last finite pose with zero velocity, its forces dropped, and the warm-start
+// impulses of its joints and contacts cleared. The rest of the world goes on.
+enum class BodyFaultCause : uint8_t {
+  Input,   // before the step: its state, force or torque (set since the last step) was not finite
+  Solver,  // the step itself produced it (overflow in the solver)
+};
+
+struct BodyFault {
+  BodyId body;
+  BodyFaultCause cause = BodyFaultCause::Input;
+  double time = 0.0;  // sim time at the start of the step that found it
 };
 
 class World {
@@ -79,6 +96,11 @@ class World {
   double time() const;
   const WorldDef& def() const;
   void setGravity(const Vec3& g);
+  // Bodies reset since the last call, oldest first (at most kMaxPendingFaults are kept between
+  // calls; bodyFaultCount() counts them all).
+  std::vector<BodyFault> takeBodyFaults();
+  int64_t bodyFaultCount() const;
+  static constexpr size_t kMaxPendingFaults = 256;
 
   // --- commands (world frame) ------------------------------------------------------------
   void applyLinearImpulse(BodyId body, const Vec3& impulse, const Vec3& world_point);

@@ -17,11 +17,17 @@
 //   4. restitution, store impulses, write the deltas back to the bodies, clear forces;
 //   5. islands that stayed slow long enough go to sleep. Sleeping bodies are identity solver
 //      bodies: not integrated, and pairs of them are not collided or solved.
+// Fault guard (around the pipeline): before step 1 every body whose state, force or torque is
+// not finite goes back to its last finite pose (kept per body, no allocation) with zero
+// velocity, and every velocity is clamped to the caps (a huge impulse never reaches the
+// solver); after step 4 a body the solver left non-finite is reset the same way, and the
+// warm-start impulses of its joints and contacts are cleared. Each reset is a BodyFault.
 // Semi-implicit Euler: v += h a first, then x += h v with the new v (and the same for the
 // rotation, q += h/2 (0,w) q, renormalised, with the gyroscopic update in integratePositions).
 #include "ragdoll_sim/world.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <unordered_set>
 #ifdef _OPENMP
@@ -44,6 +50,27 @@ namespace {
 constexpr int kParallelMin = 128;
 
 uint64_t bodyPairKey(int a, int b) { return pairKey(std::min(a, b), std::max(a, b)); }
+
+// One test instead of one per component: NaN or inf anywhere makes the sum non-finite. Finite
+// values whose sum overflows fall through to the exact check.
+bool motionFinite(const BodyMotion& m) {
+  if (std::isfinite(m.x.sum() + m.q.coeffs().sum() + m.v.sum() + m.w.sum())) return true;
+  return m.x.allFinite() && m.q.coeffs().allFinite() && m.v.allFinite() && m.w.allFinite();
+}
+
+bool inputsFinite(const BodyMotion& m) {
+  if (std::isfinite(m.force.sum() + m.torque.sum())) return motionFinite(m);
+  return m.force.allFinite() && m.torque.allFinite() && motionFinite(m);
+}
+
+// Scales a finite v down to length `max` when longer (also when its norm overflows).
+void clampNorm(Vec3& v, double max) {
+  double n = v.norm();
+  if (n <= max) return;
+  if (!std::isfinite(n)) n = v.stableNorm();
+  v *= max / n;
+}
+
 
 }  // namespace
 
@@ -85,6 +112,18 @@ struct World::Impl {
   std::vector<Joint*> joint_scratch;
   std::vector<ContactConstraint> contact_scratch;
   std::vector<int> old_contact;
+  // Fault guard: per body its last finite pose (saved before and after each step; a reset
+  // zeroes the velocity, so none is kept), faults not yet taken, bodies reset by this step's
+  // solver.
+  struct FinitePose {
+    Vec3 x;
+    Quat q;
+  };
+  std::vector<FinitePose> last_finite;
+  std::vector<BodyFault> faults;
+  int64_t fault_count = 0;
+  std::vector<char> solver_reset;
+  bool any_solver_reset = false;
 
   int threadCount() const {
 #ifdef _OPENMP
@@ -114,6 +153,9 @@ struct World::Impl {
   void integrateVelocities(double h, int begin, int end);
   void integratePositions(double h, int begin, int end);
   void finishStep();
+  void guardInputs();
+  void resetBody(int b, BodyFaultCause cause);
+  void clearWarmStart();
   void buildIslands();
   void breakJoints();
   void updateSleep(double dt);
@@ -262,13 +304,81 @@ void World::Impl::finishStep() {
       m.q = (s.dq * m.q).normalized();
       m.v = s.v;
       m.w = s.w;
-      const double vn = m.v.norm(), wn = m.w.norm();
-      if (vn > def.max_linear_speed) m.v *= def.max_linear_speed / vn;
-      if (wn > def.max_angular_speed) m.w *= def.max_angular_speed / wn;
+      if (motionFinite(m)) {
+        clampNorm(m.v, def.max_linear_speed);
+        clampNorm(m.w, def.max_angular_speed);
+        last_finite[i] = {m.x, m.q};
+      } else {
+        resetBody(int(i), BodyFaultCause::Solver);
+      }
     }
     m.force.setZero();
     m.torque.setZero();
   }
+}
+
+// Before the step: what was set since the last one (impulses, forces, setBodyState) must be
+// finite, and velocities are clamped. A finite pose is the body's last finite one (it may come
+// from setBodyState); a body with a bad velocity, force or torque keeps it.
+void World::Impl::guardInputs() {
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    BodyMotion& m = motions[i];
+    if (inputsFinite(m)) {
+      clampNorm(m.v, def.max_linear_speed);
+      clampNorm(m.w, def.max_angular_speed);
+      last_finite[i] = {m.x, m.q};
+      continue;
+    }
+    if (m.x.allFinite() && m.q.coeffs().allFinite()) last_finite[i] = {m.x, m.q};
+    resetBody(int(i), BodyFaultCause::Input);
+  }
+}
+
+void World::Impl::resetBody(int b, BodyFaultCause cause) {
+  BodyMotion& m = motions[b];
+  m.x = last_finite[b].x;
+  m.q = last_finite[b].q;
+  m.v.setZero();
+  m.w.setZero();
+  m.force.setZero();
+  m.torque.setZero();
+  ++fault_count;
+  if (faults.size() < World::kMaxPendingFaults) faults.push_back({BodyId{b}, cause, time});
+  if (cause == BodyFaultCause::Solver) {
+    solver_reset[b] = 1;
+    any_solver_reset = true;
+  }
+}
+
+// After a solver fault the impulses accumulated by the reset bodies' joints and contacts are
+// garbage (NaN) and would poison the next warm start. prepareJoint rebuilds everything else in
+// the parts each step, so fresh parts lose only the impulses.
+void World::Impl::clearWarmStart() {
+  for (Joint& j : joints) {
+    if (!solver_reset[j.a] && !solver_reset[j.b]) continue;
+    j.point = PointPart();
+    j.hinge_axis = HingeAxisPart();
+    j.limits = {};
+    j.motor_parts = {};
+    j.swing_twist = SwingTwistPart();
+    j.angle_lock = AngleLockPart();
+    j.line = PointOnLinePart();
+    j.linear_limit = LinearLimitPart();
+    j.linear_motor = LinearMotorPart();
+    j.force = 0.0;
+    j.torque = 0.0;
+    j.overloaded = false;
+  }
+  for (Contact& c : contacts) {
+    if (!solver_reset[c.body_a] && !solver_reset[c.body_b]) continue;
+    for (int i = 0; i < Manifold::kMaxPoints; ++i) {
+      c.normal_impulse[i] = 0.0;
+      c.friction_impulse[i].setZero();
+    }
+    c.sep_valid = false;
+  }
+  std::fill(solver_reset.begin(), solver_reset.end(), 0);
+  any_solver_reset = false;
 }
 
 // A joint whose anchor force reached its limit breaks (a rigid anchor never transmits more
@@ -450,10 +560,17 @@ BodyId World::createBody(const BodyDef& def) {
   Impl& w = *impl_;
   Body body;
   body.def = def;
+  if (!def.pose.p.allFinite() || !def.pose.q.coeffs().allFinite() ||
+      !def.linear_velocity.allFinite() || !def.angular_velocity.allFinite())
+    throw std::invalid_argument("ragdoll_sim: body '" + def.name +
+                                "' needs a finite pose and velocity");
   BodyMotion m;
   m.local_com = def.com;
   m.q = def.pose.q.normalized();
   m.x = def.pose.p + m.q * def.com;
+  if (!m.x.allFinite() || !def.com.allFinite())
+    throw std::invalid_argument("ragdoll_sim: body '" + def.name +
+                                "' has a non-finite centre of mass position");
   m.inertia_local = def.inertia;
   m.linear_damping = def.linear_damping;
   m.angular_damping = def.angular_damping;
@@ -471,6 +588,8 @@ BodyId World::createBody(const BodyDef& def) {
   w.bodies.push_back(std::move(body));
   w.motions.push_back(m);
   w.solver.emplace_back();
+  w.last_finite.push_back({m.x, m.q});
+  w.solver_reset.push_back(0);
   return BodyId{int32_t(w.bodies.size() - 1)};
 }
 
@@ -542,6 +661,7 @@ void World::step(double dt) {
   ctx.joint_softness = Softness::make(std::min(w.def.joint_hertz, 0.25 * ctx.inv_h),
                                       w.def.joint_damping_ratio, ctx.h);
 
+  w.guardInputs();
   w.collide(dt);
   w.buildIslands();
 
@@ -578,6 +698,7 @@ void World::step(double dt) {
   w.contact_solver.applyRestitution(ctx);
   w.contact_solver.storeImpulses(w.contacts);
   w.finishStep();
+  if (w.any_solver_reset) w.clearWarmStart();
   w.updateSleep(dt);
   w.time += dt;
 }
@@ -585,6 +706,14 @@ void World::step(double dt) {
 double World::time() const { return impl_->time; }
 const WorldDef& World::def() const { return impl_->def; }
 void World::setGravity(const Vec3& g) { impl_->def.gravity = g; }
+
+std::vector<BodyFault> World::takeBodyFaults() {
+  std::vector<BodyFault> out;
+  out.swap(impl_->faults);
+  return out;
+}
+
+int64_t World::bodyFaultCount() const { return impl_->fault_count; }
 
 void World::applyLinearImpulse(BodyId id, const Vec3& impulse, const Vec3& world_point) {
   impl_->checkBody(id);

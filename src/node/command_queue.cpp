@@ -6,12 +6,17 @@ namespace ragdoll_sim {
 namespace node {
 
 bool CommandQueue::push(QueuedCommand c) {
-  if (items_.size() >= capacity_) return false;
+  if (items_.size() >= capacity_) {
+    ++dropped_;
+    return false;
+  }
   c.seq = next_seq_++;
-  // After every item due at the same time or earlier: ties keep their arrival order.
+  // After every item due at the same time or earlier: ties keep their arrival order (a
+  // command due now lands at the end unless future ones wait, in O(1)).
   auto it = std::upper_bound(items_.begin(), items_.end(), c.due_ns,
                              [](int64_t due, const QueuedCommand& q) { return due < q.due_ns; });
   items_.insert(it, std::move(c));
+  max_size_ = std::max(max_size_, items_.size());
   return true;
 }
 

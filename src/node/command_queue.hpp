@@ -1,4 +1,7 @@
-// Commands held until the sim time at which they take effect (ROS-free, unit-tested).
+// Commands held until the sim time at which they take effect (ROS-free, unit-tested). Every
+// command of the topics passes through it: a zero stamp is due at once and is applied at the
+// next loop iteration, so the subscriber callbacks stay short under load. It is bounded:
+// beyond `capacity` waiting commands a push is refused and counted (dropped()).
 //
 // Why: a command applied whenever its message happens to arrive lands on a step that depends on
 // wall-clock timing, so a recorded run could not be replayed step for step. A command whose
@@ -29,17 +32,21 @@ struct QueuedCommand {
 class CommandQueue {
  public:
   explicit CommandQueue(size_t capacity = 4096) : capacity_(capacity) {}
-  // False (and nothing queued) when `capacity` commands are already waiting.
+  // False (and nothing queued, dropped() counts it) when `capacity` commands are already waiting.
   bool push(QueuedCommand c);
   // Removes and returns the commands with due_ns <= now_ns, by due time, then arrival.
   std::vector<QueuedCommand> takeDue(int64_t now_ns);
   size_t size() const { return items_.size(); }
   size_t capacity() const { return capacity_; }
+  size_t maxSize() const { return max_size_; }    // most commands ever waiting at once
+  uint64_t dropped() const { return dropped_; }   // pushes refused because it was full
   void clear() { items_.clear(); }
 
  private:
   size_t capacity_;
   uint64_t next_seq_ = 0;
+  size_t max_size_ = 0;
+  uint64_t dropped_ = 0;
   std::vector<QueuedCommand> items_;  // sorted by (due_ns, seq)
 };
 

@@ -49,10 +49,11 @@ std::string fmt(const Vec3& v) {
   return s.str();
 }
 
-CommandCheck fail(const std::string& msg) {
+CommandCheck fail(const std::string& problem, const std::string& msg) {
   CommandCheck c;
   c.ok = false;
   c.error = msg;
+  c.problem = problem;
   return c;
 }
 
@@ -60,25 +61,26 @@ CommandCheck fail(const std::string& msg) {
 bool resolveLinkAndFrame(const std::string& kind, const std::string& link,
                          const std::string& frame, const LinkTable& links, CommandCheck* check) {
   if (link.empty()) {
-    *check = fail(kind + " rejected: empty link name");
+    *check = fail("empty link", kind + " rejected: empty link name");
     return false;
   }
   int index = links.find(link);
   if (index < 0) {
     if (const std::string* joint = links.chainJointOf(link)) {
-      *check = fail(kind + " rejected: link '" + link +
+      *check = fail("dummy link", kind + " rejected: link '" + link +
                     "' is a massless dummy link inside ball joint '" + *joint +
                     "'; use one of the links it connects");
       return false;
     }
     std::string known;
     for (const std::string& n : links.names()) known += (known.empty() ? "" : ", ") + n;
-    *check = fail(kind + " rejected: unknown link '" + link + "' (links: " + known + ")");
+    *check = fail("unknown link",
+                  kind + " rejected: unknown link '" + link + "' (links: " + known + ")");
     return false;
   }
   CommandFrame f;
   if (!parseFrame(frame, &f)) {
-    *check = fail(kind + " rejected: unknown frame '" + frame +
+    *check = fail("unknown frame", kind + " rejected: unknown frame '" + frame +
                   "' (use \"world\", \"\" = world, or \"link\")");
     return false;
   }
@@ -90,7 +92,8 @@ bool resolveLinkAndFrame(const std::string& kind, const std::string& link,
 bool checkVector(const std::string& kind, const char* what, const Vec3& v, double cap,
                  const char* unit, const char* cap_param, CommandCheck* check) {
   if (!v.allFinite()) {
-    *check = fail(kind + " rejected: " + what + " " + fmt(v) + " is not finite");
+    *check = fail(std::string(what) + " not finite",
+                  kind + " rejected: " + what + " " + fmt(v) + " is not finite");
     return false;
   }
   double n = v.norm();
@@ -98,7 +101,7 @@ bool checkVector(const std::string& kind, const char* what, const Vec3& v, doubl
     std::ostringstream s;
     s << kind << " rejected: |" << what << "| = " << n << " " << unit << " exceeds "
       << cap_param << " = " << cap << " " << unit;
-    *check = fail(s.str());
+    *check = fail(std::string("above ") + cap_param, s.str());
     return false;
   }
   return true;
@@ -107,7 +110,7 @@ bool checkVector(const std::string& kind, const char* what, const Vec3& v, doubl
 bool checkPoint(const std::string& kind, const Vec3& point, const CommandCheck& resolved,
                 const CommandLimits& limits, const LinkPoseFn& link_pose, CommandCheck* check) {
   if (!point.allFinite()) {
-    *check = fail(kind + " rejected: point " + fmt(point) + " is not finite");
+    *check = fail("point not finite", kind + " rejected: point " + fmt(point) + " is not finite");
     return false;
   }
   double lever = resolved.frame == CommandFrame::Link
@@ -119,7 +122,7 @@ bool checkPoint(const std::string& kind, const Vec3& point, const CommandCheck& 
       << " m from the link origin, more than max_lever_arm = " << limits.max_lever_arm
       << " m (in frame \"world\" the point is in world coordinates; use frame \"link\" for a "
          "point relative to the link)";
-    *check = fail(s.str());
+    *check = fail("lever arm", s.str());
     return false;
   }
   return true;
@@ -152,7 +155,7 @@ CommandCheck checkForce(const ForceCommand& cmd, const LinkTable& links,
     std::ostringstream s;
     s << kind << " rejected: duration " << cmd.duration
       << " is not finite (use a negative duration for 'until cleared')";
-    return fail(s.str());
+    return fail("duration not finite", s.str());
   }
   CommandCheck resolved = c;
   if (!checkPoint(kind, cmd.point, resolved, limits, link_pose, &c)) return c;

@@ -74,6 +74,10 @@ struct ForceCommand {
 struct CommandCheck {
   bool ok = false;
   std::string error;
+  // The rule that failed, from a fixed set of short names ("unknown link", "force not
+  // finite", "above max_torque", "lever arm", ...): the key of the node's per-kind warning
+  // throttle (never message contents).
+  std::string problem;
   int link = -1;
   CommandFrame frame = CommandFrame::World;
 };

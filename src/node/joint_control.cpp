@@ -160,20 +160,24 @@ TargetPoseCheck checkTargetPose(const TargetPoseCommand& cmd, const AxisTable& a
   TargetPoseCheck c;
   const size_t n = cmd.names.size();
   if (n == 0) {
+    c.problem = "no names";
     c.error = "target pose with no joint names";
     return c;
   }
   if (!cmd.position.empty() && cmd.position.size() != n) {
+    c.problem = "positions length";
     c.error = "target pose has " + std::to_string(n) + " names but " +
               std::to_string(cmd.position.size()) + " positions";
     return c;
   }
   if (!cmd.velocity.empty() && cmd.velocity.size() != n) {
+    c.problem = "velocities length";
     c.error = "target pose has " + std::to_string(n) + " names but " +
               std::to_string(cmd.velocity.size()) + " velocities";
     return c;
   }
   if (cmd.position.empty() && cmd.velocity.empty()) {
+    c.problem = "no values";
     c.error = "target pose has neither positions nor velocities";
     return c;
   }
@@ -182,19 +186,23 @@ TargetPoseCheck checkTargetPose(const TargetPoseCommand& cmd, const AxisTable& a
     const std::string& name = cmd.names[i];
     const int a = axes.find(name);
     if (a < 0) {
+      c.problem = "unknown joint";
       c.error = "target pose names unknown joint " + quoted(name);
       return c;
     }
     if (seen[static_cast<size_t>(a)]) {
+      c.problem = "repeated joint";
       c.error = "target pose names joint " + quoted(name) + " twice";
       return c;
     }
     seen[static_cast<size_t>(a)] = true;
     if (!cmd.position.empty() && !std::isfinite(cmd.position[i])) {
+      c.problem = "position not finite";
       c.error = "target pose position of " + quoted(name) + " is not finite";
       return c;
     }
     if (!cmd.velocity.empty() && !std::isfinite(cmd.velocity[i])) {
+      c.problem = "velocity not finite";
       c.error = "target pose velocity of " + quoted(name) + " is not finite";
       return c;
     }

@@ -106,6 +106,7 @@ struct TargetPoseCommand {
 struct TargetPoseCheck {
   bool ok = false;
   std::string error;                 // names the problem when !ok
+  std::string problem;               // the rule that failed (fixed short name, a throttle key)
   std::vector<int> axes;             // per name: AxisTable index
   std::vector<std::string> clamped;  // names whose position lies outside the joint's limits
 };

@@ -259,6 +259,11 @@ bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* c, std::string* erro
             read(pnh, "max_torque", "a number (N*m)", &c->max_torque, error) &&
             read(pnh, "max_lever_arm", "a number (m)", &c->max_lever_arm, error) &&
             read(pnh, "max_catchup", "a number (s)", &c->max_catchup, error) &&
+            read(pnh, "max_linear_speed", "a number (m/s)", &c->max_linear_speed, error) &&
+            read(pnh, "max_angular_speed", "a number (rad/s)", &c->max_angular_speed, error) &&
+            read(pnh, "max_steps_per_call", "an integer", &c->max_steps_per_call, error) &&
+            read(pnh, "max_position", "a number (m)", &c->max_position, error) &&
+            read(pnh, "max_queued_commands", "an integer", &c->max_queued_commands, error) &&
             read(pnh, "publish_markers", "a bool", &c->publish_markers, error) &&
             read(pnh, "ragdoll_material", "a string", &c->ragdoll_material, error) &&
             read(pnh, "ground_material", "a string", &c->ground_material, error) &&
@@ -331,6 +336,15 @@ std::string validateNodeConfig(const NodeConfig& c) {
   if (!(e = positive("max_torque", c.max_torque)).empty()) return e;
   if (!(e = positive("max_lever_arm", c.max_lever_arm)).empty()) return e;
   if (!(e = positive("max_catchup", c.max_catchup)).empty()) return e;
+  if (!(e = positive("max_linear_speed", c.max_linear_speed)).empty()) return e;
+  if (!(e = positive("max_angular_speed", c.max_angular_speed)).empty()) return e;
+  if (!(e = positive("max_position", c.max_position)).empty()) return e;
+  if (c.max_steps_per_call < 1)
+    return "parameter ~max_steps_per_call must be >= 1, got " +
+           std::to_string(c.max_steps_per_call);
+  if (c.max_queued_commands < 1)
+    return "parameter ~max_queued_commands must be >= 1, got " +
+           std::to_string(c.max_queued_commands);
   if (!(e = validateMotorGains(c.motor, "parameter ~motor")).empty()) return e;
   if (!std::isfinite(c.balance.kp) || !std::isfinite(c.balance.kd))
     return "parameters ~balance/kp and ~balance/kd must be finite";

@@ -57,6 +57,13 @@ struct NodeConfig {
   double max_torque = 1e5;             // N*m
   double max_lever_arm = 10.0;         // m
   double max_catchup = 0.1;            // s of physics run at most per loop iteration when late
+  double max_linear_speed = 100.0;     // m/s, every body's speed is clamped to it (WorldDef)
+  double max_angular_speed = 200.0;    // rad/s
+  int max_steps_per_call = 100000;     // ~step refuses more steps than this in one call
+  double max_position = 1e4;           // m from the origin: farther poses (~spawn,
+                                       // ~set_ragdoll_state) are refused
+  int max_queued_commands = 4096;      // commands waiting (zero stamps: until the next loop
+                                       // iteration; future stamps: until due); beyond: dropped
   bool publish_markers = true;
   MotorGains motor;                    // ~motor/{hertz, damping_ratio, max_torque}
   JointSettings joint_defaults;        // ~joint_defaults (config/joints.yaml)

@@ -1,5 +1,8 @@
-// SimNode: the command topics. A command applies at once, or, when its header stamp lies in
-// the future, at the start of the first step that begins at that sim time (CommandQueue).
+// SimNode: the command topics. The callbacks only count and queue (CommandQueue, bounded); a
+// command with a zero or past stamp is applied at the next loop iteration (also while paused),
+// one stamped in the future at the start of the first step that begins at that sim time.
+// Every received command ends up applied, rejected (a WARN throttled per problem kind names
+// it) or dropped (the queue was full); ~stats publishes the counts.
 #include <algorithm>
 
 #include "msg_convert.hpp"
@@ -18,6 +21,7 @@ std::string which(const std::string& ragdoll) {
 }  // namespace
 
 void SimNode::onImpulse(const ragdoll_sim::ApplyImpulse::ConstPtr& msg) {
+  ++received_;
   QueuedCommand q;
   q.ragdoll = msg->ragdoll;
   ImpulseCommand cmd;
@@ -30,6 +34,7 @@ void SimNode::onImpulse(const ragdoll_sim::ApplyImpulse::ConstPtr& msg) {
 }
 
 void SimNode::onForce(const ragdoll_sim::ApplyForce::ConstPtr& msg) {
+  ++received_;
   QueuedCommand q;
   q.ragdoll = msg->ragdoll;
   ForceCommand cmd;
@@ -45,6 +50,7 @@ void SimNode::onForce(const ragdoll_sim::ApplyForce::ConstPtr& msg) {
 
 void SimNode::onTargetPose(const sensor_msgs::JointState::ConstPtr& msg) {
   // Names are "<joint>" (the first ragdoll) or "<ragdoll>/<joint>", one ragdoll per message.
+  ++received_;
   QueuedCommand q;
   TargetPoseCommand cmd;
   for (size_t i = 0; i < msg->name.size(); ++i) {
@@ -52,9 +58,10 @@ void SimNode::onTargetPose(const sensor_msgs::JointState::ConstPtr& msg) {
     splitQualifiedName(msg->name[i], [this](const std::string& n) { return findRagdoll(n) >= 0; },
                        &ragdoll, &joint);
     if (i > 0 && ragdoll != q.ragdoll) {
-      ROS_WARN_THROTTLE(1.0, "target pose rejected: it names joints of %s and of %s (one ragdoll "
-                        "per message); target pose dropped",
-                        which(q.ragdoll).c_str(), which(ragdoll).c_str());
+      ++rejected_;
+      warn("target pose/two ragdolls", "target pose rejected: it names joints of " +
+                                           which(q.ragdoll) + " and of " + which(ragdoll) +
+                                           " (one ragdoll per message); target pose dropped");
       return;
     }
     q.ragdoll = ragdoll;
@@ -68,24 +75,25 @@ void SimNode::onTargetPose(const sensor_msgs::JointState::ConstPtr& msg) {
 
 void SimNode::submit(QueuedCommand q, const ros::Time& stamp, const char* what) {
   if (findRagdoll(q.ragdoll) < 0) {
-    ROS_WARN_THROTTLE(1.0, "%s rejected: unknown ragdoll '%s'%s; command dropped", what,
-                      q.ragdoll.c_str(), ragdolls_.empty() ? " (no ragdolls left)" : "");
+    ++rejected_;
+    warn(std::string(what) + "/unknown ragdoll",
+         std::string(what) + " rejected: unknown ragdoll '" + q.ragdoll + "'" +
+             (ragdolls_.empty() ? " (no ragdolls left)" : "") + "; command dropped");
     return;
   }
   q.due_ns = commandDueNs(static_cast<int64_t>(stamp.toNSec()),
                           static_cast<int64_t>(stamp_origin_.toNSec()), sim_ns_);
-  if (q.due_ns <= sim_ns_) {
-    applyCommand(q);
-    return;
-  }
+  const int64_t due_ns = q.due_ns;
   const std::string ragdoll = q.ragdoll;
   if (!queue_.push(std::move(q))) {
-    ROS_WARN_THROTTLE(1.0, "%s for %s rejected: %zu stamped commands are already waiting; "
-                      "command dropped", what, which(ragdoll).c_str(), queue_.size());
+    warn("queue full", std::string(what) + " for " + which(ragdoll) + " dropped: " +
+                           std::to_string(queue_.size()) +
+                           " commands are already waiting (~max_queued_commands); " +
+                           std::to_string(queue_.dropped()) + " dropped so far");
     return;
   }
-  ROS_DEBUG("%s queued for sim time %.6f s", what, static_cast<double>(stamp.toNSec() -
-                                                                       stamp_origin_.toNSec()) * 1e-9);
+  if (due_ns > sim_ns_)
+    ROS_DEBUG("%s queued for sim time %.6f s", what, static_cast<double>(due_ns) * 1e-9);
 }
 
 void SimNode::applyDueCommands() {
@@ -95,21 +103,27 @@ void SimNode::applyDueCommands() {
 
 void SimNode::applyCommand(const QueuedCommand& q) {
   const int k = findRagdoll(q.ragdoll);
+  bool applied = false;
   if (k < 0) {  // deleted while the command waited
-    ROS_WARN_THROTTLE(1.0, "command for unknown ragdoll '%s' dropped", q.ragdoll.c_str());
-    return;
+    warn("command/deleted ragdoll", "command for ragdoll '" + q.ragdoll +
+                                        "' dropped: the ragdoll was deleted while it waited");
+  } else {
+    RagdollInstance& r = ragdolls_[static_cast<size_t>(k)];
+    if (const auto* c = std::get_if<ImpulseCommand>(&q.command))
+      applied = applyImpulse(r, *c);
+    else if (const auto* f = std::get_if<ForceCommand>(&q.command))
+      applied = applyForce(r, *f);
+    else if (const auto* t = std::get_if<TargetPoseCommand>(&q.command))
+      applied = applyTargetPose(r, *t);
   }
-  RagdollInstance& r = ragdolls_[static_cast<size_t>(k)];
-  if (const auto* c = std::get_if<ImpulseCommand>(&q.command)) applyImpulse(r, *c);
-  else if (const auto* f = std::get_if<ForceCommand>(&q.command)) applyForce(r, *f);
-  else if (const auto* t = std::get_if<TargetPoseCommand>(&q.command)) applyTargetPose(r, *t);
+  ++(applied ? applied_ : rejected_);
 }
 
 bool SimNode::applyImpulse(RagdollInstance& r, const ImpulseCommand& cmd) {
   auto pose = [&](int link) { return world_->bodyPose(r.ragdoll.bodies[static_cast<size_t>(link)]); };
   CommandCheck check = checkImpulse(cmd, r.links, limits_, pose);
   if (!check.ok) {
-    ROS_WARN_THROTTLE(1.0, "%s (ragdoll '%s'); command dropped", check.error.c_str(), r.name.c_str());
+    warn("impulse/" + check.problem, check.error + " (ragdoll '" + r.name + "'); command dropped");
     return false;
   }
   WorldImpulse w = toWorldImpulse(cmd, check, pose(check.link));
@@ -132,12 +146,13 @@ bool SimNode::applyForce(RagdollInstance& r, const ForceCommand& cmd) {
   auto pose = [&](int link) { return world_->bodyPose(r.ragdoll.bodies[static_cast<size_t>(link)]); };
   CommandCheck check = checkForce(cmd, r.links, limits_, pose);
   if (!check.ok) {
-    ROS_WARN_THROTTLE(1.0, "%s (ragdoll '%s'); command dropped", check.error.c_str(), r.name.c_str());
+    warn("force/" + check.problem, check.error + " (ragdoll '" + r.name + "'); command dropped");
     return false;
   }
   if (activeForceCount() >= kMaxActiveForces) {
-    ROS_WARN_THROTTLE(1.0, "force on '%s/%s' rejected: %zu forces are already active (call "
-                      "~clear_forces)", r.name.c_str(), cmd.link.c_str(), activeForceCount());
+    warn("force/too many", "force on '" + r.name + "/" + cmd.link + "' rejected: " +
+                               std::to_string(activeForceCount()) +
+                               " forces are already active (call ~clear_forces)");
     return false;
   }
   r.forces.push_back(toActiveForce(cmd, check, pose(check.link), dt_));
@@ -153,15 +168,15 @@ bool SimNode::applyForce(RagdollInstance& r, const ForceCommand& cmd) {
 bool SimNode::applyTargetPose(RagdollInstance& r, const TargetPoseCommand& cmd) {
   const TargetPoseCheck check = checkTargetPose(cmd, r.axes);
   if (!check.ok) {
-    ROS_WARN_THROTTLE(1.0, "%s (ragdoll '%s'); target pose dropped", check.error.c_str(),
-                      r.name.c_str());
+    warn("target pose/" + check.problem,
+         check.error + " (ragdoll '" + r.name + "'); target pose dropped");
     return false;
   }
   if (!check.clamped.empty()) {
     std::string names;
     for (const std::string& n : check.clamped) names += (names.empty() ? "'" : ", '") + n + "'";
-    ROS_WARN_THROTTLE(1.0, "target pose of '%s': %s outside the joint limits, clamped to them",
-                      r.name.c_str(), names.c_str());
+    warn("target pose/clamped", "target pose of '" + r.name + "': " + names +
+                                    " outside the joint limits, clamped to them");
   }
   for (const auto& [axis, target] : toAxisTargets(cmd, check, simTime())) {
     r.targets[static_cast<size_t>(axis)] = target;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <sstream>
 #include <thread>
 
 #include <rosgraph_msgs/Clock.h>
@@ -57,6 +58,7 @@ bool SimNode::init(std::string* error) {
   limits_.max_force = config_.max_force;
   limits_.max_torque = config_.max_torque;
   limits_.max_lever_arm = config_.max_lever_arm;
+  queue_ = CommandQueue(static_cast<size_t>(config_.max_queued_commands));
   dt_ns_ = std::max<int64_t>(1, std::llround(1e9 / config_.physics_rate));
   dt_ = static_cast<double>(dt_ns_) * 1e-9;
   paused_ = config_.paused;
@@ -83,14 +85,19 @@ bool SimNode::init(std::string* error) {
   broken_pub_ = pnh_.advertise<ragdoll_sim::JointBroken>("joint_broken", 20);
   markers_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 1, /*latch=*/true);
   link_states_pub_ = pnh_.advertise<ragdoll_sim::LinkStates>("link_states", 10);
+  stats_pub_ = pnh_.advertise<ragdoll_sim::NodeStats>("stats", 10);
   visualizer_ = std::make_unique<Visualizer>(config_.markers, config_.world_frame);
   interaction_ = std::make_unique<Interaction>(
       nh_, pnh_, InteractionSettings{config_.poke, config_.drag, config_.world_frame, limits_},
       visualizer_.get());
   structureChanged();
-  target_sub_ = pnh_.subscribe("target_pose", 10, &SimNode::onTargetPose, this);
-  impulse_sub_ = pnh_.subscribe("apply_impulse", 20, &SimNode::onImpulse, this);
-  force_sub_ = pnh_.subscribe("apply_force", 20, &SimNode::onForce, this);
+  const ros::TransportHints no_delay = ros::TransportHints().tcpNoDelay();
+  target_sub_ = pnh_.subscribe("target_pose", kCommandTopicQueue, &SimNode::onTargetPose, this,
+                               no_delay);
+  impulse_sub_ = pnh_.subscribe("apply_impulse", kCommandTopicQueue, &SimNode::onImpulse, this,
+                                no_delay);
+  force_sub_ = pnh_.subscribe("apply_force", kCommandTopicQueue, &SimNode::onForce, this,
+                              no_delay);
   balance_srv_ = pnh_.advertiseService("set_balance", &SimNode::onSetBalance, this);
   clear_targets_srv_ = pnh_.advertiseService("clear_targets", &SimNode::onClearTargets, this);
   spawn_srv_ = pnh_.advertiseService("spawn", &SimNode::onSpawn, this);
@@ -138,6 +145,39 @@ void SimNode::restartPacing() {
   pacing_dirty_ = true;
 }
 
+void SimNode::warn(const std::string& kind, const std::string& text) {
+  const double now = std::chrono::duration<double>(
+                         std::chrono::steady_clock::now().time_since_epoch()).count();
+  uint64_t held = 0;
+  if (!warn_throttle_.allow(kind, now, &held)) return;
+  if (held == 0) ROS_WARN("%s", text.c_str());
+  else ROS_WARN("%s (%llu more like it in the last second not shown)", text.c_str(),
+                static_cast<unsigned long long>(held));
+}
+
+void SimNode::reportBodyFaults() {
+  const std::vector<BodyFault> faults = world_->takeBodyFaults();
+  if (faults.empty()) return;
+  body_faults_ += faults.size();
+  std::string input, solver;
+  for (const BodyFault& f : faults) {
+    std::string where = "body " + std::to_string(f.body.index);
+    for (const RagdollInstance& r : ragdolls_)
+      for (size_t l = 0; l < r.ragdoll.bodies.size(); ++l)
+        if (r.ragdoll.bodies[l] == f.body) where = "'" + r.name + "/" + r.def.links[l].name + "'";
+    std::string& list = f.cause == BodyFaultCause::Input ? input : solver;
+    list += (list.empty() ? "" : ", ") + where;
+  }
+  std::ostringstream at;
+  at << "solver fault at sim time " << simTime() << " s: ";
+  if (!input.empty())
+    warn("body fault/input", at.str() + "link(s) " + input + " had a non-finite state, force or "
+         "torque before the step; reset to the last finite pose with zero velocity");
+  if (!solver.empty())
+    warn("body fault/solver", at.str() + "link(s) " + solver + " went non-finite in the step; "
+         "reset to the last finite pose with zero velocity");
+}
+
 void SimNode::stepOnce() {
   applyDueCommands();
   if (interaction_) interaction_->beforeStep(simTime());
@@ -153,6 +193,7 @@ void SimNode::stepOnce() {
   world_->step(dt_);
   sim_ns_ += dt_ns_;
   ++steps_;
+  reportBodyFaults();
   for (RagdollInstance& r : ragdolls_) {
     if (r.forces.empty()) continue;
     for (ActiveForce& f : r.forces)
@@ -176,6 +217,7 @@ int SimNode::run() {
 
   while (ros::ok()) {
     ros::spinOnce();
+    applyDueCommands();  // what the callbacks queued (also while paused: impulses act at once)
     Clock::time_point now = Clock::now();
     if (pacing_dirty_ || paused_) {
       pacer_.restart(now);  // real time counts from here (unpause, new dt or factor)

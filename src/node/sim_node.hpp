@@ -36,12 +36,14 @@
 #include "ragdoll_sim/GetLinkState.h"
 #include "ragdoll_sim/JointBroken.h"
 #include "ragdoll_sim/LinkStates.h"
+#include "ragdoll_sim/NodeStats.h"
 #include "ragdoll_sim/PhysicsConfig.h"
 #include "ragdoll_sim/SetRagdollState.h"
 #include "ragdoll_sim/SpawnRagdoll.h"
 #include "ragdoll_sim/Step.h"
 #include "ragdoll_sim/world.hpp"
 #include "visualization.hpp"
+#include "warn_throttle.hpp"
 
 namespace ragdoll_sim {
 namespace node {
@@ -69,6 +71,10 @@ class SimNode {
   ros::Time simStamp() const;    // stamp of the current sim time (see stamp_origin_)
   double simTime() const { return static_cast<double>(sim_ns_) * 1e-9; }
   void restartPacing();
+  // WARN `text`, throttled per `kind` (a fixed name, never message contents): every kind of
+  // problem is named at least once per second however many of another kind arrive.
+  void warn(const std::string& kind, const std::string& text);
+  void reportBodyFaults();  // WARN naming the links World::step reset (non-finite state)
 
   // --- ragdolls and the World (sim_world.cpp) ---
   // A ready instance (joint settings, tables, buffers) of `def`; false with *error.
@@ -95,7 +101,7 @@ class SimNode {
   void onImpulse(const ragdoll_sim::ApplyImpulse::ConstPtr& msg);
   void onForce(const ragdoll_sim::ApplyForce::ConstPtr& msg);
   void onTargetPose(const sensor_msgs::JointState::ConstPtr& msg);
-  // Applies now or queues until the stamp's sim time.
+  // Queues until the stamp's sim time (a zero stamp: until the next loop iteration).
   void submit(QueuedCommand cmd, const ros::Time& stamp, const char* what);
   void applyCommand(const QueuedCommand& cmd);
   void applyDueCommands();
@@ -105,6 +111,9 @@ class SimNode {
   size_t activeForceCount() const;
 
   // --- services and dynamic_reconfigure (sim_services.cpp) ---
+  // success = false, message, and a WARN throttled per kind; returns true (the call worked).
+  template <class Res>
+  bool refuse(Res& res, const std::string& kind, const std::string& message);
   bool onSetBalance(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
   bool onClearTargets(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
@@ -133,6 +142,7 @@ class SimNode {
   void publishLinkStates(const ros::Time& stamp);
   void publishClock(bool force);   // at ~clock_rate, or every step; force: now if not yet sent
   void publishBrokenJoints();      // ~joint_broken + INFO for joints that broke in the last step
+  void publishStats(const ros::Time& stamp);  // ~stats (command counters, faults)
 
   ros::NodeHandle nh_, pnh_;
   NodeConfig config_;
@@ -144,6 +154,12 @@ class SimNode {
   CommandLimits limits_;
   CommandQueue queue_;
   static constexpr size_t kMaxActiveForces = 256;  // over all ragdolls
+  // roscpp's queue per command topic: the callbacks only queue (queue_), so it holds what
+  // arrives during one loop iteration or one long service call (0.1 s at 10 kHz).
+  static constexpr uint32_t kCommandTopicQueue = 1000;
+  // ~stats: received = applied + rejected + queue_.dropped() + queue_.size()
+  uint64_t received_ = 0, applied_ = 0, rejected_ = 0, body_faults_ = 0;
+  WarnThrottle warn_throttle_{1.0};
 
   // Time: sim time sim_ns_ advances by dt_ns_ per step (dt_ns_ may change at run time).
   int64_t dt_ns_ = 1000000;
@@ -170,7 +186,7 @@ class SimNode {
   std::vector<BodyId> link_state_bodies_;
   int64_t last_publish_step_ = -1;
 
-  ros::Publisher markers_pub_, broken_pub_, link_states_pub_, clock_pub_;
+  ros::Publisher markers_pub_, broken_pub_, link_states_pub_, clock_pub_, stats_pub_;
   ros::Subscriber impulse_sub_, force_sub_, target_sub_;
   ros::ServiceServer pause_srv_, unpause_srv_, reset_srv_, clear_srv_, step_srv_;
   ros::ServiceServer balance_srv_, clear_targets_srv_;

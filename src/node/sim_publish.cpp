@@ -227,6 +227,24 @@ void SimNode::publish() {
   }
   interaction_->update(simTime());
   if (config_.publish_markers && markers_pub_.getNumSubscribers() > 0) publishMarkers(stamp);
+  if (stats_pub_.getNumSubscribers() > 0) publishStats(stamp);
+}
+
+void SimNode::publishStats(const ros::Time& stamp) {
+  ragdoll_sim::NodeStats m;
+  m.header.stamp = stamp;
+  m.received = received_;
+  m.applied = applied_;
+  m.rejected = rejected_;
+  m.dropped = queue_.dropped();
+  m.queued = static_cast<uint32_t>(queue_.size());
+  m.max_queued = static_cast<uint32_t>(queue_.maxSize());
+  m.queue_capacity = static_cast<uint32_t>(queue_.capacity());
+  m.body_faults = body_faults_;
+  m.steps = static_cast<uint64_t>(steps_);
+  m.skipped_steps = static_cast<uint64_t>(pacer_.droppedSteps());
+  m.sim_time = simTime();
+  stats_pub_.publish(m);
 }
 
 }  // namespace node

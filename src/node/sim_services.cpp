@@ -12,25 +12,53 @@ namespace node {
 
 namespace {
 
-// A pose from a message; a zero quaternion means identity (an unset Pose). False for NaN / inf.
-bool fromMsg(const geometry_msgs::Pose& m, Transform* t) {
+// How far a quaternion's length may be from 1 and still be taken (normalized): hand-typed
+// values rounded to 3 digits, e.g. (0.707, 0, 0, 0.707), pass; a rotation vector or a
+// half-filled message does not.
+constexpr double kUnitQuatTolerance = 0.01;
+
+// A pose from a message, or "" and the error naming the problem (*problem: its throttle key):
+// position finite and within max_position of the origin; orientation finite and a unit
+// quaternion within kUnitQuatTolerance (normalized then), or all zeros, which means identity
+// (an unset Pose, e.g. rosservice call without an orientation).
+std::string poseFromMsg(const geometry_msgs::Pose& m, double max_position, Transform* t,
+                        std::string* problem) {
   const Vec3 p(m.position.x, m.position.y, m.position.z);
   Quat q(m.orientation.w, m.orientation.x, m.orientation.y, m.orientation.z);
-  if (!p.allFinite() || !q.coeffs().allFinite()) return false;
-  if (q.norm() < 1e-9) q = Quat::Identity();
+  std::ostringstream e;
+  const double n = q.norm();
+  if (!p.allFinite()) {
+    *problem = "position not finite";
+    e << "the position (" << p.x() << ", " << p.y() << ", " << p.z() << ") is not finite";
+  } else if (p.norm() > max_position) {
+    *problem = "position above cap";
+    e << "the position (" << p.x() << ", " << p.y() << ", " << p.z() << ") is " << p.norm()
+      << " m from the origin, more than ~max_position = " << max_position << " m";
+  } else if (!q.coeffs().allFinite()) {
+    *problem = "orientation not finite";
+    e << "the orientation is not finite";
+  } else if (n == 0.0) {
+    q = Quat::Identity();
+  } else if (std::abs(n - 1.0) > kUnitQuatTolerance) {
+    *problem = "orientation not unit";
+    e << "the orientation (w " << q.w() << ", x " << q.x() << ", y " << q.y() << ", z " << q.z()
+      << ") has length " << n << ", not a unit quaternion (within " << kUnitQuatTolerance
+      << "; all zeros = identity)";
+  }
+  if (!e.str().empty()) return e.str();
   *t = Transform(p, q.normalized());
-  return true;
-}
-
-template <class Res>
-bool fail(Res& res, const std::string& message) {
-  res.success = false;
-  res.message = message;
-  ROS_WARN_THROTTLE(1.0, "%s", message.c_str());
-  return true;  // the call itself worked; success says what happened
+  return "";
 }
 
 }  // namespace
+
+template <class Res>
+bool SimNode::refuse(Res& res, const std::string& kind, const std::string& message) {
+  res.success = false;
+  res.message = message;
+  warn(kind, message);
+  return true;  // the call itself worked; success says what happened
+}
 
 bool SimNode::onSetBalance(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res) {
   res.success = true;
@@ -83,7 +111,11 @@ bool SimNode::onClearForces(std_srvs::Empty::Request&, std_srvs::Empty::Response
 }
 
 bool SimNode::onStep(ragdoll_sim::Step::Request& req, ragdoll_sim::Step::Response& res) {
-  if (!paused_) {
+  if (req.steps > static_cast<uint32_t>(config_.max_steps_per_call)) {
+    refuse(res, "step/too many", "step rejected: " + std::to_string(req.steps) +
+                                     " steps exceed ~max_steps_per_call = " +
+                                     std::to_string(config_.max_steps_per_call));
+  } else if (!paused_) {
     res.success = false;
     res.message = "the simulation is running; call ~pause first";
   } else {
@@ -100,14 +132,18 @@ bool SimNode::onSpawn(ragdoll_sim::SpawnRagdoll::Request& req,
                       ragdoll_sim::SpawnRagdoll::Response& res) {
   const std::string what = "spawn '" + req.name + "' rejected: ";
   std::string e = ragdollNameError(req.name);
-  if (!e.empty()) return fail(res, what + e);
-  if (findRagdoll(req.name) >= 0) return fail(res, what + "a ragdoll of that name exists");
+  if (!e.empty()) return refuse(res, "spawn/bad name", what + e);
+  if (findRagdoll(req.name) >= 0)
+    return refuse(res, "spawn/name in use", what + "a ragdoll of that name exists");
   const std::string prefix = req.tf_prefix.empty() ? req.name : req.tf_prefix;
   for (const RagdollInstance& r : ragdolls_)
     if (r.tf_prefix == prefix)
-      return fail(res, what + "ragdoll '" + r.name + "' already has TF prefix '" + prefix + "'");
+      return refuse(res, "spawn/prefix in use",
+                    what + "ragdoll '" + r.name + "' already has TF prefix '" + prefix + "'");
   Transform pose;
-  if (!fromMsg(req.pose, &pose)) return fail(res, what + "the pose is not finite");
+  std::string problem;
+  e = poseFromMsg(req.pose, config_.max_position, &pose, &problem);
+  if (!e.empty()) return refuse(res, "spawn/" + problem, what + e);
   UrdfLoadResult loaded;
   std::string xml = req.urdf;
   if (!xml.empty()) {
@@ -121,14 +157,15 @@ bool SimNode::onSpawn(ragdoll_sim::SpawnRagdoll::Request& req,
       xml = s.str();
     }
   } else {
-    return fail(res, what + "neither urdf nor urdf_file is set");
+    return refuse(res, "spawn/no urdf", what + "neither urdf nor urdf_file is set");
   }
-  if (!loaded.ok) return fail(res, what + "failed to load the URDF: " + loaded.error);
+  if (!loaded.ok)
+    return refuse(res, "spawn/bad urdf", what + "failed to load the URDF: " + loaded.error);
 
   RagdollInstance r;
   if (!makeInstance(std::move(loaded.def), req.name, prefix, pose, /*warn_unknown_joints=*/false,
                     &r, &e))
-    return fail(res, what + e);
+    return refuse(res, "spawn/bad model", what + e);
   r.balance_on = false;
   r.spawned = true;
   const std::string ns = nh_.resolveName(req.name);
@@ -141,7 +178,7 @@ bool SimNode::onSpawn(ragdoll_sim::SpawnRagdoll::Request& req,
     std::string ignored;
     buildWorld(/*carry_state=*/true, &ignored);
     structureChanged();
-    return fail(res, what + e);
+    return refuse(res, "spawn/failed", what + e);
   }
   rebindControllers();  // the vector may have moved the instances
   applyAllMotors(added);
@@ -161,7 +198,9 @@ bool SimNode::onSpawn(ragdoll_sim::SpawnRagdoll::Request& req,
 bool SimNode::onDelete(ragdoll_sim::DeleteRagdoll::Request& req,
                        ragdoll_sim::DeleteRagdoll::Response& res) {
   const int k = req.name.empty() ? -1 : findRagdoll(req.name);
-  if (k < 0) return fail(res, "delete rejected: no ragdoll named '" + req.name + "'");
+  if (k < 0)
+    return refuse(res, "delete/unknown ragdoll",
+                  "delete rejected: no ragdoll named '" + req.name + "'");
   const bool spawned = ragdolls_[static_cast<size_t>(k)].spawned;
   // The World has no destroy API: rebuild it from the others, carrying their state over.
   ragdolls_.erase(ragdolls_.begin() + k);
@@ -185,13 +224,26 @@ bool SimNode::onDelete(ragdoll_sim::DeleteRagdoll::Request& req,
 bool SimNode::onSetState(ragdoll_sim::SetRagdollState::Request& req,
                          ragdoll_sim::SetRagdollState::Response& res) {
   const int k = findRagdoll(req.ragdoll);
-  if (k < 0) return fail(res, "set_ragdoll_state rejected: no ragdoll named '" + req.ragdoll + "'");
+  if (k < 0)
+    return refuse(res, "set_ragdoll_state/unknown ragdoll",
+                  "set_ragdoll_state rejected: no ragdoll named '" + req.ragdoll + "'");
   Transform target;
-  if (!fromMsg(req.pose, &target)) return fail(res, "set_ragdoll_state rejected: pose not finite");
+  std::string problem;
+  const std::string e = poseFromMsg(req.pose, config_.max_position, &target, &problem);
+  if (!e.empty())
+    return refuse(res, "set_ragdoll_state/" + problem, "set_ragdoll_state rejected: " + e);
   const Vec3 v(req.twist.linear.x, req.twist.linear.y, req.twist.linear.z);
   const Vec3 w(req.twist.angular.x, req.twist.angular.y, req.twist.angular.z);
   if (!v.allFinite() || !w.allFinite())
-    return fail(res, "set_ragdoll_state rejected: twist not finite");
+    return refuse(res, "set_ragdoll_state/bad twist",
+                  "set_ragdoll_state rejected: the twist is not finite");
+  if (v.norm() > config_.max_linear_speed || w.norm() > config_.max_angular_speed) {
+    std::ostringstream m;
+    m << "set_ragdoll_state rejected: |linear| = " << v.norm() << " m/s or |angular| = "
+      << w.norm() << " rad/s exceeds ~max_linear_speed = " << config_.max_linear_speed
+      << " m/s / ~max_angular_speed = " << config_.max_angular_speed << " rad/s";
+    return refuse(res, "set_ragdoll_state/twist above cap", m.str());
+  }
   RagdollInstance& r = ragdolls_[static_cast<size_t>(k)];
   const BodyId root = r.ragdoll.bodies[static_cast<size_t>(r.def.root)];
   // Rigid move: every link keeps its pose relative to the root link.
@@ -215,12 +267,15 @@ bool SimNode::onGetLinkState(ragdoll_sim::GetLinkState::Request& req,
                              ragdoll_sim::GetLinkState::Response& res) {
   res.sim_time = simTime();
   const int k = findRagdoll(req.ragdoll);
-  if (k < 0) return fail(res, "get_link_state: no ragdoll named '" + req.ragdoll + "'");
+  if (k < 0)
+    return refuse(res, "get_link_state/unknown ragdoll",
+                  "get_link_state: no ragdoll named '" + req.ragdoll + "'");
   const RagdollInstance& r = ragdolls_[static_cast<size_t>(k)];
   const int link = r.links.find(req.link);
   if (link < 0)
-    return fail(res, "get_link_state: ragdoll '" + r.name + "' has no simulated link '" +
-                         req.link + "'");
+    return refuse(res, "get_link_state/unknown link",
+                  "get_link_state: ragdoll '" + r.name + "' has no simulated link '" + req.link +
+                      "'");
   const BodyId b = r.ragdoll.bodies[static_cast<size_t>(link)];
   const BodyState s = world_->bodyState(b);
   toMsg(s.pose, &res.pose);
@@ -265,6 +320,17 @@ void SimNode::startReconfigure() {
 void SimNode::onReconfigure(ragdoll_sim::PhysicsConfig& cfg, uint32_t) {
   // Runs in spinOnce, between steps: changes take effect at the next step.
   const ragdoll_sim::PhysicsConfig old = currentPhysics();
+  // The server clamps to the .cfg ranges, but NaN passes every comparison: refuse it whole
+  // (the answer then holds the values in force).
+  for (double v : {cfg.gravity_x, cfg.gravity_y, cfg.gravity_z, cfg.time_step,
+                   cfg.static_friction, cfg.kinetic_friction, cfg.restitution,
+                   cfg.real_time_factor}) {
+    if (std::isfinite(v)) continue;
+    warn("reconfigure/not finite", "reconfigure rejected: a value is not finite (NaN or inf); "
+                                   "the physics parameters stay as they were");
+    cfg = old;
+    return;
+  }
   std::ostringstream log;
   const Vec3 g(cfg.gravity_x, cfg.gravity_y, cfg.gravity_z);
   if (g != config_.gravity) {

@@ -51,11 +51,18 @@ WorldDef SimNode::worldDef() const {
   wd.substeps = config_.substeps;
   wd.position_iterations = config_.position_iterations;
   wd.materials = config_.materials;
+  wd.max_linear_speed = config_.max_linear_speed;
+  wd.max_angular_speed = config_.max_angular_speed;
   return wd;
 }
 
 bool SimNode::spawnInWorld(RagdollInstance& r, std::string* error) {
-  r.ragdoll = spawnRagdoll(*world_, r.def, r.spawn_pose, &config_.ragdoll_surface);
+  try {  // the World refuses what it cannot simulate (e.g. a non-finite pose) by throwing
+    r.ragdoll = spawnRagdoll(*world_, r.def, r.spawn_pose, &config_.ragdoll_surface);
+  } catch (const std::exception& e) {
+    *error = e.what();
+    return false;
+  }
   if (r.ragdoll.bodies.size() != r.def.links.size() ||
       r.ragdoll.joints.size() != r.def.joints.size()) {
     *error = "spawnRagdoll returned " + std::to_string(r.ragdoll.bodies.size()) + " bodies / " +

@@ -48,9 +48,35 @@ TEST(CommandQueue, RefusesBeyondCapacity) {
   EXPECT_TRUE(q.push(impulseOn("a", 1)));
   EXPECT_TRUE(q.push(impulseOn("b", 2)));
   EXPECT_FALSE(q.push(impulseOn("c", 0)));
+  EXPECT_FALSE(q.push(impulseOn("d", 5)));
   EXPECT_EQ(q.size(), 2u);
+  EXPECT_EQ(q.dropped(), 2u);
+  EXPECT_EQ(q.maxSize(), 2u);
   q.clear();
   EXPECT_TRUE(q.push(impulseOn("c", 0)));
+  EXPECT_EQ(q.dropped(), 2u);
+  EXPECT_EQ(q.maxSize(), 2u) << "the high-water mark stays";
+}
+
+// A flood of commands due at once (zero stamps) taken every loop iteration: the queue never
+// holds more than one iteration's worth, nothing is dropped, order is arrival order.
+TEST(CommandQueue, FloodDueNowIsBoundedByOneIteration) {
+  CommandQueue q(64);
+  int64_t now = 0;
+  uint64_t taken = 0;
+  std::string last;
+  for (int iteration = 0; iteration < 1000; ++iteration) {
+    for (int k = 0; k < 10; ++k)
+      ASSERT_TRUE(q.push(impulseOn(std::to_string(iteration * 10 + k), now)));
+    for (const QueuedCommand& c : q.takeDue(now)) {
+      EXPECT_EQ(linkOf(c), std::to_string(taken));
+      ++taken;
+    }
+    now += 1000000;
+  }
+  EXPECT_EQ(taken, 10000u);
+  EXPECT_EQ(q.maxSize(), 10u);
+  EXPECT_EQ(q.dropped(), 0u);
 }
 
 TEST(CommandQueue, DueTimeFromStamp) {

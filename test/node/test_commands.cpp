@@ -114,6 +114,43 @@ TEST(Commands, ImpulseRejections) {
   EXPECT_TRUE(checkImpulse(bad, t, lim, kPoses).ok);
 }
 
+// Every rule has its own problem key (the node throttles its warnings per key), and the key
+// never holds message contents.
+TEST(Commands, ProblemKeys) {
+  LinkTable t(twoLinks());
+  CommandLimits lim;
+  ImpulseCommand c;
+  c.link = "torso";
+  c.frame = "link";
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  auto problem = [&](auto edit) {
+    ImpulseCommand bad = c;
+    edit(bad);
+    const CommandCheck r = checkImpulse(bad, t, lim, kPoses);
+    EXPECT_FALSE(r.ok);
+    return r.problem;
+  };
+  EXPECT_EQ(problem([](ImpulseCommand& b) { b.link = ""; }), "empty link");
+  EXPECT_EQ(problem([](ImpulseCommand& b) { b.link = "nope"; }), "unknown link");
+  EXPECT_EQ(problem([](ImpulseCommand& b) { b.link = "waist_link1"; }), "dummy link");
+  EXPECT_EQ(problem([](ImpulseCommand& b) { b.frame = "base"; }), "unknown frame");
+  EXPECT_EQ(problem([&](ImpulseCommand& b) { b.impulse.x() = nan; }), "impulse not finite");
+  EXPECT_EQ(problem([&](ImpulseCommand& b) { b.point.y() = nan; }), "point not finite");
+  EXPECT_EQ(problem([](ImpulseCommand& b) { b.impulse.z() = 1e4; }), "above max_impulse");
+  EXPECT_EQ(problem([](ImpulseCommand& b) { b.point.z() = 11.0; }), "lever arm");
+  EXPECT_EQ(checkImpulse(c, t, lim, kPoses).problem, "");
+
+  ForceCommand f;
+  f.link = "pelvis";
+  f.torque.x() = 2e5;
+  EXPECT_EQ(checkForce(f, t, lim, kPoses).problem, "above max_torque");
+  f.torque.x() = nan;
+  EXPECT_EQ(checkForce(f, t, lim, kPoses).problem, "torque not finite");
+  f.torque.x() = 0.0;
+  f.duration = nan;
+  EXPECT_EQ(checkForce(f, t, lim, kPoses).problem, "duration not finite");
+}
+
 TEST(Commands, ForceRejections) {
   LinkTable t(twoLinks());
   CommandLimits lim;

@@ -239,6 +239,16 @@ TEST(TargetPose, RejectsBadCommands) {
   EXPECT_NE(error({{"elbow"}, {1.0}, {kInf}}).find("velocity of 'elbow' is not finite"),
             std::string::npos);
   EXPECT_NE(error({{"waist_y+waist_x+waist_z"}, {0.1}, {}}).find("unknown joint"), std::string::npos);
+  // One throttle key per rule.
+  auto problem = [&](const TargetPoseCommand& c) { return checkTargetPose(c, t).problem; };
+  EXPECT_EQ(problem({{}, {}, {}}), "no names");
+  EXPECT_EQ(problem({{"elbow", "knee"}, {1.0, 0.5}, {}}), "unknown joint");
+  EXPECT_EQ(problem({{"elbow", "elbow"}, {1.0, 0.5}, {}}), "repeated joint");
+  EXPECT_EQ(problem({{"elbow", "waist_y"}, {1.0}, {}}), "positions length");
+  EXPECT_EQ(problem({{"elbow"}, {1.0}, {1.0, 2.0}}), "velocities length");
+  EXPECT_EQ(problem({{"elbow"}, {}, {}}), "no values");
+  EXPECT_EQ(problem({{"elbow"}, {kNaN}, {}}), "position not finite");
+  EXPECT_EQ(problem({{"elbow"}, {1.0}, {kInf}}), "velocity not finite");
 }
 
 TEST(TargetPose, PositionVelocityAndClamp) {
