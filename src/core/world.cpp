@@ -375,6 +375,7 @@ void World::Impl::clearWarmStart() {
       c.normal_impulse[i] = 0.0;
       c.friction_impulse[i].setZero();
     }
+    c.rolling_impulse.setZero();
     c.sep_valid = false;
   }
   std::fill(solver_reset.begin(), solver_reset.end(), 0);
