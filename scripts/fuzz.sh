@@ -46,7 +46,7 @@ junit() {  # target ok(0/1) log
   /usr/bin/python3 - "$@" "$JUNIT/fuzz-$1.xml" "$RUNS" <<'PY'
 import sys, xml.etree.ElementTree as ET
 target, failed, log, out, runs = sys.argv[1:]
-suite = ET.Element("testsuite", name="fuzz", tests="1", failures=failed)
+suite = ET.Element("testsuite", name="fuzz", tests="1", failures=failed, errors="0", skipped="0")
 case = ET.SubElement(suite, "testcase", classname="fuzz", name=f"{target}.corpus_plus_{runs}_runs")
 if failed == "1":
     text = open(log, errors="replace").read()[-6000:]
