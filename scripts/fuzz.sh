@@ -35,11 +35,9 @@ if ! cmake -S "$ROOT" -B "$BUILD" -DCMAKE_CXX_COMPILER="$CXX_BIN" -DRAGDOLL_SIM_
   exit 1
 fi
 
-seeds() {
-  case "$1" in
-    fuzz_urdf) echo "$ROOT/test/fuzz/corpus/fuzz_urdf $ROOT/urdf $ROOT/test/urdf/fixtures" ;;
-    *) echo "$ROOT/test/fuzz/corpus/$1" ;;
-  esac
+seeds() {  # target -> SEEDS (array of corpus folders, read only)
+  SEEDS=("$ROOT/test/fuzz/corpus/$1")
+  if [[ "$1" == fuzz_urdf ]]; then SEEDS+=("$ROOT/urdf" "$ROOT/test/urdf/fixtures"); fi
 }
 
 junit() {  # target ok(0/1) log
@@ -66,11 +64,12 @@ for t in fuzz_urdf fuzz_commands; do
     mkdir -p "$corpus"
     args=(-max_total_time="$SECONDS_EACH")
   fi
+  seeds "$t"
   # -timeout: an input that runs 20 s is a hang; -rss_limit_mb: a runaway allocation is a crash.
-  # shellcheck disable=SC2046
+  # New inputs go to the first folder ($corpus) only.
   "$BUILD/$t" "${args[@]}" -timeout=20 -rss_limit_mb=2048 -print_final_stats=1 \
     -dict="$ROOT/test/fuzz/$t.dict" -artifact_prefix="$WS/fuzz/artifacts/$t-" \
-    "$corpus" $(seeds "$t") >"$log" 2>&1
+    "$corpus" "${SEEDS[@]}" >"$log" 2>&1
   code=$?
   [[ -n "$RUNS" ]] && rm -rf "$corpus"
   execs="$(awk '/stat::number_of_executed_units:/ {print $2}' "$log" | tail -n 1)"
