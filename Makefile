@@ -2,7 +2,11 @@
 SHELL := /bin/bash
 export PATH := /usr/bin:$(PATH)
 .NOTPARALLEL:
-.PHONY: deps build run test bench clean
+.PHONY: deps build run test bench fuzz clean
+
+# clang and its libFuzzer / sanitizer runtimes: `make test` runs the fuzz targets briefly, and
+# `make fuzz` for FUZZ_SECONDS each (the sanitizer build of `make test` uses gcc's runtimes).
+FUZZ_DEBS := clang-14 libclang-rt-14-dev
 
 # Debian packages the package needs to build, run and test (ROS 1 from Debian, no /opt/ros),
 # plus the Python message modules that rostopic / rosservice need for the README's examples.
@@ -16,7 +20,9 @@ DEBS := build-essential cmake googletest libgtest-dev \
         python3-visualization-msgs \
         libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure \
         libros-rosgraph-msgs-dev python3-rosgraph-msgs librosbag-dev python3-rosbag \
-        ros-robot-state-publisher libassimp-dev libtinyxml2-dev rosbash
+        ros-robot-state-publisher libassimp-dev libtinyxml2-dev rosbash \
+        $(FUZZ_DEBS)
+
 
 deps:
 	@scripts/deps.sh $(DEBS)
@@ -41,6 +47,13 @@ BENCH_DEBS := libmujoco-dev libbullet-dev libode-dev libtinyxml2-dev liburdfdom-
 bench: deps
 	@scripts/deps.sh $(BENCH_DEBS)
 	@scripts/bench.sh
+
+# libFuzzer targets (test/fuzz) built with clang + ASan + UBSan, FUZZ_SECONDS (default 60) each;
+# prints the executions and any crash, exits non-zero on a crash (scripts/fuzz.sh).
+FUZZ_SECONDS ?= 60
+fuzz: deps
+	@scripts/deps.sh $(FUZZ_DEBS)
+	@FUZZ_SECONDS=$(FUZZ_SECONDS) scripts/fuzz.sh
 
 clean:
 	rm -rf .ws

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Builds and runs all tests (gtests and rostests) of the workspace, prints the results and a
-# final line "tests: N passed, M failed". Exits non-zero on any failure or error.
+# Builds and runs all tests (gtests and rostests) of the workspace, the sanitizer build of the
+# ROS-free gtests (sanitize.sh) and a short fuzz run (fuzz.sh), prints the results and a final
+# line "tests: N passed, M failed, K skipped". Exits non-zero on any failure or error.
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
 cd "$WS"
@@ -9,8 +10,15 @@ if ! catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -j2 run_tests; then
   echo "test: catkin_make run_tests failed (build error?)"
   exit 1
 fi
+# The ROS-free gtests again under ASan + UBSan, and a short libFuzzer run of each fuzz target
+# over its seed corpus; both leave JUnit reports next to catkin's, counted below.
+scripts_rc=0
+"$ROOT/scripts/sanitize.sh" "$WS/build/test_results/sanitize" || scripts_rc=1
+"$ROOT/scripts/fuzz.sh" --runs "${FUZZ_TEST_RUNS:-2000}" --junit "$WS/build/test_results/fuzz" ||
+  scripts_rc=1
 results="$(catkin_test_results --all "$WS/build/test_results")"
 rc=$?
+[[ $scripts_rc -ne 0 ]] && rc=1
 echo "$results"
 # Count test cases from the JUnit reports (catkin_test_results counts gtest files twice).
 read -r passed failed skipped < <(/usr/bin/python3 - "$WS/build/test_results" <<'PY'

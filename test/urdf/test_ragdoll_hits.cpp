@@ -1,6 +1,7 @@
 // The bundled ragdoll under hard hits and at rest: joint anchors stay together under a
-// 100 N s impulse on a hand, limbs resting on a limit don't jitter, and the step is
-// deterministic (bit-identical poses across runs and thread counts).
+// 100 N s impulse on a hand, limbs resting on a limit don't jitter, a torque at the command cap
+// keeps the state bounded, and the step is deterministic (bit-identical poses across runs and
+// thread counts).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +9,7 @@
 #include <cstring>
 
 #include "ragdoll_sim/urdf_loader.hpp"
+#include "../test_scale.hpp"
 
 using namespace ragdoll_sim;
 
@@ -127,6 +129,37 @@ TEST(RagdollHits, LimbsRestingOnLimitsDoNotJitter) {
   EXPECT_LT(worst_at_limit, 0.01);
 }
 
+// The node accepts 1e5 N m (max_torque) on any link. On a foot (1 kg, 1e-3 kg m^2) that is
+// 2.5e4 rad/s per substep: the speed caps must hold within the step, not only at its end, or
+// the joints fling the ragdoll kilometres away within a few steps and then go NaN (found by
+// test/fuzz/fuzz_commands). Every body must stay where the speed cap can take it.
+TEST(RagdollHits, TorqueAtTheCommandCapOnAFootStaysBounded) {
+  const RagdollDef def = bundled();
+  World w;
+  addGround(w);
+  const Ragdoll r = spawnRagdoll(w, def, Transform(Vec3(0, 0, 1.1), Quat::Identity()));
+  const BodyId foot = r.bodies.at(static_cast<size_t>(def.findLink("foot_r")));
+  std::vector<Vec3> start;
+  for (BodyId b : r.bodies) start.push_back(w.bodyPose(b).p);
+  const double dt = 1e-3, reach_per_step = w.def().max_linear_speed * dt + 0.1;
+  double farthest = 0.0;
+  for (int i = 1; i <= 200; ++i) {
+    w.applyTorque(foot, Vec3(0, 0, 1e5));
+    w.step(dt);
+    for (size_t k = 0; k < r.bodies.size(); ++k) {
+      const BodyState s = w.bodyState(r.bodies[k]);
+      ASSERT_TRUE(s.pose.p.allFinite() && s.pose.q.coeffs().allFinite() &&
+                  s.linear_velocity.allFinite() && s.angular_velocity.allFinite())
+          << def.links[k].name << " at step " << i;
+      const double d = (s.pose.p - start[k]).norm();
+      farthest = std::max(farthest, d);
+      ASSERT_LE(d, i * reach_per_step) << def.links[k].name << " at step " << i;
+    }
+  }
+  std::printf("[ hits     ] 1e5 N m on a foot for 200 steps: farthest body %.3f m from its start\n",
+              farthest);
+}
+
 TEST(RagdollHits, StepIsBitIdenticalAcrossRunsAndThreadCounts) {
   const RagdollDef def = bundled();
   auto run = [&](int threads) {
@@ -141,20 +174,25 @@ TEST(RagdollHits, StepIsBitIdenticalAcrossRunsAndThreadCounts) {
       spawnRagdoll(w, def, Transform(Vec3(0, 4, 0.4 + 0.5 * k), quatFromRpy(0, M_PI / 2, 0.7 * k)));
     // 10 000 steps with commands at fixed steps: an impulse every 700 steps on a different
     // body (waking what slept), and a 30 N push on one pelvis during steps 5000..5199.
+    // (RAGDOLL_SIM_TEST_SCALE shortens the run and the schedule together, to 1000 steps at least.)
     const int bodies = w.bodyCount();
-    for (int i = 0; i < 10000; ++i) {
-      if (i % 700 == 300) {
-        const BodyId b{1 + (i / 700 * 37) % (bodies - 1)};
+    const int steps = test_scale::count(10000, 1000);
+    const int every = steps * 7 / 100, push = steps / 2;
+    for (int i = 0; i < steps; ++i) {
+      if (i % every == every * 3 / 7) {
+        const BodyId b{1 + (i / every * 37) % (bodies - 1)};
         w.applyLinearImpulse(b, Vec3(20, -10, 5), w.bodyPose(b).p);
       }
-      if (i >= 5000 && i < 5200) w.applyForce(BodyId{16}, Vec3(0, 30, 0), w.comPosition(BodyId{16}));
+      if (i >= push && i < push + steps / 50)
+        w.applyForce(BodyId{16}, Vec3(0, 30, 0), w.comPosition(BodyId{16}));
       w.step(1e-3);
     }
     return poseHash(w);
   };
   const uint64_t h1 = run(1), h1b = run(1), h2 = run(2);
-  std::printf("[ hits     ] pose hash after 10000 steps: 1 thread %016llx, again %016llx, 2 threads %016llx\n",
-              (unsigned long long)h1, (unsigned long long)h1b, (unsigned long long)h2);
+  std::printf("[ hits     ] pose hash after %d steps: 1 thread %016llx, again %016llx, 2 threads %016llx\n",
+              test_scale::count(10000, 1000), (unsigned long long)h1, (unsigned long long)h1b,
+              (unsigned long long)h2);
   EXPECT_EQ(h1, h1b);
   EXPECT_EQ(h1, h2);
 }
