@@ -275,9 +275,8 @@ void World::Impl::integrateVelocities(double h, int begin, int end) {
     // Clamped per substep as well as at the step end (as Box2D v3 does): a torque at the
     // command cap on a light link (1e5 N m on a foot: 2.5e4 rad/s per substep) otherwise spins
     // it so fast within one step that the joints fling their neighbours to 1e7 m, then NaN.
-    const double vn = s.v.norm(), wn = s.w.norm();
-    if (vn > def.max_linear_speed) s.v *= def.max_linear_speed / vn;
-    if (wn > def.max_angular_speed) s.w *= def.max_angular_speed / wn;
+    clampNorm(s.v, def.max_linear_speed);
+    clampNorm(s.w, def.max_angular_speed);
   }
 }
 
