@@ -30,11 +30,8 @@ class BalanceController {
                     const BalanceDef& balance = BalanceDef());
   // Call before each World::step.
   void update(World& world);
-  // Sets the held angle of one URDF revolute joint (a hinge, or one axis of a ball chain),
-  // with the hold motor's gains.
-  bool setTarget(World& world, const std::string& urdf_joint, double angle);
-  // The same with the joint's own motor gains (and motor.target as the angle): an ankle keeps
-  // these gains under the balance law.
+  // Sets the motor (gains, and target = the held angle) of one URDF revolute joint (a hinge,
+  // or one axis of a ball chain); an ankle keeps these gains under the balance law.
   bool setTarget(World& world, const std::string& urdf_joint, const JointMotor& motor);
   // The motor the balance law drives an ankle with (its gains; the target is the law's).
   const JointMotor& ankleMotor(size_t i) const { return ankle_motors_.at(i); }

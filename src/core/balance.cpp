@@ -26,12 +26,6 @@ BalanceController::BalanceController(World& world, const Ragdoll& ragdoll, const
   if (!missing_.empty()) ankles_.clear();
 }
 
-bool BalanceController::setTarget(World& world, const std::string& urdf_joint, double angle) {
-  JointMotor m = balance_.hold;
-  m.target = angle;
-  return setTarget(world, urdf_joint, m);
-}
-
 bool BalanceController::setTarget(World& world, const std::string& urdf_joint, const JointMotor& motor) {
   for (size_t k = 0; k < def_.joints.size(); ++k) {
     const auto& names = def_.joints[k].source_joints;
