@@ -171,6 +171,7 @@ int main(int argc, char** argv) {
   WorldDef wd;
   bool metrics = true;
   double rolling = 0.0;
+  int trace = 0;  // --opt trace=N: every N steps, awake bodies and mean step time on stderr
   std::string urdf = "../shared/peers/ragdoll15.urdf";
   for (int i = 1; i < argc; ++i) {
     const std::string s = argv[i];
@@ -201,6 +202,7 @@ int main(int argc, char** argv) {
         else if (k == "time_to_sleep") wd.time_to_sleep = v;
         else if (k == "static_friction_speed") wd.static_friction_speed = v;
         else if (k == "rolling") rolling = v;
+        else if (k == "trace") trace = int(v);
         else {
           std::fprintf(stderr, "unknown option %s\n", k.c_str());
           return 2;
@@ -269,6 +271,15 @@ int main(int argc, char** argv) {
     wall += dt_wall;
     if (step <= window) wall_first += dt_wall;
     if (step > steps - window) wall_last += dt_wall;
+    if (trace > 0) {
+      static double wall_trace = 0.0;
+      wall_trace += dt_wall;
+      if (step % trace == 0) {
+        std::fprintf(stderr, "trace step=%d awake=%d us_per_step=%.1f\n", step, world.awakeBodyCount(),
+                     1e6 * wall_trace / trace);
+        wall_trace = 0.0;
+      }
+    }
     if (metrics || step == 2999 || step == 3000) {
       for (int r = 0; r < n; ++r)
         for (size_t i = 0; i < def.links.size(); ++i)

@@ -94,10 +94,14 @@ void solveJoint(Joint& j, const StepContext& ctx, bool use_bias) {
   solveAnchor(j, A, B, ctx, use_bias);
 }
 
+// After the position update: the relax sweeps see the moved anchors and axes.
 void advanceJoint(Joint& j, const StepContext& ctx) {
   if (j.type == JointType::Prismatic) return;
   auto& s = *ctx.bodies;
-  advanceAngles(j, s[j.a], s[j.b], ctx);
+  const SolverBody &A = s[j.a], &B = s[j.b];
+  advanceAngles(j, A, B, ctx);
+  j.point.refresh(A, B);
+  if (j.type == JointType::Hinge) j.hinge_axis.refresh(A, B);
 }
 
 void projectJoint(Joint& j, const StepContext& ctx) {

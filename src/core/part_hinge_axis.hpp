@@ -5,6 +5,8 @@
 //   K    = U^T (IA^-1 + IB^-1) U                                   2x2
 //   lambda = -mass_scale K^-1 (Cdot + bias_rate C) - impulse_scale lambda_acc,
 //   angular impulse U lambda on B, minus on A. K^-1 is formed once per substep (updateMass).
+// U and C change only with the positions: refresh() forms them at the warm start and after the
+// position update, and every sweep in between reads them.
 #pragma once
 
 #include <Eigen/Dense>
@@ -16,6 +18,8 @@ namespace ragdoll_sim {
 struct HingeAxisPart {
   Vec3 a1_0 = Vec3::UnitZ(), a2_0 = Vec3::UnitZ();  // world at step start
   Vec3 b2_0 = Vec3::UnitX(), c2_0 = Vec3::UnitY();
+  Vec3 u1 = Vec3::Zero(), u2 = Vec3::Zero();  // U's columns at the current dq (refresh)
+  Eigen::Vector2d C = Eigen::Vector2d::Zero();
   Eigen::Vector2d impulse = Eigen::Vector2d::Zero();
   Eigen::Matrix2d k_inv = Eigen::Matrix2d::Zero();
 
@@ -28,10 +32,17 @@ struct HingeAxisPart {
     c2_0 = a2_0.cross(b2_0);
   }
 
+  void refresh(const SolverBody& A, const SolverBody& B) {
+    const Vec3 a1 = A.dq * a1_0;
+    const Vec3 b2 = B.dq * b2_0, c2 = B.dq * c2_0;
+    u1 = b2.cross(a1);
+    u2 = c2.cross(a1);
+    C = {a1.dot(b2), a1.dot(c2)};
+  }
+
+  // Refreshes U and C and forms K^-1 there.
   void updateMass(const SolverBody& A, const SolverBody& B) {
-    Vec3 a1, u1, u2;
-    Eigen::Vector2d C;
-    jacobian(A, B, a1, u1, u2, C);
+    refresh(A, B);
     const Mat3 I = A.inv_inertia + B.inv_inertia;
     const Vec3 Iu1 = I * u1, Iu2 = I * u2;
     Eigen::Matrix2d K;
@@ -39,26 +50,11 @@ struct HingeAxisPart {
     k_inv = K.determinant() > 1e-300 ? Eigen::Matrix2d(K.inverse()) : Eigen::Matrix2d::Zero();
   }
 
-  void jacobian(const SolverBody& A, const SolverBody& B, Vec3& a1, Vec3& u1, Vec3& u2,
-                Eigen::Vector2d& C) const {
-    a1 = A.dq * a1_0;
-    const Vec3 b2 = B.dq * b2_0, c2 = B.dq * c2_0;
-    u1 = b2.cross(a1);
-    u2 = c2.cross(a1);
-    C = {a1.dot(b2), a1.dot(c2)};
-  }
-
   void warmStart(SolverBody& A, SolverBody& B) const {
-    Vec3 a1, u1, u2;
-    Eigen::Vector2d C;
-    jacobian(A, B, a1, u1, u2, C);
     applyPairAngularImpulse(A, B, impulse.x() * u1 + impulse.y() * u2);
   }
 
   void solve(SolverBody& A, SolverBody& B, const Softness& soft, bool use_bias) {
-    Vec3 a1, u1, u2;
-    Eigen::Vector2d C;
-    jacobian(A, B, a1, u1, u2, C);
     const Vec3 dw = B.w - A.w;
     const Eigen::Vector2d cdot(u1.dot(dw), u2.dot(dw));
     Eigen::Vector2d bias = Eigen::Vector2d::Zero();

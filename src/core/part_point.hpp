@@ -11,6 +11,8 @@
 // rotated by the delta rotation and the centres moved by the delta positions. K^-1 is formed
 // once per substep (at the warm start) from the current anchors: a stale K from the step start
 // over-corrects once a body spins a good part of a radian per step, and Gauss-Seidel diverges.
+// The rotated anchors rA, rB only change when the positions do, so they are computed twice per
+// substep (refresh: at the warm start and after the position update) and read by every sweep.
 #pragma once
 
 #include <limits>
@@ -22,6 +24,7 @@ namespace ragdoll_sim {
 struct PointPart {
   Vec3 rA0 = Vec3::Zero(), rB0 = Vec3::Zero();  // world anchors from the COMs at step start
   Vec3 delta_center = Vec3::Zero();             // xB - xA at step start
+  Vec3 rA = Vec3::Zero(), rB = Vec3::Zero();    // anchors at the current dq (refresh)
   Vec3 impulse = Vec3::Zero();                  // accumulated (per substep)
   Mat3 k_inv = Mat3::Zero();                    // (K + gamma I)^-1, gamma = 0 when rigid
 
@@ -32,24 +35,27 @@ struct PointPart {
     delta_center = B.x - A.x;
   }
 
-  // K^-1 at the current anchors; gamma > 0 softens K for a spring.
+  void refresh(const SolverBody& A, const SolverBody& B) {
+    rA = A.dq * rA0;
+    rB = B.dq * rB0;
+  }
+
+  // Refreshes the anchors and forms K^-1 there; gamma > 0 softens K for a spring.
   void updateMass(const SolverBody& A, const SolverBody& B, double gamma = 0.0) {
-    const Mat3 sA = skew(A.dq * rA0), sB = skew(B.dq * rB0);
+    refresh(A, B);
+    const Mat3 sA = skew(rA), sB = skew(rB);
     const Mat3 K = (A.inv_mass + B.inv_mass + gamma) * Mat3::Identity() -
                    sA * A.inv_inertia * sA - sB * B.inv_inertia * sB;
     k_inv = K.determinant() > 1e-300 ? Mat3(K.inverse()) : Mat3::Zero();
   }
 
-  void warmStart(SolverBody& A, SolverBody& B) const {
-    applyPairImpulse(A, B, impulse, A.dq * rA0, B.dq * rB0);
-  }
+  void warmStart(SolverBody& A, SolverBody& B) const { applyPairImpulse(A, B, impulse, rA, rB); }
 
   // Hooke spring F = -k x - c v between the anchors instead of the rigid row, implicit over
   // the substep (Catto's soft constraints): gamma = 1 / (h (c + h k)), beta = k / (c + h k),
   //   lambda = -(K + gamma I)^-1 (Cdot + beta C);  for one body on a fixed anchor this is
   // exactly implicit Euler of m x'' = -k x - c x'. Returns the spring force k |C|.
   double solveSpring(SolverBody& A, SolverBody& B, double k, double c, double h) {
-    const Vec3 rA = A.dq * rA0, rB = B.dq * rB0;
     const Vec3 C = (B.dp - A.dp) + (rB - rA) + delta_center;
     const Vec3 cdot = B.v + B.w.cross(rB) - A.v - A.w.cross(rA);
     const double beta = k / (c + h * k);  // gamma went into k_inv (springGamma)
@@ -83,7 +89,6 @@ struct PointPart {
   // strength); returns true when the cap was reached.
   bool solve(SolverBody& A, SolverBody& B, const Softness& soft, bool use_bias,
              double max_impulse = std::numeric_limits<double>::infinity()) {
-    const Vec3 rA = A.dq * rA0, rB = B.dq * rB0;
     const Vec3 cdot = B.v + B.w.cross(rB) - A.v - A.w.cross(rA);
     Vec3 bias = Vec3::Zero();
     double mass_scale = 1.0, impulse_scale = 0.0;
