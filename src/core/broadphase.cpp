@@ -22,11 +22,28 @@ void Broadphase::findPairs(const std::vector<Aabb>& aabbs, const std::vector<cha
   for (int i = 0; i < n; ++i)
     if (!unbounded[i] && !seen[i]) order_.push_back(i);
 
+  // Sweep along the axis the box centres spread most on (a row of ragdolls along y overlaps
+  // in x), switching only when another axis spreads clearly more, so that the kept order stays
+  // nearly sorted from step to step.
+  Vec3 sum = Vec3::Zero(), sum2 = Vec3::Zero();
+  for (int id : order_) {
+    const Vec3 c = 0.5 * (aabbs[id].lo + aabbs[id].hi);
+    sum += c;
+    sum2 += c.cwiseProduct(c);
+  }
+  if (!order_.empty()) {
+    const double inv = 1.0 / double(order_.size());
+    const Vec3 var = sum2 * inv - (sum * inv).cwiseProduct(sum * inv);
+    int best;
+    var.maxCoeff(&best);
+    if (best != axis_ && var[best] > kSwitchRatio * var[axis_]) axis_ = best;
+  }
+  const int ax = axis_;
   for (size_t i = 1; i < order_.size(); ++i) {
     const int id = order_[i];
-    const double key = aabbs[id].lo.x();
+    const double key = aabbs[id].lo[ax];
     size_t j = i;
-    while (j > 0 && aabbs[order_[j - 1]].lo.x() > key) {
+    while (j > 0 && aabbs[order_[j - 1]].lo[ax] > key) {
       order_[j] = order_[j - 1];
       --j;
     }
@@ -37,7 +54,7 @@ void Broadphase::findPairs(const std::vector<Aabb>& aabbs, const std::vector<cha
     const Aabb& a = aabbs[order_[i]];
     for (size_t j = i + 1; j < order_.size(); ++j) {
       const Aabb& b = aabbs[order_[j]];
-      if (b.lo.x() > a.hi.x()) break;
+      if (b.lo[ax] > a.hi[ax]) break;
       if (a.overlaps(b)) pairs.emplace_back(std::min(order_[i], order_[j]), std::max(order_[i], order_[j]));
     }
   }

@@ -1,6 +1,7 @@
-// Broadphase: sweep and prune on the x axis. The proxies' order is kept between steps and
-// re-sorted by insertion sort, which is near linear when bodies move little per step; the
-// sweep then tests y and z only for proxies overlapping in x. Unbounded shapes (planes) are
+// Broadphase: sweep and prune on one axis, the one the boxes spread most along (variance of
+// their centres). The proxies' order is kept between steps and re-sorted by insertion sort,
+// which is near linear when bodies move little per step; the sweep then tests the other two
+// axes only for proxies overlapping on the sweep axis. Unbounded shapes (planes) are
 // tested against every bounded AABB (O(n) per plane).
 #pragma once
 
@@ -25,7 +26,9 @@ class Broadphase {
                  std::vector<std::pair<int, int>>& pairs);
 
  private:
+  static constexpr double kSwitchRatio = 1.5;  // another axis must spread this much more
   std::vector<int> order_;
+  int axis_ = 0;
   std::vector<char> seen_;  // scratch, kept to avoid a per-step allocation
 };
 

@@ -97,6 +97,7 @@ struct World::Impl {
   std::vector<char> unbounded;
   std::vector<PlaneProxy> planes;
   std::vector<std::pair<int, int>> pairs;
+  std::vector<uint64_t> pair_keys;
   std::vector<double> island_slow;
   std::vector<Joint*> active_joints;  // grouped by island after partitionIslands()
   std::vector<JointId> broken_events;
@@ -201,22 +202,26 @@ void World::Impl::collide(double dt) {
   broadphase.findPairs(aabbs, unbounded, planes, spec, pairs);
 
   // Keep pairs between different bodies, at least one dynamic, not disabled; sort by key to
-  // merge with last step's contacts (also sorted by key).
-  next_contacts.clear();
+  // merge with last step's contacts (also sorted by key). The keys are sorted, not the contacts
+  // (a Contact is ~400 bytes).
+  pair_keys.clear();
   for (const auto& [sa, sb] : pairs) {
     const int ba = shapes[sa].body, bb = shapes[sb].body;
     if (ba == bb || (!isDynamic(ba) && !isDynamic(bb))) continue;
     if (disabled.count(bodyPairKey(ba, bb))) continue;
-    Contact c;
-    c.key = pairKey(sa, sb);
-    c.shape_a = sa;
-    c.shape_b = sb;
-    c.body_a = ba;
-    c.body_b = bb;
-    next_contacts.push_back(c);
+    pair_keys.push_back(pairKey(sa, sb));
   }
-  std::sort(next_contacts.begin(), next_contacts.end(),
-            [](const Contact& x, const Contact& y) { return x.key < y.key; });
+  std::sort(pair_keys.begin(), pair_keys.end());
+  next_contacts.clear();
+  next_contacts.resize(pair_keys.size());
+  for (size_t i = 0; i < pair_keys.size(); ++i) {
+    Contact& c = next_contacts[i];
+    c.key = pair_keys[i];
+    c.shape_a = int(pair_keys[i] >> 32);
+    c.shape_b = int(uint32_t(pair_keys[i]));
+    c.body_a = shapes[c.shape_a].body;
+    c.body_b = shapes[c.shape_b].body;
+  }
 
   // Merge with last step's contacts (both sorted by key), then run the narrowphase on each
   // pair independently (in parallel; each writes only its own contact).
