@@ -48,18 +48,38 @@ ContactRow makeRow(const SolverBody& A, const SolverBody& B, const Vec3& rA, con
   r.mass = k > 0.0 ? 1.0 / k : 0.0;
   return r;
 }
-double rowVelocity(const SolverBody& A, const SolverBody& B, const ContactRow& r, const Vec3& d) {
-  return d.dot(B.v - A.v) + B.w.dot(r.angB) - A.w.dot(r.angA);
+// The velocities of a manifold's two bodies, held in locals through its rows (the compiler
+// cannot keep them in registers across writes through SolverBody references). A body with
+// zero inverse mass and inertia is not written back (movable(): static bodies are shared by
+// all islands).
+struct PairVelocity {
+  Vec3 vA, wA, vB, wB;
+  double mA, mB;
+  PairVelocity(const SolverBody& A, const SolverBody& B)
+      : vA(A.v), wA(A.w), vB(B.v), wB(B.w), mA(A.inv_mass), mB(B.inv_mass) {}
+  void store(SolverBody& A, SolverBody& B) const {
+    if (movable(A)) {
+      A.v = vA;
+      A.w = wA;
+    }
+    if (movable(B)) {
+      B.v = vB;
+      B.w = wB;
+    }
+  }
+};
+inline double rowVelocity(const PairVelocity& u, const ContactRow& r, const Vec3& d) {
+  return d.dot(u.vB - u.vA) + u.wB.dot(r.angB) - u.wA.dot(r.angA);
 }
-void applyRow(SolverBody& A, SolverBody& B, const ContactRow& r, const Vec3& d, double lambda) {
-  A.v -= (A.inv_mass * lambda) * d;
-  A.w -= lambda * r.iangA;
-  B.v += (B.inv_mass * lambda) * d;
-  B.w += lambda * r.iangB;
+inline void applyRow(PairVelocity& u, const ContactRow& r, const Vec3& d, double lambda) {
+  u.vA -= (u.mA * lambda) * d;
+  u.wA -= lambda * r.iangA;
+  u.vB += (u.mB * lambda) * d;
+  u.wB += lambda * r.iangB;
 }
-void applyRolling(SolverBody& A, SolverBody& B, const ContactConstraint& cc, double l0, double l1) {
-  A.w -= l0 * cc.roll_iA[0] + l1 * cc.roll_iA[1];
-  B.w += l0 * cc.roll_iB[0] + l1 * cc.roll_iB[1];
+inline void applyRolling(PairVelocity& u, const ContactConstraint& cc, double l0, double l1) {
+  u.wA -= l0 * cc.roll_iA[0] + l1 * cc.roll_iA[1];
+  u.wB += l0 * cc.roll_iB[0] + l1 * cc.roll_iB[1];
 }
 Vec3 relativeVelocity(const SolverBody& A, const SolverBody& B, const Vec3& rA, const Vec3& rB) {
   return B.v + B.w.cross(rB) - A.v - A.w.cross(rA);
@@ -127,34 +147,48 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
   }
 }
 
+// s = (dpB - dpA).n + (dqB rB).n - (dqA rA).n + base for every point of cc: n is rotated back
+// once per manifold instead of rotating each lever arm.
+static void updateSeparations(const SolverBody& A, const SolverBody& B, ContactConstraint& cc) {
+  const double dpn = (B.dp - A.dp).dot(cc.normal);
+  const Vec3 nA = A.dq.conjugate() * cc.normal, nB = B.dq.conjugate() * cc.normal;
+  for (int i = 0; i < cc.count; ++i) {
+    ContactConstraintPoint& p = cc.points[i];
+    p.separation = dpn + p.rB.dot(nB) - p.rA.dot(nA) + p.base_separation;
+  }
+}
+
 void ContactSolver::warmStart(const StepContext& ctx, int begin, int end) {
   auto& bodies = *ctx.bodies;
   for (int k = begin; k < end; ++k) {
     ContactConstraint& cc = constraints_[k];
     SolverBody &A = bodies[cc.a], &B = bodies[cc.b];
+    updateSeparations(A, B, cc);
+    PairVelocity u(A, B);
     for (int i = 0; i < cc.count; ++i) {
       const ContactConstraintPoint& p = cc.points[i];
-      applyRow(A, B, p.normal_row, cc.normal, p.normal_impulse);
-      applyRow(A, B, p.tangent_row[0], cc.tangent[0], p.tangent_impulse[0]);
-      applyRow(A, B, p.tangent_row[1], cc.tangent[1], p.tangent_impulse[1]);
+      applyRow(u, p.normal_row, cc.normal, p.normal_impulse);
+      applyRow(u, p.tangent_row[0], cc.tangent[0], p.tangent_impulse[0]);
+      applyRow(u, p.tangent_row[1], cc.tangent[1], p.tangent_impulse[1]);
     }
-    if (cc.rolling > 0.0) applyRolling(A, B, cc, cc.rolling_impulse[0], cc.rolling_impulse[1]);
+    if (cc.rolling > 0.0) applyRolling(u, cc, cc.rolling_impulse[0], cc.rolling_impulse[1]);
+    u.store(A, B);
   }
 }
 
-void ContactSolver::solve(const StepContext& ctx, bool use_bias, int begin, int end) {
+void ContactSolver::solve(const StepContext& ctx, bool use_bias, int begin, int end,
+                          bool positions_moved) {
   auto& bodies = *ctx.bodies;
   const WorldDef& def = *ctx.def;
   const Softness& soft = ctx.contact_softness;
   for (int k = begin; k < end; ++k) {
     ContactConstraint& cc = constraints_[k];
     SolverBody &A = bodies[cc.a], &B = bodies[cc.b];
-    // s = (dpB - dpA).n + (dqB rB).n - (dqA rA).n + base: rotate n back once per manifold.
-    const double dpn = (B.dp - A.dp).dot(cc.normal);
-    const Vec3 nA = A.dq.conjugate() * cc.normal, nB = B.dq.conjugate() * cc.normal;
+    if (positions_moved) updateSeparations(A, B, cc);
+    PairVelocity u(A, B);
     for (int i = 0; i < cc.count; ++i) {
       ContactConstraintPoint& p = cc.points[i];
-      const double s = dpn + p.rB.dot(nB) - p.rA.dot(nA) + p.base_separation;
+      const double s = p.separation;
       double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
       if (s > 0.0) {
         bias = s * ctx.inv_h;
@@ -163,20 +197,20 @@ void ContactSolver::solve(const StepContext& ctx, bool use_bias, int begin, int 
         mass_scale = soft.mass_scale;
         impulse_scale = soft.impulse_scale;
       }
-      const double vn = rowVelocity(A, B, p.normal_row, cc.normal);
+      const double vn = rowVelocity(u, p.normal_row, cc.normal);
       if (vn < 0.0) mass_scale = 1.0, impulse_scale = 0.0;  // approaching: rigid
       double lambda = -p.normal_row.mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
       const double next = std::max(p.normal_impulse + lambda, 0.0);
       lambda = next - p.normal_impulse;
       p.normal_impulse = next;
       p.max_normal_impulse = std::max(p.max_normal_impulse, lambda);
-      applyRow(A, B, p.normal_row, cc.normal, lambda);
+      applyRow(u, p.normal_row, cc.normal, lambda);
     }
     for (int i = 0; i < cc.count; ++i) {
       ContactConstraintPoint& p = cc.points[i];
       const double old0 = p.tangent_impulse[0], old1 = p.tangent_impulse[1];
-      double t0 = old0 - p.tangent_row[0].mass * rowVelocity(A, B, p.tangent_row[0], cc.tangent[0]);
-      double t1 = old1 - p.tangent_row[1].mass * rowVelocity(A, B, p.tangent_row[1], cc.tangent[1]);
+      double t0 = old0 - p.tangent_row[0].mass * rowVelocity(u, p.tangent_row[0], cc.tangent[0]);
+      double t1 = old1 - p.tangent_row[1].mass * rowVelocity(u, p.tangent_row[1], cc.tangent[1]);
       const double limit = cc.friction * p.normal_impulse;
       const double mag = std::sqrt(t0 * t0 + t1 * t1);
       if (mag > limit) {
@@ -186,21 +220,22 @@ void ContactSolver::solve(const StepContext& ctx, bool use_bias, int begin, int 
       }
       p.tangent_impulse[0] = t0;
       p.tangent_impulse[1] = t1;
-      applyRow(A, B, p.tangent_row[0], cc.tangent[0], t0 - old0);
-      applyRow(A, B, p.tangent_row[1], cc.tangent[1], t1 - old1);
+      applyRow(u, p.tangent_row[0], cc.tangent[0], t0 - old0);
+      applyRow(u, p.tangent_row[1], cc.tangent[1], t1 - old1);
     }
     if (cc.rolling > 0.0) {
       double total_normal = 0.0;
       for (int i = 0; i < cc.count; ++i) total_normal += cc.points[i].normal_impulse;
-      const Eigen::Vector2d cdot((B.w - A.w).dot(cc.tangent[0]), (B.w - A.w).dot(cc.tangent[1]));
+      const Eigen::Vector2d cdot((u.wB - u.wA).dot(cc.tangent[0]), (u.wB - u.wA).dot(cc.tangent[1]));
       const Eigen::Vector2d old(cc.rolling_impulse[0], cc.rolling_impulse[1]);
       Eigen::Vector2d next = old - cc.roll_mass * cdot;
       const double limit = cc.rolling * total_normal, mag = next.norm();
       if (mag > limit) next *= mag > 0.0 ? limit / mag : 0.0;
       cc.rolling_impulse[0] = next[0];
       cc.rolling_impulse[1] = next[1];
-      applyRolling(A, B, cc, next[0] - old[0], next[1] - old[1]);
+      applyRolling(u, cc, next[0] - old[0], next[1] - old[1]);
     }
+    u.store(A, B);
   }
 }
 
@@ -230,12 +265,14 @@ void ContactSolver::applyRestitution(const StepContext& ctx) {
     for (int i = 0; i < cc.count; ++i) {
       ContactConstraintPoint& p = cc.points[i];
       if (p.relative_velocity > -threshold || p.max_normal_impulse == 0.0) continue;
-      const double vn = rowVelocity(A, B, p.normal_row, cc.normal);
+      PairVelocity u(A, B);
+      const double vn = rowVelocity(u, p.normal_row, cc.normal);
       double lambda = -p.normal_row.mass * (vn + cc.restitution * p.relative_velocity);
       const double next = std::max(p.normal_impulse + lambda, 0.0);
       lambda = next - p.normal_impulse;
       p.normal_impulse = next;
-      applyRow(A, B, p.normal_row, cc.normal, lambda);
+      applyRow(u, p.normal_row, cc.normal, lambda);
+      u.store(A, B);
     }
   }
 }

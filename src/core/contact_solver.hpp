@@ -20,6 +20,7 @@ struct ContactRow {
 struct ContactConstraintPoint {
   Vec3 rA, rB;                  // from the COMs at step start (world)
   double base_separation;       // separation - (rB - rA).n, so s = (d + rB' - rA').n + base
+  double separation;            // s at the current deltas (warm start, first sweep after a move)
   ContactRow normal_row, tangent_row[2];
   double normal_impulse, tangent_impulse[2];
   double max_normal_impulse;
@@ -46,7 +47,9 @@ class ContactSolver {
  public:
   void prepare(const std::vector<Contact>& contacts, const StepContext& ctx);
   void warmStart(const StepContext& ctx, int begin, int end);
-  void solve(const StepContext& ctx, bool use_bias, int begin, int end);
+  // positions_moved: the deltas changed since the last warm start or sweep, so the
+  // separations are recomputed (they stay fixed through the sweeps of one position state).
+  void solve(const StepContext& ctx, bool use_bias, int begin, int end, bool positions_moved);
   // Position projection of penetrations deeper than the slop (after the substeps).
   void project(const StepContext& ctx, int begin, int end);
   void applyRestitution(const StepContext& ctx);

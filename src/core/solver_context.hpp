@@ -20,13 +20,21 @@ struct StepContext {
   const std::vector<BodyMotion>* motions = nullptr;  // poses at the start of the step
 };
 
+// False for an identity solver body (static or asleep): nothing can move it, and the ground,
+// shared by all islands, must not be written by two threads at once.
+inline bool movable(const SolverBody& b) { return b.inv_mass > 0.0 || !b.inv_inertia.isZero(); }
+
 // Applies a world impulse P at world offset r (from the COM) to A (negative) and B (positive).
 inline void applyPairImpulse(SolverBody& A, SolverBody& B, const Vec3& P, const Vec3& rA,
                              const Vec3& rB) {
-  A.v -= A.inv_mass * P;
-  A.w -= A.inv_inertia * rA.cross(P);
-  B.v += B.inv_mass * P;
-  B.w += B.inv_inertia * rB.cross(P);
+  if (movable(A)) {
+    A.v -= A.inv_mass * P;
+    A.w -= A.inv_inertia * rA.cross(P);
+  }
+  if (movable(B)) {
+    B.v += B.inv_mass * P;
+    B.w += B.inv_inertia * rB.cross(P);
+  }
 }
 
 // Position-level "impulse" (a displacement times mass): moves the centres and turns the
@@ -38,16 +46,20 @@ inline void rotateDelta(SolverBody& b, const Vec3& theta) {
 }
 inline void applyPairPositionImpulse(SolverBody& A, SolverBody& B, const Vec3& P,
                                      const Vec3& rA, const Vec3& rB) {
-  A.dp -= A.inv_mass * P;
-  rotateDelta(A, -(A.inv_inertia * rA.cross(P)));
-  B.dp += B.inv_mass * P;
-  rotateDelta(B, B.inv_inertia * rB.cross(P));
+  if (movable(A)) {
+    A.dp -= A.inv_mass * P;
+    rotateDelta(A, -(A.inv_inertia * rA.cross(P)));
+  }
+  if (movable(B)) {
+    B.dp += B.inv_mass * P;
+    rotateDelta(B, B.inv_inertia * rB.cross(P));
+  }
 }
 
 // Applies an angular impulse L to A (negative) and B (positive).
 inline void applyPairAngularImpulse(SolverBody& A, SolverBody& B, const Vec3& L) {
-  A.w -= A.inv_inertia * L;
-  B.w += B.inv_inertia * L;
+  if (movable(A)) A.w -= A.inv_inertia * L;
+  if (movable(B)) B.w += B.inv_inertia * L;
 }
 
 }  // namespace ragdoll_sim

@@ -486,7 +486,7 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int 
     contact_solver.warmStart(ctx, r.contact_begin, r.contact_end);
     for (int k = r.joint_begin; k < r.joint_end; ++k)
       if (!js[k]->broken) solveJoint(*js[k], ctx, true);
-    contact_solver.solve(ctx, true, r.contact_begin, r.contact_end);
+    contact_solver.solve(ctx, true, r.contact_begin, r.contact_end, false);
     integratePositions(ctx.h, r.body_begin, r.body_end);
     for (int k = r.joint_begin; k < r.joint_end; ++k)
       if (!js[k]->broken) advanceJoint(*js[k], ctx);
@@ -494,7 +494,7 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int 
       if (it < def.joint_relax_iterations)
         for (int k = r.joint_begin; k < r.joint_end; ++k)
           if (!js[k]->broken) solveJoint(*js[k], ctx, false);
-      contact_solver.solve(ctx, false, r.contact_begin, r.contact_end);
+      contact_solver.solve(ctx, false, r.contact_begin, r.contact_end, it == 0);
     }
     for (int k = r.joint_begin; k < r.joint_end; ++k) {
       Joint& j = *js[k];
