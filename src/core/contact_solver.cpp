@@ -86,15 +86,26 @@ Vec3 relativeVelocity(const SolverBody& A, const SolverBody& B, const Vec3& rA, 
 }
 }  // namespace
 
-void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepContext& ctx) {
+void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepContext& ctx,
+                            int threads, int parallel_min) {
   const auto& motions = *ctx.motions;
   const auto& bodies = *ctx.bodies;
   const WorldDef& def = *ctx.def;
-  constraints_.clear();
+  // Which contacts become constraints (touching, one body awake), then each is prepared on
+  // its own (in parallel, into its own slot: the order does not depend on the thread count).
+  active_.clear();
   for (int ci = 0; ci < int(contacts.size()); ++ci) {
     const Contact& c = contacts[ci];
-    if (c.manifold.count == 0 || (!motions[c.body_a].awake && !motions[c.body_b].awake)) continue;
-    ContactConstraint cc;
+    if (c.manifold.count > 0 && (motions[c.body_a].awake || motions[c.body_b].awake))
+      active_.push_back(ci);
+  }
+  const int n = int(active_.size());
+  constraints_.resize(n);
+#pragma omp parallel for schedule(static) num_threads(threads) if (n >= parallel_min)
+  for (int slot = 0; slot < n; ++slot) {
+    const int ci = active_[slot];
+    const Contact& c = contacts[ci];
+    ContactConstraint& cc = constraints_[slot];
     cc.a = c.body_a;
     cc.b = c.body_b;
     cc.contact = ci;
@@ -143,7 +154,6 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
         for (int l = 0; l < 2; ++l) K(k, l) = cc.tangent[k].dot(cc.roll_iA[l] + cc.roll_iB[l]);
       cc.roll_mass = K.determinant() > 1e-300 ? Eigen::Matrix2d(K.inverse()) : Eigen::Matrix2d::Zero();
     }
-    constraints_.push_back(cc);
   }
 }
 

@@ -45,7 +45,9 @@ struct ContactConstraint {
 // calls take the range [begin, end) of one island, so islands can be solved in parallel.
 class ContactSolver {
  public:
-  void prepare(const std::vector<Contact>& contacts, const StepContext& ctx);
+  // On up to `threads` threads when there are at least parallel_min contacts.
+  void prepare(const std::vector<Contact>& contacts, const StepContext& ctx, int threads,
+               int parallel_min);
   void warmStart(const StepContext& ctx, int begin, int end);
   // positions_moved: the deltas changed since the last warm start or sweep, so the
   // separations are recomputed (they stay fixed through the sweeps of one position state).
@@ -58,6 +60,7 @@ class ContactSolver {
 
  private:
   std::vector<ContactConstraint> constraints_;
+  std::vector<int> active_;  // contact index of each constraint (scratch)
 };
 
 }  // namespace ragdoll_sim

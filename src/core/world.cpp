@@ -676,7 +676,9 @@ void World::step(double dt) {
   w.collide(dt);
   w.buildIslands();
 
-  for (size_t i = 0; i < w.bodies.size(); ++i) {
+  const int body_count = int(w.bodies.size());
+#pragma omp parallel for schedule(static) num_threads(w.threadCount()) if (body_count >= kParallelMin)
+  for (int i = 0; i < body_count; ++i) {
     const BodyMotion& m = w.motions[i];
     SolverBody& s = w.solver[i];
     s.dp.setZero();
@@ -694,11 +696,11 @@ void World::step(double dt) {
 
   w.active_joints.clear();
   for (Joint& j : w.joints)
-    if (!j.broken && (w.motions[j.a].awake || w.motions[j.b].awake)) {
-      prepareJoint(j, ctx);
-      w.active_joints.push_back(&j);
-    }
-  w.contact_solver.prepare(w.contacts, ctx);
+    if (!j.broken && (w.motions[j.a].awake || w.motions[j.b].awake)) w.active_joints.push_back(&j);
+  const int joint_count = int(w.active_joints.size());
+#pragma omp parallel for schedule(static) num_threads(w.threadCount()) if (joint_count >= kParallelMin)
+  for (int k = 0; k < joint_count; ++k) prepareJoint(*w.active_joints[k], ctx);
+  w.contact_solver.prepare(w.contacts, ctx, w.threadCount(), kParallelMin);
   w.partitionIslands();
 
   const int islands = int(w.island_ranges.size());
