@@ -25,7 +25,7 @@ a0="$(f64 "$N0")"
 a1="$(f64 "$N1")"
 bodies=15
 per=$(( (a1 - a0) / ((N1 - N0) * bodies) ))
-cores="$(nproc)"
+cores="$(getconf _NPROCESSORS_ONLN)"  # not nproc: it honours OMP_NUM_THREADS (bench.sh sets 1)
 mhz="$(awk -F: '/cpu MHz/ {print $2; exit}' /proc/cpuinfo | tr -d ' ')"
 if grep -qw avx512f /proc/cpuinfo; then fpc=32; elif grep -qw fma /proc/cpuinfo; then fpc=16; else fpc=4; fi
 peak="$(awk -v c="$cores" -v m="$mhz" -v f="$fpc" 'BEGIN {printf "%.1f", c * m * 1e6 * f / 1e9}')"

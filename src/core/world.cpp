@@ -5,7 +5,7 @@
 //      (pairs in parallel, separated pairs skipped by their cached axis); impulses carried
 //      over by feature id (warm starting);
 //   2. islands (island.hpp): awake bodies, joints and contacts grouped per island; prepare
-//      joints and contacts; substep h = dt / substeps;
+//      joints and contacts (in parallel, each into its own slot); substep h = dt / substeps;
 //   3. per island (islands in parallel, WorldDef::threads; each island in a fixed order, so
 //      the result does not depend on the thread count), per substep: integrate velocities
 //      (gravity, forces, damping), warm start, solve with bias (soft), integrate positions,
@@ -13,7 +13,8 @@
 //      Seidel over a manifold's points and along a limb needs them to take back the push-out
 //      velocity and to carry a landing's load up the chain, see contact_solver.cpp); then
 //      position_iterations sweeps of position projection (contacts, then joint anchors),
-//      which remove what error remains without touching velocities;
+//      which remove what error remains without touching velocities. Static bodies are
+//      shared by all islands and are never written (movable(), solver_context.hpp);
 //   4. restitution, store impulses, write the deltas back to the bodies, clear forces;
 //   5. islands that stayed slow long enough go to sleep. Sleeping bodies are identity solver
 //      bodies: not integrated, and pairs of them are not collided or solved.
