@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # make bench: our engine against the peers (MuJoCo, Bullet, ODE from ../shared/peers) in one sitting.
 #
-#  1. Builds the ROS-free core and bench/bench_ragdoll in Release with the peers' flags
-#     (-O2 -march=native) into .ws/bench.
+#  1. Builds the ROS-free core and bench/bench_ragdoll in Release with the package's own flags
+#     (CMake's Release, -O3 -DNDEBUG: what catkin_make -DCMAKE_BUILD_TYPE=Release gives a user)
+#     into .ws/bench. The peer bench drivers get the peers' README flags (-O2 -march=native);
+#     their engines are Debian's prebuilt libraries.
 #  2. Builds the peer benches from $PEERS_DIR (bench_<engine>, unmodified sources) and their
 #     scaling drivers (bench/peers_scaling/scaling_<engine>.cpp: the same sources plus scene g)
 #     into .ws/bench/peers. Nothing is written to $PEERS_DIR.
@@ -43,15 +45,16 @@ export OMP_NUM_THREADS="${BENCH_THREADS:-1}"
 URDF="$PEERS_DIR/ragdoll15.urdf"
 BUILD="$WS/bench"
 PEER_BUILD="$BUILD/peers"
-FLAGS="-O2 -march=native"
+FLAGS="-O2 -march=native"   # the peer drivers (../shared/peers/README.md)
+OWN_FLAGS="-O3 -DNDEBUG"    # CMake's Release default; the core adds -O3 itself (CMakeLists.txt)
 mkdir -p "$PEER_BUILD" "$BENCH_OUT"
 LOG="$BUILD/bench_stderr.log"
 : >"$LOG"
 
 # ---- 1. our bench
-echo "bench: building bench_ragdoll (Release, $FLAGS) in $BUILD"
+echo "bench: building bench_ragdoll (Release, $OWN_FLAGS) in $BUILD"
 cmake -S "$ROOT" -B "$BUILD" -DRAGDOLL_SIM_CORE_ONLY=ON -DCMAKE_BUILD_TYPE=Release \
-  "-DCMAKE_CXX_FLAGS_RELEASE=$FLAGS -DNDEBUG" >/dev/null
+  "-DCMAKE_CXX_FLAGS_RELEASE=$OWN_FLAGS" >/dev/null
 cmake --build "$BUILD" -j2 --target bench_ragdoll >/dev/null
 
 # ---- 2. peer benches (a failed build drops that engine and is reported)
@@ -93,7 +96,8 @@ done
   echo "# meta nproc=$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)"
   echo "# meta cpu=$(grep -m1 '^model name' /proc/cpuinfo | sed 's/^[^:]*: *//')"
   echo "# meta compiler=$(g++ -dumpfullversion 2>/dev/null || g++ -dumpversion)"
-  echo "# meta flags=$FLAGS"
+  echo "# meta flags_ours=$OWN_FLAGS"
+  echo "# meta flags_peers=$FLAGS (bench drivers; engines: Debian's libraries)"
   echo "# meta rounds=$ROUNDS"
   echo "# meta omp_num_threads=$OMP_NUM_THREADS"
   echo "# meta own_threads=$OWN_THREADS"

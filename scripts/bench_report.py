@@ -180,6 +180,7 @@ def report(meta, runs, failures, png_name):
     for k, label in [("date", "date (UTC)"), ("commit", "git commit"), ("worktree", "work tree"),
                      ("nproc", "nproc"), ("cpu", "CPU (/proc/cpuinfo)"),
                      ("compiler", "g++"), ("flags", "flags (ours and peers)"),
+                     ("flags_ours", "flags of ours"), ("flags_peers", "flags of the peers"),
                      ("rounds", "rounds"), ("own_threads", "threads of ours (WorldDef::threads; islands in parallel once 128 bodies are awake; the peers are single-threaded)"), ("omp_num_threads", "OMP_NUM_THREADS"),
                      ("engines", "engines"),
                      ("loadavg_start", "load average at start"),

@@ -15,7 +15,7 @@ N1="${FLOPS_N1:-1200}"
 URDF="${URDF:-$ROOT/../shared/peers/ragdoll15.urdf}"
 BUILD="$WS/flops"
 cmake -S "$ROOT" -B "$BUILD" -DRAGDOLL_SIM_CORE_ONLY=ON -DCMAKE_BUILD_TYPE=Release \
-  -DCMAKE_CXX_FLAGS="-O2 -mfpmath=387 -DEIGEN_DONT_VECTORIZE" >/dev/null
+  -DCMAKE_CXX_FLAGS="-O2 -mfpmath=387 -fno-tree-vectorize -fno-tree-slp-vectorize -DEIGEN_DONT_VECTORIZE" >/dev/null
 cmake --build "$BUILD" -j2 --target bench_ragdoll >/dev/null
 f64() {
   valgrind --tool=lackey --detailed-counts=yes "$BUILD/bench_ragdoll" a --steps "$1" --no-metrics \
