@@ -181,7 +181,7 @@ def report(meta, runs, failures, png_name):
                      ("nproc", "nproc"), ("cpu", "CPU (/proc/cpuinfo)"),
                      ("compiler", "g++"), ("flags", "flags (ours and peers)"),
                      ("flags_ours", "flags of ours"), ("flags_peers", "flags of the peers"),
-                     ("rounds", "rounds"), ("own_threads", "threads of ours (WorldDef::threads; islands in parallel once 128 bodies are awake; the peers are single-threaded)"), ("omp_num_threads", "OMP_NUM_THREADS"),
+                     ("rounds", "rounds"), ("own_threads", "threads of ours (WorldDef::threads; islands in parallel once 32 bodies are awake (kParallelMin, world.cpp); the peers are single-threaded)"), ("omp_num_threads", "OMP_NUM_THREADS"),
                      ("engines", "engines"),
                      ("loadavg_start", "load average at start"),
                      ("loadavg_end", "load average at end"), ("total_s", "run time (s)")]:
