@@ -261,7 +261,7 @@ int main(int argc, char** argv) {
 
   Metrics m;
   std::vector<Transform> poses(n * def.links.size());
-  double wall = 0.0, wall_first = 0.0, wall_last = 0.0;
+  double wall = 0.0, wall_first = 0.0, wall_last = 0.0, wall_trace = 0.0;
   const int window = std::min(1000, steps);
   const auto loop0 = std::chrono::steady_clock::now();
   for (int step = 1; step <= steps; ++step) {
@@ -271,14 +271,11 @@ int main(int argc, char** argv) {
     wall += dt_wall;
     if (step <= window) wall_first += dt_wall;
     if (step > steps - window) wall_last += dt_wall;
-    if (trace > 0) {
-      static double wall_trace = 0.0;
-      wall_trace += dt_wall;
-      if (step % trace == 0) {
-        std::fprintf(stderr, "trace step=%d awake=%d us_per_step=%.1f\n", step, world.awakeBodyCount(),
-                     1e6 * wall_trace / trace);
-        wall_trace = 0.0;
-      }
+    wall_trace += dt_wall;
+    if (trace > 0 && step % trace == 0) {
+      std::fprintf(stderr, "trace step=%d awake=%d us_per_step=%.1f\n", step, world.awakeBodyCount(),
+                   1e6 * wall_trace / trace);
+      wall_trace = 0.0;
     }
     if (metrics || step == 2999 || step == 3000) {
       for (int r = 0; r < n; ++r)

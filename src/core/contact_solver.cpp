@@ -48,10 +48,9 @@ ContactRow makeRow(const SolverBody& A, const SolverBody& B, const Vec3& rA, con
   r.mass = k > 0.0 ? 1.0 / k : 0.0;
   return r;
 }
-// The velocities of a manifold's two bodies, held in locals through its rows (the compiler
-// cannot keep them in registers across writes through SolverBody references). A body with
-// zero inverse mass and inertia is not written back (movable(): static bodies are shared by
-// all islands).
+// The velocities of a manifold's two bodies, held in locals through its rows and written back
+// once, and only for a movable() body: static bodies are shared by all islands, and writing the
+// ground from both threads on every row was what kept two threads from scaling.
 struct PairVelocity {
   Vec3 vA, wA, vB, wB;
   double mA, mB;
@@ -83,6 +82,16 @@ inline void applyRolling(PairVelocity& u, const ContactConstraint& cc, double l0
 }
 Vec3 relativeVelocity(const SolverBody& A, const SolverBody& B, const Vec3& rA, const Vec3& rB) {
   return B.v + B.w.cross(rB) - A.v - A.w.cross(rA);
+}
+// s = (dpB - dpA).n + (dqB rB).n - (dqA rA).n + base for every point of cc: n is rotated back
+// once per manifold instead of rotating each lever arm.
+void updateSeparations(const SolverBody& A, const SolverBody& B, ContactConstraint& cc) {
+  const double dpn = (B.dp - A.dp).dot(cc.normal);
+  const Vec3 nA = A.dq.conjugate() * cc.normal, nB = B.dq.conjugate() * cc.normal;
+  for (int i = 0; i < cc.count; ++i) {
+    ContactConstraintPoint& p = cc.points[i];
+    p.separation = dpn + p.rB.dot(nB) - p.rA.dot(nA) + p.base_separation;
+  }
 }
 }  // namespace
 
@@ -154,17 +163,6 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
         for (int l = 0; l < 2; ++l) K(k, l) = cc.tangent[k].dot(cc.roll_iA[l] + cc.roll_iB[l]);
       cc.roll_mass = K.determinant() > 1e-300 ? Eigen::Matrix2d(K.inverse()) : Eigen::Matrix2d::Zero();
     }
-  }
-}
-
-// s = (dpB - dpA).n + (dqB rB).n - (dqA rA).n + base for every point of cc: n is rotated back
-// once per manifold instead of rotating each lever arm.
-static void updateSeparations(const SolverBody& A, const SolverBody& B, ContactConstraint& cc) {
-  const double dpn = (B.dp - A.dp).dot(cc.normal);
-  const Vec3 nA = A.dq.conjugate() * cc.normal, nB = B.dq.conjugate() * cc.normal;
-  for (int i = 0; i < cc.count; ++i) {
-    ContactConstraintPoint& p = cc.points[i];
-    p.separation = dpn + p.rB.dot(nB) - p.rA.dot(nA) + p.base_separation;
   }
 }
 

@@ -40,6 +40,11 @@ struct PointPart {
     rB = B.dq * rB0;
   }
 
+  // C at the refreshed anchors.
+  Vec3 error(const SolverBody& A, const SolverBody& B) const {
+    return (B.dp - A.dp) + (rB - rA) + delta_center;
+  }
+
   // Refreshes the anchors and forms K^-1 there; gamma > 0 softens K for a spring.
   void updateMass(const SolverBody& A, const SolverBody& B, double gamma = 0.0) {
     refresh(A, B);
@@ -56,7 +61,7 @@ struct PointPart {
   //   lambda = -(K + gamma I)^-1 (Cdot + beta C);  for one body on a fixed anchor this is
   // exactly implicit Euler of m x'' = -k x - c x'. Returns the spring force k |C|.
   double solveSpring(SolverBody& A, SolverBody& B, double k, double c, double h) {
-    const Vec3 C = (B.dp - A.dp) + (rB - rA) + delta_center;
+    const Vec3 C = error(A, B);
     const Vec3 cdot = B.v + B.w.cross(rB) - A.v - A.w.cross(rA);
     const double beta = k / (c + h * k);  // gamma went into k_inv (springGamma)
     const Vec3 lambda = -(k_inv * (cdot + beta * C));
@@ -81,10 +86,6 @@ struct PointPart {
 
   static double springGamma(double k, double c, double h) { return 1.0 / (h * (c + h * k)); }
 
-  Vec3 error(const SolverBody& A, const SolverBody& B) const {
-    return (B.dp - A.dp) + (B.dq * rB0 - A.dq * rA0) + delta_center;
-  }
-
   // max_impulse caps |accumulated impulse| (a breakable joint transmits at most its
   // strength); returns true when the cap was reached.
   bool solve(SolverBody& A, SolverBody& B, const Softness& soft, bool use_bias,
@@ -93,7 +94,7 @@ struct PointPart {
     Vec3 bias = Vec3::Zero();
     double mass_scale = 1.0, impulse_scale = 0.0;
     if (use_bias) {
-      bias = soft.bias_rate * ((B.dp - A.dp) + (rB - rA) + delta_center);
+      bias = soft.bias_rate * error(A, B);
       mass_scale = soft.mass_scale;
       impulse_scale = soft.impulse_scale;
     }
