@@ -201,6 +201,7 @@ int main(int argc, char** argv) {
         else if (k == "sleep_speed") wd.sleep_speed = v;
         else if (k == "time_to_sleep") wd.time_to_sleep = v;
         else if (k == "static_friction_speed") wd.static_friction_speed = v;
+        else if (k == "joint_slop") wd.joint_slop = v;
         else if (k == "rolling") rolling = v;
         else if (k == "trace") trace = int(v);
         else {

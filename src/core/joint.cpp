@@ -107,7 +107,7 @@ void advanceJoint(Joint& j, const StepContext& ctx) {
 void projectJoint(Joint& j, const StepContext& ctx) {
   if (j.type == JointType::Prismatic || j.spring.stiffness > 0.0 || j.broken) return;
   auto& s = *ctx.bodies;
-  j.point.project(s[j.a], s[j.b], ctx.def->max_position_correction);
+  j.point.project(s[j.a], s[j.b], ctx.def->max_position_correction, ctx.def->joint_slop);
 }
 
 }  // namespace ragdoll_sim

@@ -4,9 +4,10 @@
 //   J    = [ -I  skew(rA)  I  -skew(rB) ]
 //   K    = J M^-1 J^T = (1/mA + 1/mB) I - skew(rA) IA^-1 skew(rA) - skew(rB) IB^-1 skew(rB)
 //   lambda = -mass_scale K^-1 (Cdot + bias_rate C) - impulse_scale lambda_acc   (softness.hpp)
-// Position projection (after the substeps, WorldDef::position_iterations): P = -K^-1 C moves
-// and turns the bodies so that C -> 0 to first order, leaving the velocities alone (no energy
-// is added, unlike a velocity bias).
+// Position projection (after the substeps, WorldDef::position_iterations): P = -K^-1 C' with
+// C' = C (1 - slop / |C|) moves and turns the bodies so that |C| -> slop to first order, leaving
+// the velocities alone (no energy is added, unlike a velocity bias). The slop (joint_slop) is
+// left to the soft rows, which friction can resist: it keeps the projection off resting limbs.
 // C is tracked through the substeps from the bodies' accumulated deltas: the anchors are
 // rotated by the delta rotation and the centres moved by the delta positions. K^-1 is formed
 // once per substep (at the warm start) from the current anchors: a stale K from the step start
@@ -15,6 +16,7 @@
 // substep (refresh: at the warm start and after the position update) and read by every sweep.
 #pragma once
 
+#include <algorithm>
 #include <limits>
 
 #include "solver_context.hpp"
@@ -70,13 +72,14 @@ struct PointPart {
   }
 
   // K from the current anchors (a fast spin turns them far within one step, and a stale K
-  // overshoots); the correction is capped so one sweep never jumps further than max_correction.
-  void project(SolverBody& A, SolverBody& B, double max_correction) const {
+  // overshoots). Only the error beyond `slop` is removed (WorldDef::joint_slop), and at most
+  // max_correction of it per sweep.
+  void project(SolverBody& A, SolverBody& B, double max_correction, double slop) const {
     const Vec3 rA = A.dq * rA0, rB = B.dq * rB0;
     Vec3 C = (B.dp - A.dp) + (rB - rA) + delta_center;
     const double n = C.norm();
-    if (!(n > 0.0)) return;
-    if (n > max_correction) C *= max_correction / n;
+    if (!(n > slop)) return;
+    C *= std::min(n - slop, max_correction) / n;
     const Mat3 sA = skew(rA), sB = skew(rB);
     const Mat3 K = (A.inv_mass + B.inv_mass) * Mat3::Identity() - sA * A.inv_inertia * sA -
                    sB * B.inv_inertia * sB;
