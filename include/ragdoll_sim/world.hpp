@@ -28,7 +28,7 @@ struct WorldDef {
   // m, anchor error that the projection leaves to the soft velocity rows. Projection moves
   // bodies without velocity, so friction cannot hold against it: with no such slop the joint
   // projection and the contact projection (which pushes feet out along the normal) traded
-  // micrometres every step, and a resting ragdoll crept along the ground at 1-2 cm/s.
+  // micrometres every step, and a resting ragdoll crept (ragdoll15 in scene b: 1-2 cm/s).
   double joint_slop = 0.0005;
   double contact_hertz = 240.0;         // contact softness (capped at a quarter of the substep rate)
   double contact_damping_ratio = 10.0;

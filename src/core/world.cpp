@@ -14,8 +14,8 @@
 //      velocity and to carry a landing's load up the chain, see contact_solver.cpp); then
 //      position_iterations sweeps of position projection (contacts, then joint anchors),
 //      which remove the error beyond the slops (linear_slop, joint_slop) without touching
-//      velocities. Static bodies are
-//      shared by all islands and are never written (movable(), solver_context.hpp);
+//      velocities. Static bodies are shared by all islands and are never written (movable(),
+//      solver_context.hpp);
 //   4. restitution, store impulses, write the deltas back to the bodies, clear forces;
 //   5. islands that stayed slow long enough go to sleep. Sleeping bodies are identity solver
 //      bodies: not integrated, and pairs of them are not collided or solved.
