@@ -179,7 +179,7 @@ def report(meta, runs, failures, png_name):
     L.append("")
     for k, label in [("date", "date (UTC)"), ("commit", "git commit"), ("worktree", "work tree"),
                      ("nproc", "nproc"), ("cpu", "CPU (/proc/cpuinfo)"),
-                     ("compiler", "g++"), ("flags", "flags (ours and peers)"),
+                     ("compiler", "g++"),
                      ("flags_ours", "flags of ours"), ("flags_peers", "flags of the peers"),
                      ("rounds", "rounds"), ("own_threads", "threads of ours (WorldDef::threads; islands in parallel once 32 bodies are awake (kParallelMin, world.cpp); the peers are single-threaded)"), ("omp_num_threads", "OMP_NUM_THREADS"),
                      ("engines", "engines"),

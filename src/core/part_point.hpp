@@ -42,10 +42,12 @@ struct PointPart {
     rB = B.dq * rB0;
   }
 
-  // C at the refreshed anchors.
-  Vec3 error(const SolverBody& A, const SolverBody& B) const {
+  // C at anchors rA, rB (world, from the COMs at the current deltas).
+  Vec3 errorAt(const SolverBody& A, const SolverBody& B, const Vec3& rA, const Vec3& rB) const {
     return (B.dp - A.dp) + (rB - rA) + delta_center;
   }
+  // C at the refreshed anchors.
+  Vec3 error(const SolverBody& A, const SolverBody& B) const { return errorAt(A, B, rA, rB); }
 
   // Refreshes the anchors and forms K^-1 there; gamma > 0 softens K for a spring.
   void updateMass(const SolverBody& A, const SolverBody& B, double gamma = 0.0) {
@@ -76,7 +78,7 @@ struct PointPart {
   // max_correction of it per sweep.
   void project(SolverBody& A, SolverBody& B, double max_correction, double slop) const {
     const Vec3 rA = A.dq * rA0, rB = B.dq * rB0;
-    Vec3 C = (B.dp - A.dp) + (rB - rA) + delta_center;
+    Vec3 C = errorAt(A, B, rA, rB);
     const double n = C.norm();
     if (!(n > slop)) return;
     C *= std::min(n - slop, max_correction) / n;
