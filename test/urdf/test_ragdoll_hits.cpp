@@ -22,10 +22,10 @@ RagdollDef bundled() {
   return r.def;
 }
 
-void addGround(World& w) {
+void addGround(World& w, const Material& mat = Material()) {
   BodyDef ground;
   ground.type = BodyType::Static;
-  w.addShape(w.createBody(ground), {Geometry::plane(Vec3::UnitZ(), 0.0), Transform(), Material()});
+  w.addShape(w.createBody(ground), {Geometry::plane(Vec3::UnitZ(), 0.0), Transform(), mat});
 }
 
 double maxAnchorError(const World& w, const Ragdoll& r) {
@@ -150,11 +150,9 @@ TEST(RagdollHits, LyingRagdollDoesNotCreep) {
     WorldDef wd;
     wd.enable_sleep = false;  // a sleeping body would pass trivially
     World w(wd);
-    BodyDef ground;
-    ground.type = BodyType::Static;
     Material mat;
     mat.static_friction = mat.kinetic_friction = 0.8;
-    w.addShape(w.createBody(ground), {Geometry::plane(Vec3::UnitZ(), 0.0), Transform(), mat});
+    addGround(w, mat);
     const Ragdoll r = spawnRagdoll(w, def, Transform(Vec3(0, 0, d[0]), quatFromRpy(d[1], d[2], d[3])), &mat);
     for (int i = 0; i < 4000; ++i) w.step(1e-3);
     std::vector<Vec3> p0;
