@@ -22,6 +22,13 @@ struct DropReport {
   double lowest_point = 0;       // m, lowest shape point at the end
   double min_lowest_point = 0;   // m, lowest shape point over the run
   double final_speed = 0;        // m/s, fastest body (COM speed + angular speed x 0.1 m) at the end
+  // As final_speed, over the bodies that touch something at the end (a contact within 1 mm):
+  // a limb left hanging in the air swings on without joint damping, a body lying on the
+  // ground or on another limb must be still.
+  double final_contact_speed = 0;
+  // J, mechanical energy (kinetic + gravity) at the end minus that 2 s before (half the run
+  // when shorter): a solver that pumps energy into resting contacts makes it positive.
+  double late_energy_change = 0;
   double seconds = 0;            // sim time actually run (less when a state went non-finite)
 };
 

@@ -130,8 +130,10 @@ int main(int argc, char** argv) {
               rep.spawn_z, drop.clearance);
   std::printf(
       "%s drop_s=%.2f nan=%d max_penetration_mm=%.2f max_anchor_error_mm=%.2f rest_height_m=%.3f "
-      "lowest_mm=%.1f min_lowest_mm=%.1f final_speed=%.3f\n",
+      "lowest_mm=%.1f min_lowest_mm=%.1f final_speed=%.3f final_contact_speed=%.3f "
+      "late_energy_change_j=%.3f\n",
       summary, rep.seconds, rep.finite ? 0 : 1, 1e3 * rep.max_penetration, 1e3 * rep.max_anchor_error,
-      rep.rest_height, 1e3 * rep.lowest_point, 1e3 * rep.min_lowest_point, rep.final_speed);
+      rep.rest_height, 1e3 * rep.lowest_point, 1e3 * rep.min_lowest_point, rep.final_speed,
+      rep.final_contact_speed, rep.late_energy_change);
   return rep.finite ? 0 : 3;
 }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace ragdoll_sim {
 
@@ -36,6 +37,13 @@ double lowest(const World& world, const Ragdoll& r, const RagdollDef& def) {
     for (const ShapeDef& s : def.links[i].shapes) z = std::min(z, lowestPoint(s, world.bodyPose(r.bodies[i])));
   return z;
 }
+
+double mechanicalEnergy(const World& world, const Ragdoll& r) {
+  double e = world.kineticEnergy();
+  const Vec3& g = world.def().gravity;
+  for (BodyId b : r.bodies) e -= world.bodyDef(b).mass * g.dot(world.comPosition(b));
+  return e;
+}
 }  // namespace
 
 DropReport dropTest(const RagdollDef& def, const DropSettings& settings) {
@@ -61,7 +69,10 @@ DropReport dropTest(const RagdollDef& def, const DropSettings& settings) {
 
   rep.min_lowest_point = std::numeric_limits<double>::infinity();
   const int steps = int(std::lround(settings.seconds / settings.dt));
+  const int late = std::max(0, steps - std::min(steps / 2, int(std::lround(2.0 / settings.dt))));
+  double late_energy = mechanicalEnergy(world, r);
   for (int s = 0; s < steps; ++s) {
+    if (s == late) late_energy = mechanicalEnergy(world, r);
     world.step(settings.dt);
     for (BodyId b : r.bodies) {
       const BodyState st = world.bodyState(b);
@@ -78,10 +89,16 @@ DropReport dropTest(const RagdollDef& def, const DropSettings& settings) {
   }
   rep.rest_height = world.bodyPose(r.bodies.at(def.root)).p.z();
   rep.lowest_point = lowest(world, r, def);
+  std::vector<char> touching(world.bodyCount(), 0);
+  for (const ContactInfo& c : world.contacts())
+    if (c.separation < 1e-3) touching[c.body_a.index] = touching[c.body_b.index] = 1;
   for (BodyId b : r.bodies) {
     const BodyState st = world.bodyState(b);
-    rep.final_speed = std::max(rep.final_speed, st.linear_velocity.norm() + 0.1 * st.angular_velocity.norm());
+    const double speed = st.linear_velocity.norm() + 0.1 * st.angular_velocity.norm();
+    rep.final_speed = std::max(rep.final_speed, speed);
+    if (touching[b.index]) rep.final_contact_speed = std::max(rep.final_contact_speed, speed);
   }
+  if (rep.finite) rep.late_energy_change = mechanicalEnergy(world, r) - late_energy;
   return rep;
 }
 

@@ -1,6 +1,13 @@
 // Every robot of ../shared/urdf_zoo loads, spawns and falls plausibly: dropped 5 cm above the
 // ground for 5 s of sim time it stays finite, comes to rest and no shape sinks 5 cm below the
 // ground. Skipped where ../shared is absent.
+// "At rest" is asked of the bodies that touch something: the H1 and the NAO have no joint
+// damping in their URDFs and may land with a forearm or hand hanging in the air, which then
+// swings on as a pendulum (H1: 0.9 s period, energy constant to 0.05 % per second). Whether
+// the fastest body is under 0.1 m/s at exactly 5 s was then the phase of that swing: three
+// builds that differ only in round-off gave the H1 0.07, 0.19 and 0.32 m/s and the NAO 0,
+// 0 and 0.16 m/s. A free swing must not gain energy, though: the energy of the last 2 s may
+// not grow by more than lifting the robot 1 mm would take.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -29,10 +36,14 @@ TEST(UrdfZoo, EveryRobotFallsAndComesToRest) {
     std::cout << "[ zoo ] " << file << ": " << r.def.links.size() << " bodies, "
               << r.def.warnings.size() << " warnings; penetration " << 1e3 * d.max_penetration
               << " mm, anchor error " << 1e3 * d.max_anchor_error << " mm, lowest "
-              << 1e3 * d.min_lowest_point << " mm, final speed " << d.final_speed << " m/s\n";
+              << 1e3 * d.min_lowest_point << " mm, final speed " << d.final_speed
+              << " m/s (touching bodies " << d.final_contact_speed
+              << " m/s), energy change of the last 2 s " << d.late_energy_change << " J\n";
     EXPECT_TRUE(d.finite);
     EXPECT_NEAR(d.seconds, 5.0, 1e-6);
-    EXPECT_LT(d.final_speed, 0.1);           // at rest
+    EXPECT_LT(d.final_contact_speed, 0.1);   // what lies on something is at rest
+    EXPECT_LT(d.final_speed, 1.0);           // a free limb swings, nothing flies
+    EXPECT_LT(d.late_energy_change, 1e-3 * 9.81 * r.def.totalMass());  // no energy pumped in
     EXPECT_GT(d.min_lowest_point, -0.05);    // nothing through the ground
     EXPECT_LT(d.lowest_point, 0.05);         // on it, not hovering
     EXPECT_LT(d.max_anchor_error, 0.02);     // joints held
