@@ -169,6 +169,26 @@ TEST(Narrowphase, PlaneCylinder) {
   EXPECT_EQ(run(kGround, Transform(), cyl, at(0, 0, h + 0.01)).count, 0);
 }
 
+// A cylinder lying on the ground, rolled 45 deg about its axis so that two rim samples of each
+// cap lie within the world's 2 cm speculative distance (6 candidates for 4 slots), and tilted
+// 1e-4 rad so that one cap is the deeper: the reduced manifold must keep the bottom of BOTH
+// caps. Unweighted reduction kept a rim point 1.2 cm up instead of the shallower cap's bottom;
+// that cap sank, became the deeper one, and a resting forearm rocked by 24 um every step.
+TEST(Narrowphase, PlaneCylinderLyingKeepsBothCapBottoms) {
+  const double r = 0.04, h = 0.11, pen = 0.0005, tilt = 1e-4, spec = 0.02;
+  const Geometry cyl = Geometry::cylinder(r, h);
+  const Quat q = rot(tilt, Vec3::UnitX()) * rot(kPi / 2, Vec3::UnitX()) * rot(kPi / 4, Vec3::UnitZ());
+  const Manifold m = run(kGround, Transform(), cyl, at(0, 0, r - pen, q), spec);
+  ASSERT_EQ(m.count, 4);
+  for (const double cap : {-1.0, 1.0}) {
+    const Vec3 bottom = at(0, 0, r - pen, q).apply(Vec3(0, 0, cap * h)) - r * Vec3::UnitZ();
+    double nearest = 1e9;
+    for (int i = 0; i < m.count; ++i) nearest = std::min(nearest, (m.points[i].point - bottom).norm());
+    EXPECT_LT(nearest, 1e-3) << "cap " << cap << ": its bottom point is missing";
+  }
+  EXPECT_LT(minSep(m), -pen + 1e-6);
+}
+
 TEST(Narrowphase, PlaneHullAndPlanePlane) {
   const Geometry hull = Geometry::convexHull(cubeCorners(Vec3(0.5, 0.5, 0.5)));
   Manifold m = run(kGround, Transform(), hull, at(0, 0, 0.49));
