@@ -161,7 +161,7 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
       }
       for (int k = 0; k < 2; ++k)
         for (int l = 0; l < 2; ++l) K(k, l) = cc.tangent[k].dot(cc.roll_iA[l] + cc.roll_iB[l]);
-      cc.roll_mass = K.determinant() > 1e-300 ? Eigen::Matrix2d(K.inverse()) : Eigen::Matrix2d::Zero();
+      cc.roll_mass = inverseOrZero(K);
     }
   }
 }

@@ -25,7 +25,9 @@ Vec3 ConvexCore::support(const Vec3& d) const {
       for (int i = 0; i < 3; ++i) s[i] = l[i] >= 0 ? g->half_extents[i] : -g->half_extents[i];
       break;
     case ShapeType::Cylinder: {
-      const double rho = std::hypot(l.x(), l.y());
+      // sqrt, not hypot: l is a direction (no overflow), and hypot's care costs ~5 % of a
+      // pile's step (perf, scene c)
+      const double rho = std::sqrt(l.x() * l.x() + l.y() * l.y());
       if (rho > 1e-12) s.head<2>() = g->radius / rho * l.head<2>();
       s.z() = l.z() >= 0 ? g->half_height : -g->half_height;
       break;

@@ -61,7 +61,7 @@ void supportFeature(const Geometry& g, const Transform& x, const Vec3& d, Featur
         }
         return;
       }
-      const double rho = std::hypot(l.x(), l.y());
+      const double rho = std::sqrt(l.x() * l.x() + l.y() * l.y());  // as in ConvexCore::support
       const Vec3 u(g.radius * l.x() / rho, g.radius * l.y() / rho, 0);
       if (std::abs(l.z()) <= kEdgeSin) {  // side line
         f.index = 2;

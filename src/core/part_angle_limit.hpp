@@ -14,7 +14,9 @@ struct AngleLimitPart {
   double lower_impulse = 0.0, upper_impulse = 0.0;
 
   void warmStart(SolverBody& A, SolverBody& B, const Vec3& j) const {
-    applyPairAngularImpulse(A, B, (lower_impulse - upper_impulse) * j);
+    // Most limits are open (both impulses 0): skip the two inertia products.
+    if (lower_impulse != upper_impulse)
+      applyPairAngularImpulse(A, B, (lower_impulse - upper_impulse) * j);
   }
 
   // k = j^T (IA^-1 + IB^-1) j, computed with the row.

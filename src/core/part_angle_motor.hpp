@@ -14,7 +14,7 @@ struct AngleMotorPart {
   double impulse = 0.0;
 
   void warmStart(SolverBody& A, SolverBody& B, const Vec3& j) const {
-    applyPairAngularImpulse(A, B, impulse * j);
+    if (impulse != 0.0) applyPairAngularImpulse(A, B, impulse * j);  // no motor: nothing to apply
   }
 
   // k = j^T (IA^-1 + IB^-1) j, computed with the row.

@@ -47,7 +47,7 @@ struct HingeAxisPart {
     const Vec3 Iu1 = I * u1, Iu2 = I * u2;
     Eigen::Matrix2d K;
     K << u1.dot(Iu1), u1.dot(Iu2), u2.dot(Iu1), u2.dot(Iu2);
-    k_inv = K.determinant() > 1e-300 ? Eigen::Matrix2d(K.inverse()) : Eigen::Matrix2d::Zero();
+    k_inv = inverseOrZero(K);
   }
 
   void warmStart(SolverBody& A, SolverBody& B) const {

@@ -24,6 +24,17 @@ struct StepContext {
 // shared by all islands, must not be written by two threads at once.
 inline bool movable(const SolverBody& b) { return b.inv_mass > 0.0 || !b.inv_inertia.isZero(); }
 
+// K^-1 of an effective mass matrix (2x2, 3x3), or zero where K is singular (det <= 1e-300).
+// One cofactor pass gives both: a separate determinant() cost as much as the inverse.
+template <class M>
+M inverseOrZero(const M& K) {
+  M inv;
+  typename M::Scalar det;
+  bool invertible;
+  K.computeInverseAndDetWithCheck(inv, det, invertible, 1e-300);
+  return invertible && det > 0.0 ? inv : M(M::Zero());
+}
+
 // Applies a world impulse P at world offset r (from the COM) to A (negative) and B (positive).
 inline void applyPairImpulse(SolverBody& A, SolverBody& B, const Vec3& P, const Vec3& rA,
                              const Vec3& rB) {

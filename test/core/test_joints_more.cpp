@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "joint_angles.hpp"
+#include "part_point.hpp"
 #include "ragdoll_sim/world.hpp"
 #include "scene_util.hpp"
 
@@ -612,4 +613,31 @@ TEST(JointMomentum, SwingTwistBallPairConservesMomentum) {
   const auto st = f.w.ballSwingTwist(j);
   EXPECT_LT(st[0], 0.3 + 0.02);
   EXPECT_LT(std::abs(st[1]), 0.2 + 0.02);
+}
+
+// The point part's effective mass, formed entry by entry (part_point.hpp), equals the textbook
+// J M^-1 J^T = (1/mA + 1/mB) I - skew(rA) IA^-1 skew(rA) - skew(rB) IB^-1 skew(rB), and a
+// singular K (two immovable bodies) gives a zero inverse rather than inf.
+TEST(PointPart, EffectiveMassMatchesProductForm) {
+  std::srand(7);
+  const auto spd = [] {
+    const Mat3 R = Quat(Eigen::Vector4d(Eigen::Vector4d::Random()).normalized()).toRotationMatrix();
+    const Vec3 d = Vec3(Vec3::Random()).cwiseAbs() + Vec3::Constant(0.1);  // Random() is lazy
+    return Mat3(R * d.asDiagonal() * R.transpose());
+  };
+  for (int trial = 0; trial < 20; ++trial) {
+    SolverBody A, B;
+    A.inv_mass = 0.5 + trial;
+    B.inv_mass = trial % 3 == 0 ? 0.0 : 2.0;
+    A.inv_inertia = spd();
+    B.inv_inertia = trial % 3 == 0 ? Mat3::Zero() : spd();
+    const Vec3 rA = Vec3::Random(), rB = 0.3 * Vec3::Random();
+    const Mat3 expected = (A.inv_mass + B.inv_mass + 0.25) * Mat3::Identity() -
+                          skew(rA) * A.inv_inertia * skew(rA) - skew(rB) * B.inv_inertia * skew(rB);
+    const Mat3 K = pointMass(A, B, rA, rB, 0.25);
+    EXPECT_LT((K - expected).norm(), 1e-12 * expected.norm()) << "trial " << trial;
+    EXPECT_LT((inverseOrZero(K) * expected - Mat3::Identity()).norm(), 1e-9) << "trial " << trial;
+  }
+  const Mat3 K0 = pointMass(SolverBody(), SolverBody(), Vec3(1, 2, 3), Vec3::Zero(), 0.0);
+  EXPECT_TRUE(inverseOrZero(K0).isZero(0.0));
 }
