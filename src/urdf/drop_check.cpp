@@ -69,7 +69,7 @@ DropReport dropTest(const RagdollDef& def, const DropSettings& settings) {
 
   rep.min_lowest_point = std::numeric_limits<double>::infinity();
   const int steps = int(std::lround(settings.seconds / settings.dt));
-  const int late = std::max(0, steps - std::min(steps / 2, int(std::lround(2.0 / settings.dt))));
+  const int late = steps - std::min(steps / 2, int(std::lround(2.0 / settings.dt)));  // >= steps / 2
   double late_energy = mechanicalEnergy(world, r);
   for (int s = 0; s < steps; ++s) {
     if (s == late) late_energy = mechanicalEnergy(world, r);
