@@ -1,7 +1,9 @@
 // GJK and EPA on the Minkowski difference M = A - B of two convex cores.
 // GJK: keep a simplex of support points of M, replace it by the sub-simplex nearest the origin
 // (Voronoi-region tests, Ericson 5.1), search along -v until the support point no longer gets
-// closer; the barycentric weights give the witness points on A and B.
+// closer; the barycentric weights give the witness points on A and B. A support point w with
+// v . w > 0 is a separating plane: once one was seen, a later "origin inside" from a flat
+// tetrahedron is round-off, and the last proper simplex is kept instead of running EPA.
 // EPA (when the origin is inside M): grow the simplex to a tetrahedron around the origin, then
 // repeatedly push out the face nearest the origin through the support point along its normal
 // until the support adds nothing; that face gives depth, normal (from A to B) and witnesses.
@@ -278,15 +280,34 @@ CoreDistance coreDistance(const ConvexCore& A, const ConvexCore& B) {
   int n = 1;
   double lam[4] = {1, 0, 0, 0};
   Vec3 v;
+  SV prev_s[4];
+  int prev_n = 0;
+  double prev_lam[4];
+  bool separated = false;
   for (int iter = 0;; ++iter) {
     v = solve(s, n, lam);
-    if (n == 4 || v.squaredNorm() < 1e-24) return epa(A, B, s, n);
+    if (n == 4 || v.squaredNorm() < 1e-24) {
+      if (!separated || prev_n == 0) return epa(A, B, s, n);
+      // Round-off: a plane separated M earlier, so the origin is outside it; near-duplicate
+      // points on a curved core made a flat tetrahedron "contain" the origin. Keep the
+      // simplex before it.
+      n = prev_n;
+      for (int i = 0; i < n; ++i) s[i] = prev_s[i], lam[i] = prev_lam[i];
+      v = combine(s, n, lam, &SV::w);
+      break;
+    }
     const SV w = supportM(A, B, -v);
-    const double vv = v.squaredNorm();
-    if (vv - v.dot(w.w) <= 1e-10 * vv || iter == 64) break;
+    const double vv = v.squaredNorm(), vw = v.dot(w.w);
+    // vw / |v| <= distance <= |v|: vw > 0 proves separation; stop when the bounds agree to
+    // 1e-9 m (or relatively to 5e-11). A curved core converges only linearly, and iterating
+    // to round-off piles up near-duplicate points.
+    separated |= vw > 0.0;
+    if (vv - vw <= std::max(5e-11 * vv, 1e-9 * std::sqrt(vv)) || iter == 64) break;
     bool dup = false;
     for (int i = 0; i < n; ++i) dup |= (s[i].w - w.w).squaredNorm() < 1e-24;
     if (dup) break;
+    prev_n = n;
+    for (int i = 0; i < n; ++i) prev_s[i] = s[i], prev_lam[i] = lam[i];
     s[n++] = w;
   }
   const Vec3 pa = combine(s, n, lam, &SV::a), pb = combine(s, n, lam, &SV::b);
