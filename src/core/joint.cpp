@@ -104,7 +104,22 @@ void advanceJoint(Joint& j, const StepContext& ctx) {
   if (j.type == JointType::Hinge) j.hinge_axis.refresh(A, B);
 }
 
-void projectJoint(Joint& j, const StepContext& ctx) {
+void projectJointLimits(Joint& j, const StepContext& ctx) {
+  if (j.type == JointType::Prismatic || j.broken || !(j.limits_enabled || j.swing_twist_limits))
+    return;
+  auto& s = *ctx.bodies;
+  SolverBody &A = s[j.a], &B = s[j.b];
+  const double slop = ctx.def->angular_slop, max_turn = ctx.def->max_angular_correction;
+  updateAngles(j, ctx);
+  if (j.limits_enabled)
+    for (int i = 0; i < j.angle_count; ++i)
+      AngleLimitPart::project(A, B, j.angle_rows[i], j.angle_k[i], j.angles[i], j.lower[i],
+                              j.upper[i], slop, max_turn);
+  if (j.swing_twist_limits)
+    j.swing_twist.project(A, B, j.swing_cone, j.twist_lower, j.twist_upper, slop, max_turn);
+}
+
+void projectJointAnchor(Joint& j, const StepContext& ctx) {
   if (j.type == JointType::Prismatic || j.spring.stiffness > 0.0 || j.broken) return;
   auto& s = *ctx.bodies;
   j.point.project(s[j.a], s[j.b], ctx.def->max_position_correction, ctx.def->joint_slop);

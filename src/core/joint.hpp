@@ -84,8 +84,11 @@ void warmStartJoint(Joint& j, const StepContext& ctx);
 void solveJoint(Joint& j, const StepContext& ctx, bool use_bias);
 // After the position update of a substep, before the relax sweeps: angles advance by h rate.
 void advanceJoint(Joint& j, const StepContext& ctx);
-// Position projection of the rigid anchor (part_point.hpp), after the substeps.
-void projectJoint(Joint& j, const StepContext& ctx);
+// Position projection after the substeps: angle limits (part_angle_limit.hpp, swing-twist),
+// and the rigid anchor (part_point.hpp). A sweep projects every joint's limits before any
+// anchor: a limit turns its bodies about their centres, which moves the neighbours' anchors.
+void projectJointLimits(Joint& j, const StepContext& ctx);
+void projectJointAnchor(Joint& j, const StepContext& ctx);
 
 void prepareBallJoint(Joint& j, const StepContext& ctx);
 void prepareHingeJoint(Joint& j, const StepContext& ctx);

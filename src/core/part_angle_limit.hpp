@@ -4,7 +4,17 @@
 // part_rows.hpp):
 //   lower: C = theta - lower,  upper: C = upper - theta (rate -j . (wB - wA)),
 //   m_eff = 1 / (j^T (IA^-1 + IB^-1) j).
+// Position projection (after the substeps, WorldDef::position_iterations): an angle more than
+// `slop` outside its range is turned back to `slop` outside by the angular position impulse
+// L = lambda j, lambda = -C' / k (C' the excess beyond the slop, at most max_correction): A
+// turns by -IA^-1 L and B by IB^-1 L, so theta moves by k lambda = -C' to first order, and no
+// velocity is added. A limb pinned between the ground and a heavy falling body is driven past
+// its limit faster than the soft rows bring it back (a hand under a pile in scene c: 0.046 rad
+// for ~15 ms; 0.035 with the projection, worst of 8 perturbed copies). The slop is left to
+// the soft rows, so a limb resting on its limit is not moved every step.
 #pragma once
+
+#include <algorithm>
 
 #include "part_rows.hpp"
 
@@ -25,6 +35,16 @@ struct AngleLimitPart {
     const AngularRow row(j, k);
     solveInequalityRow(A, B, row, theta - lower, lower_impulse, ctx, use_bias);
     solveInequalityRow(A, B, row.negated(), upper - theta, upper_impulse, ctx, use_bias);
+  }
+
+  static void project(SolverBody& A, SolverBody& B, const Vec3& j, double k, double theta,
+                      double lower, double upper, double slop, double max_correction) {
+    if (!(k > 1e-300)) return;
+    double excess = 0.0;  // signed: > 0 above upper, < 0 below lower
+    if (theta > upper + slop) excess = std::min(theta - upper - slop, max_correction);
+    else if (theta < lower - slop) excess = std::max(theta - lower + slop, -max_correction);
+    else return;
+    applyPairAngularPositionImpulse(A, B, (-excess / k) * j);
   }
 };
 

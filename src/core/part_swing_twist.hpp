@@ -7,7 +7,10 @@
 // The angles and rows are computed at the current substep poses by update() (at warm start,
 // reused by the biased solve, again before the relax pass). A row that is undefined (swing = 0
 // for the cone, which is then inactive for cone > 0; swing = pi for the twist) is skipped.
+// Position projection: as AngleLimitPart::project, the cone being the range [-inf, cone].
 #pragma once
+
+#include <limits>
 
 #include "joint_angles.hpp"
 #include "part_angle_limit.hpp"
@@ -38,6 +41,17 @@ struct SwingTwistPart {
     if (angles.swing_valid)
       solveInequalityRow(A, B, AngularRow(-angles.swing_row, A, B), cone - angles.swing,
                          cone_impulse, ctx, use_bias);
+  }
+
+  // After update() at the current poses.
+  void project(SolverBody& A, SolverBody& B, double cone, double twist_lower, double twist_upper,
+               double slop, double max_correction) const {
+    if (angles.twist_valid)
+      AngleLimitPart::project(A, B, angles.twist_row, AngularRow(angles.twist_row, A, B).k,
+                              angles.twist, twist_lower, twist_upper, slop, max_correction);
+    if (angles.swing_valid)
+      AngleLimitPart::project(A, B, angles.swing_row, AngularRow(angles.swing_row, A, B).k,
+                              angles.swing, -std::numeric_limits<double>::infinity(), cone, slop, max_correction);
   }
 };
 

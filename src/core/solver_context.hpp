@@ -67,6 +67,11 @@ inline void applyPairPositionImpulse(SolverBody& A, SolverBody& B, const Vec3& P
   }
 }
 
+// Angular position "impulse" L: turns A by -IA^-1 L and B by +IB^-1 L (no velocity change).
+inline void applyPairAngularPositionImpulse(SolverBody& A, SolverBody& B, const Vec3& L) {
+  if (movable(A)) rotateDelta(A, -(A.inv_inertia * L));
+  if (movable(B)) rotateDelta(B, B.inv_inertia * L);
+}
 // Applies an angular impulse L to A (negative) and B (positive).
 inline void applyPairAngularImpulse(SolverBody& A, SolverBody& B, const Vec3& L) {
   if (movable(A)) A.w -= A.inv_inertia * L;

@@ -12,9 +12,9 @@
 //      relax without bias (contacts several sweeps, the joints in the first sweeps: Gauss-
 //      Seidel over a manifold's points and along a limb needs them to take back the push-out
 //      velocity and to carry a landing's load up the chain, see contact_solver.cpp); then
-//      position_iterations sweeps of position projection (contacts, then joint anchors),
-//      which remove the error beyond the slops (linear_slop, joint_slop) without touching
-//      velocities. Static bodies are shared by all islands and are never written (movable(),
+//      position_iterations sweeps of position projection (contacts, joint angle limits, joint
+//      anchors), which remove the error beyond the slops (linear_slop,
+//      angular_slop, joint_slop) without touching velocities. Static bodies are shared by all islands and are never written (movable(),
 //      solver_context.hpp);
 //   4. restitution, store impulses, write the deltas back to the bodies, clear forces;
 //   5. islands that stayed slow long enough go to sleep. Sleeping bodies are identity solver
@@ -509,7 +509,8 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int 
   }
   for (int it = 0; it < def.position_iterations; ++it) {
     contact_solver.project(ctx, r.contact_begin, r.contact_end);
-    for (int k = r.joint_begin; k < r.joint_end; ++k) projectJoint(*js[k], ctx);
+    for (int k = r.joint_begin; k < r.joint_end; ++k) projectJointLimits(*js[k], ctx);
+    for (int k = r.joint_begin; k < r.joint_end; ++k) projectJointAnchor(*js[k], ctx);
   }
 }
 

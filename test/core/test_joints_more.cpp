@@ -641,3 +641,70 @@ TEST(PointPart, EffectiveMassMatchesProductForm) {
   const Mat3 K0 = pointMass(SolverBody(), SolverBody(), Vec3(1, 2, 3), Vec3::Zero(), 0.0);
   EXPECT_TRUE(inverseOrZero(K0).isZero(0.0));
 }
+
+// ---------------------------------------------------------------- position projection of limits
+
+// A body started 0.2 rad past a limit, with soft rows too weak to matter in one step (joint
+// hertz 1): the position sweeps after the substeps turn it back to within angular_slop, and add
+// no velocity. With the projection off (angular_slop huge) the violation stays at ~0.2 rad.
+// Each case: hinge (upper 0), ball with Euler limits (t1 upper 0), ball with a swing cone
+// (0.3) and a twist range (upper 0).
+TEST(LimitProjection, TurnsAViolatedLimitBackWithoutAddingVelocity) {
+  for (const double slop : {WorldDef().angular_slop, 1e9}) {
+    for (int kind = 0; kind < 4; ++kind) {
+      WorldDef d = zeroG();
+      d.enable_sleep = false;
+      d.joint_hertz = 1.0;
+      d.angular_slop = slop;
+      World w(d);
+      const BodyId a = addStatic(w);
+      // B's COM sits on the anchor, so turning it keeps the anchor together.
+      const Vec3 axis = kind == 0 ? Vec3::UnitZ() : (kind == 1 ? Vec3::UnitY() : Vec3::UnitX());
+      const double start = kind == 2 ? 0.5 : 0.2;  // swing 0.5 against a cone of 0.3
+      const Quat q(Eigen::AngleAxisd(start, kind == 2 ? Vec3::UnitY() : axis));
+      const BodyId b = addDynamic(w, 1.0, diag(0.02, 0.02, 0.005), Transform(Vec3::Zero(), q));
+      JointId j;
+      if (kind == 0) {
+        HingeJointDef h;
+        h.body_a = a, h.body_b = b;
+        h.axis = axis;
+        h.enable_limit = true;
+        h.lower = -1.0, h.upper = 0.0;
+        j = w.createHingeJoint(h);
+      } else {
+        BallJointDef bj;
+        bj.body_a = a, bj.body_b = b;
+        bj.enable_limits = true;
+        if (kind == 1) {
+          bj.axes = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
+          bj.lower = {-1, -1, -1};
+          bj.upper = {1, 0, 1};
+        } else {
+          bj.limit_mode = BallLimitMode::SwingTwist;
+          bj.swing_cone_angle = 0.3;
+          bj.twist_lower = -1.0, bj.twist_upper = kind == 2 ? 1.0 : 0.0;
+        }
+        j = w.createBallJoint(bj);
+      }
+      const auto violation = [&]() {
+        if (kind == 0) return w.hingeAngle(j) - 0.0;
+        if (kind == 1) return w.ballAngles(j)[1] - 0.0;
+        const auto st = w.ballSwingTwist(j);
+        return kind == 2 ? st[0] - 0.3 : st[1] - 0.0;
+      };
+      ASSERT_NEAR(violation(), 0.2, 1e-9) << "kind " << kind;
+      w.step(kDt);
+      const double omega = w.bodyState(b).angular_velocity.norm();
+      if (slop < 1.0) {
+        EXPECT_LT(violation(), slop + 1e-3) << "kind " << kind;
+        EXPECT_GT(violation(), 0.0) << "kind " << kind;  // the slop is left to the soft rows
+      } else {
+        EXPECT_GT(violation(), 0.19) << "kind " << kind;
+      }
+      EXPECT_LT(omega, 0.1) << "kind " << kind;  // a soft 1 Hz row's push, no more
+      EXPECT_LT(w.jointAnchorError(j).norm(), 1e-9) << "kind " << kind;
+      std::printf("[ limproj  ] kind %d slop %g: violation %.3g -> %.4g rad, |w| %.3g rad/s\n",
+                  kind, slop, 0.2, violation(), omega);
+    }
+  }
+}
