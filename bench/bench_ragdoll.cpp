@@ -171,6 +171,7 @@ int main(int argc, char** argv) {
   WorldDef wd;
   bool metrics = true;
   double rolling = 0.0;
+  double yaw = 0.0;  // --opt yaw=R: every root turned R rad about z (round-off variants of a scene)
   int trace = 0;  // --opt trace=N: every N steps, awake bodies and mean step time on stderr
   std::string urdf = "../shared/peers/ragdoll15.urdf";
   for (int i = 1; i < argc; ++i) {
@@ -202,7 +203,9 @@ int main(int argc, char** argv) {
         else if (k == "time_to_sleep") wd.time_to_sleep = v;
         else if (k == "static_friction_speed") wd.static_friction_speed = v;
         else if (k == "joint_slop") wd.joint_slop = v;
+        else if (k == "angular_slop") wd.angular_slop = v;
         else if (k == "rolling") rolling = v;
+        else if (k == "yaw") yaw = v;
         else if (k == "trace") trace = int(v);
         else {
           std::fprintf(stderr, "unknown option %s\n", k.c_str());
@@ -246,7 +249,9 @@ int main(int argc, char** argv) {
   mat.rolling_resistance = rolling;
   world.addShape(world.createBody(ground), {Geometry::plane(Vec3::UnitZ(), 0.0), Transform(), mat});
   std::vector<Ragdoll> ragdolls;
-  for (const Transform& root : sc.roots) ragdolls.push_back(spawnRagdoll(world, def, root, &mat));
+  for (const Transform& root : sc.roots)
+    ragdolls.push_back(spawnRagdoll(
+        world, def, {root.p, Quat(Eigen::AngleAxisd(yaw, Vec3::UnitZ())) * root.q}, &mat));
   for (const auto& [centre, half] : sc.walls) {
     BodyDef wall;
     wall.type = BodyType::Static;
@@ -308,12 +313,12 @@ int main(int argc, char** argv) {
       "body_steps_per_s=%.0f us_per_body_step=%.3f max_anchor_err_m=%.3g max_ground_pen_m=%.4f "
       "max_limit_viol_rad=%.3g pelvis_z_3s_mean=%.4f pelvis_z_3s_min=%.4f pelvis_z_3s_max=%.4f "
       "ground_pen_3s_m=%.4f anchor_err_3s_m=%.3g vmax_3s=%.3g worst_limit=%s@%d nan=%d "
-      "loop_wall_s=%.3f substeps=%d joint_hertz=%g contact_hertz=%g sleep=%d threads=%d rolling=%g max_contacts=%zu "
+      "loop_wall_s=%.3f substeps=%d joint_hertz=%g contact_hertz=%g sleep=%d threads=%d rolling=%g yaw=%g max_contacts=%zu "
       "us_per_step_first_1s=%.1f us_per_step_last_1s=%.1f awake_bodies_end=%d%s\n",
       sc.id, n, bodies, steps, wall, sps, sps * bodies, 1e6 * wall / (steps * double(bodies)),
       m.max_anchor, m.max_pen, m.max_limit, m.pel_mean, m.pel_min, m.pel_max, m.pen3, m.anchor3,
       m.vmax3, m.worst_joint.c_str(), m.worst_step, m.nan ? 1 : 0, loop_wall, wd.substeps,
-      wd.joint_hertz, wd.contact_hertz, wd.enable_sleep ? 1 : 0, wd.threads, rolling, world.contacts().size(),
+      wd.joint_hertz, wd.contact_hertz, wd.enable_sleep ? 1 : 0, wd.threads, rolling, yaw, world.contacts().size(),
       1e6 * wall_first / window, 1e6 * wall_last / window, world.awakeBodyCount(), pit.c_str());
   return 0;
 }
