@@ -104,12 +104,33 @@ void advanceJoint(Joint& j, const StepContext& ctx) {
   if (j.type == JointType::Hinge) j.hinge_axis.refresh(A, B);
 }
 
+// The angles the substeps left (advanced to first order after the last position update,
+// within ~1e-5 rad) say whether an exact recompute can find anything beyond the slop; most
+// joints are well inside their ranges and skip the trigonometry.
+namespace {
+bool limitsClear(const Joint& j, double margin) {
+  if (j.limits_enabled) {
+    if (j.angle_count == 0) return false;  // near gimbal lock: no rows, look again
+    for (int i = 0; i < j.angle_count; ++i)
+      if (j.angles[i] < j.lower[i] - margin || j.angles[i] > j.upper[i] + margin) return false;
+  }
+  if (j.swing_twist_limits) {
+    const SwingTwist& st = j.swing_twist.angles;
+    if (st.swing > j.swing_cone + margin || st.twist < j.twist_lower - margin ||
+        st.twist > j.twist_upper + margin)
+      return false;
+  }
+  return true;
+}
+}  // namespace
+
 void projectJointLimits(Joint& j, const StepContext& ctx) {
   if (j.type == JointType::Prismatic || j.broken || !(j.limits_enabled || j.swing_twist_limits))
     return;
+  const double slop = ctx.def->angular_slop, max_turn = ctx.def->max_angular_correction;
+  if (limitsClear(j, 0.5 * slop)) return;
   auto& s = *ctx.bodies;
   SolverBody &A = s[j.a], &B = s[j.b];
-  const double slop = ctx.def->angular_slop, max_turn = ctx.def->max_angular_correction;
   updateAngles(j, ctx);
   if (j.limits_enabled)
     for (int i = 0; i < j.angle_count; ++i)

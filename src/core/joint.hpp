@@ -61,7 +61,7 @@ struct Joint {
 
   // Angles and their world Jacobian rows at the current substep poses (count 0: none, or a
   // ball near gimbal lock). Computed at warm start, reused by the biased solve (the poses
-  // have not moved in between), recomputed for the relax pass.
+  // have not moved in between), advanced for the relax pass, recomputed by the projection.
   int angle_count = 0;
   std::array<double, 3> angles{};
   std::array<Vec3, 3> angle_rows;

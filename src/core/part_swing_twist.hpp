@@ -51,7 +51,8 @@ struct SwingTwistPart {
                               angles.twist, twist_lower, twist_upper, slop, max_correction);
     if (angles.swing_valid)
       AngleLimitPart::project(A, B, angles.swing_row, AngularRow(angles.swing_row, A, B).k,
-                              angles.swing, -std::numeric_limits<double>::infinity(), cone, slop, max_correction);
+                              angles.swing, -std::numeric_limits<double>::infinity(), cone, slop,
+                              max_correction);
   }
 };
 
