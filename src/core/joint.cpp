@@ -3,6 +3,8 @@
 // part or spring). Prismatic joints have no anchor point: joint_prismatic.cpp solves them.
 #include "joint.hpp"
 
+#include <limits>
+
 namespace ragdoll_sim {
 
 namespace {
@@ -109,15 +111,16 @@ void advanceJoint(Joint& j, const StepContext& ctx) {
 // joints are well inside their ranges and skip the trigonometry.
 namespace {
 bool limitsClear(const Joint& j, double margin) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
   if (j.limits_enabled) {
     if (j.angle_count == 0) return false;  // near gimbal lock: no rows, look again
     for (int i = 0; i < j.angle_count; ++i)
-      if (j.angles[i] < j.lower[i] - margin || j.angles[i] > j.upper[i] + margin) return false;
+      if (AngleLimitPart::excess(j.angles[i], j.lower[i], j.upper[i], margin) != 0.0) return false;
   }
   if (j.swing_twist_limits) {
     const SwingTwist& st = j.swing_twist.angles;
-    if (st.swing > j.swing_cone + margin || st.twist < j.twist_lower - margin ||
-        st.twist > j.twist_upper + margin)
+    if (AngleLimitPart::excess(st.swing, -kInf, j.swing_cone, margin) != 0.0 ||
+        AngleLimitPart::excess(st.twist, j.twist_lower, j.twist_upper, margin) != 0.0)
       return false;
   }
   return true;
