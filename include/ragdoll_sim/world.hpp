@@ -21,8 +21,8 @@ struct WorldDef {
   int contact_relax_iterations = 4;     // relax sweeps over the contacts per substep
   int joint_relax_iterations = 2;       // of which the first this many also relax the joints
   // Position (non-linear Gauss-Seidel) sweeps after the substeps over penetrating contacts,
-  // joint angle limits and joint anchors: they remove the error left by hard hits without
-  // adding velocity.
+  // joint rotations (angle and slide limits, hinge axes, rotation locks) and joint anchors
+  // (points, slider lines): they remove the error left by hard hits without adding velocity.
   int position_iterations = 2;
   double position_factor = 0.5;         // share of a contact's penetration removed per sweep
   double max_position_correction = 0.05;  // m, the most one projection sweep moves a point

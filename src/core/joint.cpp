@@ -115,12 +115,12 @@ bool limitsClear(const Joint& j, double margin) {
   if (j.limits_enabled) {
     if (j.angle_count == 0) return false;  // near gimbal lock: no rows, look again
     for (int i = 0; i < j.angle_count; ++i)
-      if (AngleLimitPart::excess(j.angles[i], j.lower[i], j.upper[i], margin) != 0.0) return false;
+      if (rangeExcess(j.angles[i], j.lower[i], j.upper[i], margin) != 0.0) return false;
   }
   if (j.swing_twist_limits) {
     const SwingTwist& st = j.swing_twist.angles;
-    if (AngleLimitPart::excess(st.swing, -kInf, j.swing_cone, margin) != 0.0 ||
-        AngleLimitPart::excess(st.twist, j.twist_lower, j.twist_upper, margin) != 0.0)
+    if (rangeExcess(st.swing, -kInf, j.swing_cone, margin) != 0.0 ||
+        rangeExcess(st.twist, j.twist_lower, j.twist_upper, margin) != 0.0)
       return false;
   }
   return true;
@@ -128,12 +128,23 @@ bool limitsClear(const Joint& j, double margin) {
 }  // namespace
 
 void projectJointLimits(Joint& j, const StepContext& ctx) {
-  if (j.type == JointType::Prismatic || j.broken || !(j.limits_enabled || j.swing_twist_limits))
-    return;
+  if (j.broken) return;
   const double slop = ctx.def->angular_slop, max_turn = ctx.def->max_angular_correction;
-  if (limitsClear(j, 0.5 * slop)) return;
   auto& s = *ctx.bodies;
   SolverBody &A = s[j.a], &B = s[j.b];
+  if (j.type == JointType::Fixed || j.type == JointType::Prismatic)
+    j.angle_lock.project(A, B, slop, max_turn);
+  if (j.type == JointType::Prismatic) {
+    if (j.limits_enabled)
+      LinearLimitPart::project(A, B, j.slider.at(A, B), j.lower[0], j.upper[0],
+                               ctx.def->joint_slop, ctx.def->max_position_correction);
+    return;
+  }
+  // The axis error refreshed after the last position update (as for limitsClear) screens out
+  // the hinges that cannot be beyond the slop.
+  if (j.type == JointType::Hinge && j.hinge_axis.C.norm() > 0.5 * slop)
+    j.hinge_axis.project(A, B, slop, max_turn);
+  if (!(j.limits_enabled || j.swing_twist_limits) || limitsClear(j, 0.5 * slop)) return;
   updateAngles(j, ctx);
   if (j.limits_enabled)
     for (int i = 0; i < j.angle_count; ++i)
@@ -144,9 +155,14 @@ void projectJointLimits(Joint& j, const StepContext& ctx) {
 }
 
 void projectJointAnchor(Joint& j, const StepContext& ctx) {
-  if (j.type == JointType::Prismatic || j.spring.stiffness > 0.0 || j.broken) return;
+  if (j.broken) return;
   auto& s = *ctx.bodies;
-  j.point.project(s[j.a], s[j.b], ctx.def->max_position_correction, ctx.def->joint_slop);
+  SolverBody &A = s[j.a], &B = s[j.b];
+  const double slop = ctx.def->joint_slop, max_move = ctx.def->max_position_correction;
+  if (j.type == JointType::Prismatic)
+    return j.line.project(A, B, j.slider.at(A, B), slop, max_move);
+  if (j.spring.stiffness > 0.0) return;  // a spring anchor is meant to stretch
+  j.point.project(A, B, max_move, slop);
 }
 
 }  // namespace ragdoll_sim

@@ -84,9 +84,12 @@ void warmStartJoint(Joint& j, const StepContext& ctx);
 void solveJoint(Joint& j, const StepContext& ctx, bool use_bias);
 // After the position update of a substep, before the relax sweeps: angles advance by h rate.
 void advanceJoint(Joint& j, const StepContext& ctx);
-// Position projection after the substeps: angle limits (part_angle_limit.hpp, swing-twist),
-// and the rigid anchor (part_point.hpp). A sweep projects every joint's limits before any
-// anchor: a limit turns its bodies about their centres, which moves the neighbours' anchors.
+// Position projection after the substeps (the error beyond the slops, no velocity added):
+// projectJointLimits turns the bodies (rotation lock of fixed and prismatic joints, hinge axis,
+// angle limits, swing-twist) and moves a prismatic joint back into its slide range;
+// projectJointAnchor moves the rigid anchor (part_point.hpp) or a slider back onto its line. A
+// sweep projects every joint's limits before any anchor: a limit turns its bodies about their
+// centres, which moves the neighbours' anchors.
 void projectJointLimits(Joint& j, const StepContext& ctx);
 void projectJointAnchor(Joint& j, const StepContext& ctx);
 

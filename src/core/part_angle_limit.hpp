@@ -37,17 +37,11 @@ struct AngleLimitPart {
     solveInequalityRow(A, B, row.negated(), upper - theta, upper_impulse, ctx, use_bias);
   }
 
-  // Signed distance of theta beyond [lower - slop, upper + slop]: > 0 above, < 0 below, 0 inside.
-  static double excess(double theta, double lower, double upper, double slop) {
-    if (theta > upper + slop) return theta - upper - slop;
-    if (theta < lower - slop) return theta - lower + slop;
-    return 0.0;
-  }
-
   static void project(SolverBody& A, SolverBody& B, const Vec3& j, double k, double theta,
                       double lower, double upper, double slop, double max_correction) {
     if (!(k > 1e-300)) return;
-    const double e = std::clamp(excess(theta, lower, upper, slop), -max_correction, max_correction);
+    const double e =
+        std::clamp(rangeExcess(theta, lower, upper, slop), -max_correction, max_correction);
     if (e != 0.0) applyPairAngularPositionImpulse(A, B, (-e / k) * j);
   }
 };

@@ -7,6 +7,8 @@
 //   lambda = -mass_scale K^-1 (Cdot + bias_rate C) - impulse_scale lambda_acc   (softness.hpp),
 //   angular impulse lambda on B, minus on A (a pure couple: momentum and angular momentum kept).
 // The frames are tracked through the substeps with the bodies' delta rotations.
+// Position projection (after the substeps): the angular position impulse L = -K^-1 C' (C' = C
+// less the slop, at most max_correction) turns the frames back together to first order.
 #pragma once
 
 #include <limits>
@@ -33,6 +35,13 @@ struct AngleLockPart {
   }
 
   void warmStart(SolverBody& A, SolverBody& B) const { applyPairAngularImpulse(A, B, impulse); }
+
+  void project(SolverBody& A, SolverBody& B, double slop, double max_correction) const {
+    Vec3 C = error(A, B);
+    if (!trimToSlop(C, slop, max_correction)) return;
+    const Mat3 K = A.inv_inertia + B.inv_inertia;
+    if (K.trace() > 1e-300) applyPairAngularPositionImpulse(A, B, -K.ldlt().solve(C));
+  }
 
   // max_impulse caps the accumulated impulse's norm (a breakable weld's break_torque h); true
   // when it was reached.

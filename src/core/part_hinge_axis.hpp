@@ -7,6 +7,8 @@
 //   angular impulse U lambda on B, minus on A. K^-1 is formed once per substep (updateMass).
 // U and C change only with the positions: refresh() forms them at the warm start and after the
 // position update, and every sweep in between reads them.
+// Position projection (after the substeps): C beyond the slop (at most max_correction) is
+// turned back by the angular position impulse U lambda, lambda = -K^-1 C'; no velocity added.
 #pragma once
 
 #include <Eigen/Dense>
@@ -43,11 +45,26 @@ struct HingeAxisPart {
   // Refreshes U and C and forms K^-1 there.
   void updateMass(const SolverBody& A, const SolverBody& B) {
     refresh(A, B);
+    k_inv = inverseOrZero(mass(A, B, u1, u2));
+  }
+
+  static Eigen::Matrix2d mass(const SolverBody& A, const SolverBody& B, const Vec3& u1,
+                              const Vec3& u2) {
     const Mat3 I = A.inv_inertia + B.inv_inertia;
     const Vec3 Iu1 = I * u1, Iu2 = I * u2;
     Eigen::Matrix2d K;
     K << u1.dot(Iu1), u1.dot(Iu2), u2.dot(Iu1), u2.dot(Iu2);
-    k_inv = inverseOrZero(K);
+    return K;
+  }
+
+  // At the current deltas (refresh's state is left to the velocity sweeps).
+  void project(SolverBody& A, SolverBody& B, double slop, double max_correction) const {
+    const Vec3 a1 = A.dq * a1_0, b2 = B.dq * b2_0, c2 = B.dq * c2_0;
+    Eigen::Vector2d c(a1.dot(b2), a1.dot(c2));
+    if (!trimToSlop(c, slop, max_correction)) return;
+    const Vec3 v1 = b2.cross(a1), v2 = c2.cross(a1);
+    const Eigen::Vector2d l = -(inverseOrZero(mass(A, B, v1, v2)) * c);
+    applyPairAngularPositionImpulse(A, B, l.x() * v1 + l.y() * v2);
   }
 
   void warmStart(SolverBody& A, SolverBody& B) const {

@@ -103,9 +103,7 @@ struct PointPart {
   void project(SolverBody& A, SolverBody& B, double max_correction, double slop) const {
     const Vec3 rA = A.dq * rA0, rB = B.dq * rB0;
     Vec3 C = errorAt(A, B, rA, rB);
-    const double n = C.norm();
-    if (!(n > slop)) return;
-    C *= std::min(n - slop, max_correction) / n;
+    if (!trimToSlop(C, slop, max_correction)) return;
     const Mat3 k_inv = inverseOrZero(pointMass(A, B, rA, rB, 0.0));
     if (k_inv.isZero(0.0)) return;
     applyPairPositionImpulse(A, B, -(k_inv * C), rA, rB);

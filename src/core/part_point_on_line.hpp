@@ -6,6 +6,8 @@
 //   lambda = -mass_scale K^-1 (Cdot + bias_rate C) - impulse_scale lambda_acc   (softness.hpp);
 //   the force lambda_1 n1 + lambda_2 n2 acts at pB on B, minus on A.
 // max_impulse caps |accumulated impulse| (a breakable joint transmits at most its strength).
+// Position projection (after the substeps): P = -K^-1 C' with C' = C (1 - slop / |C|) moves B's
+// anchor back towards the line (joint_slop left, as in part_point.hpp); no velocity is added.
 #pragma once
 
 #include <limits>
@@ -25,6 +27,31 @@ struct PointOnLinePart {
     applyPairImpulse(A, B, force(p), p.leverA(), p.rB);
   }
 
+  // K for the angular parts a_i = lA x n_i, b_i = rB x n_i.
+  static Eigen::Matrix2d mass(const SolverBody& A, const SolverBody& B, const Vec3& a1,
+                              const Vec3& a2, const Vec3& b1, const Vec3& b2) {
+    const double im = A.inv_mass + B.inv_mass;
+    const Vec3 Ia1 = A.inv_inertia * a1, Ia2 = A.inv_inertia * a2;
+    const Vec3 Ib1 = B.inv_inertia * b1, Ib2 = B.inv_inertia * b2;
+    Eigen::Matrix2d K;
+    K(0, 0) = im + a1.dot(Ia1) + b1.dot(Ib1);
+    K(0, 1) = K(1, 0) = a1.dot(Ia2) + b1.dot(Ib2);
+    K(1, 1) = im + a2.dot(Ia2) + b2.dot(Ib2);
+    return K;
+  }
+
+  void project(SolverBody& A, SolverBody& B, const SliderPose& p, double slop,
+               double max_correction) const {
+    Eigen::Vector2d C(p.n1.dot(p.d), p.n2.dot(p.d));
+    if (!trimToSlop(C, slop, max_correction)) return;
+    const Vec3 lA = p.leverA();
+    const Eigen::Matrix2d K =
+        mass(A, B, lA.cross(p.n1), lA.cross(p.n2), p.rB.cross(p.n1), p.rB.cross(p.n2));
+    if (!(K.determinant() > 1e-300)) return;
+    const Eigen::Vector2d l = -(K.inverse() * C);
+    applyPairPositionImpulse(A, B, l.x() * p.n1 + l.y() * p.n2, lA, p.rB);
+  }
+
   // Returns true when the cap was reached.
   bool solve(SolverBody& A, SolverBody& B, const SliderPose& p, const Softness& soft,
              bool use_bias, double max_impulse = std::numeric_limits<double>::infinity()) {
@@ -41,13 +68,7 @@ struct PointOnLinePart {
       mass_scale = soft.mass_scale;
       impulse_scale = soft.impulse_scale;
     }
-    const double im = A.inv_mass + B.inv_mass;
-    const Vec3 Ia1 = A.inv_inertia * a1, Ia2 = A.inv_inertia * a2;
-    const Vec3 Ib1 = B.inv_inertia * b1, Ib2 = B.inv_inertia * b2;
-    Eigen::Matrix2d K;
-    K(0, 0) = im + a1.dot(Ia1) + b1.dot(Ib1);
-    K(0, 1) = K(1, 0) = a1.dot(Ia2) + b1.dot(Ib2);
-    K(1, 1) = im + a2.dot(Ia2) + b2.dot(Ib2);
+    const Eigen::Matrix2d K = mass(A, B, a1, a2, b1, b2);
     if (!(K.determinant() > 1e-300)) return false;
     Eigen::Vector2d next =
         impulse - mass_scale * K.inverse() * (cdot + bias) - impulse_scale * impulse;

@@ -70,6 +70,14 @@ struct LinearRow {
   }
 };
 
+// Signed distance of x beyond [lower - slop, upper + slop]: > 0 above, < 0 below, 0 inside
+// (the position projection of the limit parts).
+inline double rangeExcess(double x, double lower, double upper, double slop) {
+  if (x > upper + slop) return x - upper - slop;
+  if (x < lower - slop) return x - lower + slop;
+  return 0.0;
+}
+
 template <class Row>
 void solveInequalityRow(SolverBody& A, SolverBody& B, const Row& row, double C, double& acc,
                         const StepContext& ctx, bool use_bias) {

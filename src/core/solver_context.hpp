@@ -1,6 +1,7 @@
 // What every constraint needs during one step.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "body.hpp"
@@ -33,6 +34,16 @@ M inverseOrZero(const M& K) {
   bool invertible;
   K.computeInverseAndDetWithCheck(inv, det, invertible, 1e-300);
   return invertible && det > 0.0 ? inv : M(M::Zero());
+}
+
+// Position projection of a vector error C (a point, a line, a rotation): only the part beyond
+// `slop` is removed, at most max_correction of it per sweep. False when |C| <= slop.
+template <class V>
+bool trimToSlop(V& C, double slop, double max_correction) {
+  const double n = C.norm();
+  if (!(n > slop)) return false;
+  C *= std::min(n - slop, max_correction) / n;
+  return true;
 }
 
 // Applies a world impulse P at world offset r (from the COM) to A (negative) and B (positive).

@@ -12,8 +12,8 @@
 //      relax without bias (contacts several sweeps, the joints in the first sweeps: Gauss-
 //      Seidel over a manifold's points and along a limb needs them to take back the push-out
 //      velocity and to carry a landing's load up the chain, see contact_solver.cpp); then
-//      position_iterations sweeps of position projection (contacts, joint angle limits, joint
-//      anchors), which remove the error beyond the slops (linear_slop, angular_slop,
+//      position_iterations sweeps of position projection (contacts, joint limits and angular
+//      rows, joint anchors), which remove the error beyond the slops (linear_slop, angular_slop,
 //      joint_slop) without touching velocities. Static bodies are shared by all islands and
 //      are never written (movable(), solver_context.hpp);
 //   4. restitution, store impulses, write the deltas back to the bodies, clear forces;

@@ -615,6 +615,71 @@ TEST(JointMomentum, SwingTwistBallPairConservesMomentum) {
   EXPECT_LT(std::abs(st[1]), 0.2 + 0.02);
 }
 
+// The other joint rows in the position projection: a slider started 0.04 m past its upper
+// limit (kind 0) or 0.04 m off its line (1), a slider (2) and a weld (3) turned 0.2 rad out of
+// their locked orientation, a hinge whose axis is tilted 0.2 rad (4). Soft rows too weak to
+// matter in one step (joint hertz 1): the sweeps after the substeps bring each back to within
+// its slop (joint_slop for lengths, angular_slop for angles) and add no velocity. With the
+// slops huge (projection off) the error stays.
+TEST(JointProjection, SliderWeldAndHingeAxisComeBackWithoutVelocity) {
+  for (const bool on : {true, false}) {
+    for (int kind = 0; kind < 5; ++kind) {
+      WorldDef d = zeroG();
+      d.enable_sleep = false;
+      d.joint_hertz = 1.0;
+      if (!on) d.joint_slop = d.angular_slop = 1e9;
+      World w(d);
+      const BodyId a = addStatic(w);
+      const double upper = 0.1, start = kind < 2 ? 0.04 : 0.2;
+      Transform pose;
+      if (kind == 0) pose.p = Vec3(upper + start, 0, 0);
+      if (kind == 1) pose.p = Vec3(0, start, 0);
+      const Vec3 turn_axis = kind == 4 ? Vec3::UnitX() : Vec3::UnitZ();
+      if (kind >= 2) pose.q = Quat(Eigen::AngleAxisd(start, turn_axis));
+      const BodyId b = addDynamic(w, 1.0, diag(0.02, 0.02, 0.005), pose);
+      if (kind <= 2) {
+        PrismaticJointDef p;
+        p.body_a = a, p.body_b = b;
+        p.axis = Vec3::UnitX();
+        p.enable_limit = true;
+        p.lower = -upper, p.upper = upper;
+        w.createPrismaticJoint(p);
+      } else if (kind == 3) {
+        FixedJointDef f;
+        f.body_a = a, f.body_b = b;
+        w.createFixedJoint(f);
+      } else {
+        HingeJointDef h;
+        h.body_a = a, h.body_b = b;
+        h.axis = Vec3::UnitZ();
+        w.createHingeJoint(h);
+      }
+      const auto error = [&]() {
+        const Transform x = w.bodyPose(b);
+        if (kind == 0) return x.p.x() - upper;
+        if (kind == 1) return x.p.tail<2>().norm();
+        if (kind == 4) return std::acos(std::clamp((x.q * Vec3::UnitZ()).z(), -1.0, 1.0));
+        return x.q.angularDistance(Quat::Identity());
+      };
+      ASSERT_NEAR(error(), start, 1e-9) << "kind " << kind;
+      w.step(kDt);
+      const double slop = kind < 2 ? d.joint_slop : d.angular_slop;
+      const BodyState st = w.bodyState(b);
+      if (on) {
+        EXPECT_LT(error(), slop + 0.05 * slop) << "kind " << kind;
+        EXPECT_GT(error(), 0.5 * slop) << "kind " << kind;  // the slop is left to the soft rows
+      } else {
+        EXPECT_GT(error(), 0.95 * start) << "kind " << kind;
+      }
+      EXPECT_LT(st.linear_velocity.norm(), 0.01) << "kind " << kind;
+      EXPECT_LT(st.angular_velocity.norm(), 0.1) << "kind " << kind;  // a soft 1 Hz row's push
+      std::printf("[ jproj    ] kind %d projection %s: error %.3g -> %.4g, |v| %.2g, |w| %.2g\n",
+                  kind, on ? "on" : "off", start, error(), st.linear_velocity.norm(),
+                  st.angular_velocity.norm());
+    }
+  }
+}
+
 // The point part's effective mass, formed entry by entry (part_point.hpp), equals the textbook
 // J M^-1 J^T = (1/mA + 1/mB) I - skew(rA) IA^-1 skew(rA) - skew(rB) IB^-1 skew(rB), and a
 // singular K (two immovable bodies) gives a zero inverse rather than inf.
