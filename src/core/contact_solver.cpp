@@ -95,19 +95,24 @@ void updateSeparations(const SolverBody& A, const SolverBody& B, ContactConstrai
 }
 }  // namespace
 
-void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepContext& ctx,
-                            int threads, int parallel_min) {
-  const auto& motions = *ctx.motions;
-  const auto& bodies = *ctx.bodies;
-  const WorldDef& def = *ctx.def;
-  // Which contacts become constraints (touching, one body awake), then each is prepared on
-  // its own (in parallel, into its own slot: the order does not depend on the thread count).
+std::vector<int>& ContactSolver::selectActive(const std::vector<Contact>& contacts,
+                                              const std::vector<BodyMotion>& motions) {
   active_.clear();
   for (int ci = 0; ci < int(contacts.size()); ++ci) {
     const Contact& c = contacts[ci];
     if (c.manifold.count > 0 && (motions[c.body_a].awake || motions[c.body_b].awake))
       active_.push_back(ci);
   }
+  return active_;
+}
+
+void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepContext& ctx,
+                            int threads, int parallel_min) {
+  const auto& motions = *ctx.motions;
+  const auto& bodies = *ctx.bodies;
+  const WorldDef& def = *ctx.def;
+  // Each constraint is prepared on its own (in parallel, into its own slot: the order does
+  // not depend on the thread count).
   const int n = int(active_.size());
   constraints_.resize(n);
 #pragma omp parallel for schedule(static) num_threads(threads) if (n >= parallel_min)

@@ -45,7 +45,12 @@ struct ContactConstraint {
 // calls take the range [begin, end) of one island, so islands can be solved in parallel.
 class ContactSolver {
  public:
-  // On up to `threads` threads when there are at least parallel_min contacts.
+  // The contacts that become constraints this step (touching, one body awake), in contact
+  // order; the caller may reorder them (grouped by island) before prepare.
+  std::vector<int>& selectActive(const std::vector<Contact>& contacts,
+                                 const std::vector<BodyMotion>& motions);
+  // One constraint per selected contact, in the selected order (on up to `threads` threads
+  // when there are at least parallel_min contacts).
   void prepare(const std::vector<Contact>& contacts, const StepContext& ctx, int threads,
                int parallel_min);
   void warmStart(const StepContext& ctx, int begin, int end);
@@ -60,7 +65,7 @@ class ContactSolver {
 
  private:
   std::vector<ContactConstraint> constraints_;
-  std::vector<int> active_;  // contact index of each constraint (scratch)
+  std::vector<int> active_;  // contact index of each constraint
 };
 
 }  // namespace ragdoll_sim
