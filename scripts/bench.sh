@@ -28,6 +28,9 @@
 #                            same result for any count); the peers are single-threaded.
 #   BENCH_THREADS=1          OMP_NUM_THREADS for every run (only matters for threads=0).
 #   BENCH_OUT=bench          folder for results_raw.txt, RESULTS.md, scaling.png
+#   SCALING_1THREAD=1        also run our scene g on one thread (engine ragdoll_sim_1thread):
+#                            the cost per body-step of the algorithm alone, the same thread
+#                            count at every N (N = 1 is one island, which runs on one core)
 #   FLOPS=1                  0 skips the flop count (scripts/flops.sh, valgrind, ~5 min)
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
@@ -110,11 +113,12 @@ done
 # run_one ROUND ENGINE SCENE [N]: one run; its line (with round=ROUND) or a "# FAILED" line.
 run_one() {
   local r="$1" e="$2" s="$3" n="${4:-}" bin args=() out rc err
-  if [[ "$e" == ragdoll_sim ]]; then bin="$BUILD/bench_ragdoll"
+  if [[ "$e" == ragdoll_sim* ]]; then bin="$BUILD/bench_ragdoll"
   elif [[ "$s" == g ]]; then bin="$PEER_BUILD/scaling_$e"
   else bin="$PEER_BUILD/bench_$e"; fi
   args=("$s" --urdf "$URDF")
   if [[ "$e" == ragdoll_sim ]]; then args+=(--opt "threads=$OWN_THREADS"); fi
+  if [[ "$e" == ragdoll_sim_1thread ]]; then args+=(--opt "threads=1"); fi
   if [[ "$s" == g ]]; then
     args+=(--ragdolls "$n")
     if [[ -n "$SCALING_STEPS" ]]; then args+=(--steps "$SCALING_STEPS"); fi
@@ -125,6 +129,7 @@ run_one() {
   { echo "### round=$r engine=$e scene=$s ${n:+ragdolls=$n }rc=$rc"; cat "$errf"; } >>"$LOG"
   local line
   line="$(grep -m1 '^engine=' <<<"$out" || true)"
+  if [[ "$e" == ragdoll_sim_1thread ]]; then line="${line/#engine=ragdoll_sim /engine=$e }"; fi
   if [[ "$rc" -eq 0 && -n "$line" ]]; then
     echo "$line round=$r" | tee -a "$RAW_TMP"
   else
@@ -150,6 +155,9 @@ for r in $(seq "$ROUNDS"); do
   done
   for n in $SCALING_NS; do
     for e in "${order[@]}"; do run_one "$r" "$e" g "$n"; done
+    if [[ "${SCALING_1THREAD:-1}" != 0 && " ${engines[*]} " == *" ragdoll_sim "* ]]; then
+      run_one "$r" ragdoll_sim_1thread g "$n"
+    fi
   done
   if [[ " ${engines[*]} " == *" ragdoll_sim "* ]]; then
     for s in $OWN_SCENES; do run_one "$r" ragdoll_sim "$s"; done

@@ -13,7 +13,8 @@ import sys
 from collections import OrderedDict, defaultdict
 
 OURS = "ragdoll_sim"
-ENGINE_ORDER = [OURS, "mujoco", "bullet", "ode"]
+OURS_1T = "ragdoll_sim_1thread"  # ours on one thread, scene g only (not a peer)
+ENGINE_ORDER = [OURS, OURS_1T, "mujoco", "bullet", "ode"]
 SCENE_ORDER = ["a", "b", "c", "g", "p", "s"]
 SCENE_DESC = {
     "a": "1 ragdoll standing, pelvis at 1.5 m, 10 000 steps",
@@ -167,7 +168,7 @@ def report(meta, runs, failures, png_name):
     groups = build_groups(runs)
     engines = [e for e in ENGINE_ORDER if any(k[0] == e for k in groups)]
     engines += sorted({k[0] for k in groups} - set(engines))
-    peers = [e for e in engines if e != OURS]
+    peers = [e for e in engines if e not in (OURS, OURS_1T)]
     names = {k[0]: g.engine_name for k, g in groups.items()}
     L = []
     L.append("# Benchmark results: ragdoll_sim vs MuJoCo, Bullet, ODE")
@@ -284,8 +285,22 @@ def report(meta, runs, failures, png_name):
                     row.append("-" if med != med else "%s (%s–%s)" % (
                         fmt_ratio(med), fmt_ratio(lo), fmt_ratio(hi)))
             rows.append(row)
+        spread = ["spread about the mean over N", ""]
+        for e in engines:
+            us = [groups[(e, "g", n)].us_med for n in ns if (e, "g", n) in groups]
+            mean = sum(us) / len(us) if us else 0.0
+            spread += ["%+.0f %% to %+.0f %%" % (100 * (min(us) / mean - 1), 100 * (max(us) / mean - 1))
+                       if len(us) > 1 else "-", ""]
+        spread += [""] * (len(header) - len(spread))
+        rows.append(spread)
         L.append(md_table(header, rows))
         L.append("")
+        if OURS_1T in engines:
+            L.append("`%s` is ours with `threads=1`: islands run in parallel only from 32 awake "
+                     "bodies (kParallelMin), so N = 1 (one 15-body island) always runs on one core "
+                     "while larger N use all of them; on one thread every N gets the same, and the "
+                     "line shows the cost of the algorithm alone." % OURS_1T)
+            L.append("")
         L.append("The peers run scene g through `bench/peers_scaling/scaling_<engine>.cpp`: the "
                  "unmodified peer bench source from ../shared/peers with `make_scene`/`parse_args` "
                  "of ragdoll_common.hpp wrapped to add scene g; the grid is "
@@ -398,7 +413,8 @@ def plot(groups, engines, names, path, failures=()):
                          if f.get("engine") == e and f.get("scenario") == "g"} - set(xs))
         label = names[e] + (" (failed at N=%s)" % ", ".join(map(str, failed)) if failed else "")
         ax.errorbar(xs, ys, yerr=[lo, hi], marker="o", capsize=3,
-                    linewidth=2.5 if e == OURS else 1.5, label=label)
+                    linewidth=2.5 if e.startswith(OURS) else 1.5,
+                    linestyle="--" if e == OURS_1T else "-", label=label)
         any_line = True
     ax.set_xscale("log", base=2)
     ax.set_xlabel("ragdolls (15 bodies each)")
