@@ -61,7 +61,6 @@ class ContactSolver {
   void project(const StepContext& ctx, int begin, int end);
   void applyRestitution(const StepContext& ctx);
   void storeImpulses(std::vector<Contact>& contacts) const;
-  std::vector<ContactConstraint>& constraints() { return constraints_; }
 
  private:
   std::vector<ContactConstraint> constraints_;
