@@ -34,13 +34,16 @@ struct HingeAxisPart {
     c2_0 = a2_0.cross(b2_0);
   }
 
-  void refresh(const SolverBody& A, const SolverBody& B) {
+  // U's columns and C at the bodies' current deltas.
+  void at(const SolverBody& A, const SolverBody& B, Vec3& v1, Vec3& v2, Eigen::Vector2d& c) const {
     const Vec3 a1 = A.dq * a1_0;
     const Vec3 b2 = B.dq * b2_0, c2 = B.dq * c2_0;
-    u1 = b2.cross(a1);
-    u2 = c2.cross(a1);
-    C = {a1.dot(b2), a1.dot(c2)};
+    v1 = b2.cross(a1);
+    v2 = c2.cross(a1);
+    c = {a1.dot(b2), a1.dot(c2)};
   }
+
+  void refresh(const SolverBody& A, const SolverBody& B) { at(A, B, u1, u2, C); }
 
   // Refreshes U and C and forms K^-1 there.
   void updateMass(const SolverBody& A, const SolverBody& B) {
@@ -59,10 +62,10 @@ struct HingeAxisPart {
 
   // At the current deltas (refresh's state is left to the velocity sweeps).
   void project(SolverBody& A, SolverBody& B, double slop, double max_correction) const {
-    const Vec3 a1 = A.dq * a1_0, b2 = B.dq * b2_0, c2 = B.dq * c2_0;
-    Eigen::Vector2d c(a1.dot(b2), a1.dot(c2));
+    Vec3 v1, v2;
+    Eigen::Vector2d c;
+    at(A, B, v1, v2, c);
     if (!trimToSlop(c, slop, max_correction)) return;
-    const Vec3 v1 = b2.cross(a1), v2 = c2.cross(a1);
     const Eigen::Vector2d l = -(inverseOrZero(mass(A, B, v1, v2)) * c);
     applyPairAngularPositionImpulse(A, B, l.x() * v1 + l.y() * v2);
   }
