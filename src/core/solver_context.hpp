@@ -83,6 +83,7 @@ inline void applyPairAngularPositionImpulse(SolverBody& A, SolverBody& B, const 
   if (movable(A)) rotateDelta(A, -(A.inv_inertia * L));
   if (movable(B)) rotateDelta(B, B.inv_inertia * L);
 }
+
 // Applies an angular impulse L to A (negative) and B (positive).
 inline void applyPairAngularImpulse(SolverBody& A, SolverBody& B, const Vec3& L) {
   if (movable(A)) A.w -= A.inv_inertia * L;
