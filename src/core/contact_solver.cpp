@@ -51,13 +51,17 @@ ContactRow makeRow(const SolverBody& A, const SolverBody& B, const Vec3& rA, con
 // The velocities of a manifold's two bodies, held in locals through its rows and written back
 // once, and only for a movable() body: static bodies are shared by all islands, and writing the
 // ground from both threads on every row was what kept two threads from scaling.
+// kLiveA = false: A is an identity body (the ground: the lower shape index, so side A), whose
+// v = w = 0 and inverse mass 0; its terms are dropped instead of multiplied by zero, which
+// gives the same numbers with half the row work (most contacts of a ragdoll are with the ground).
+template <bool kLiveA>
 struct PairVelocity {
   Vec3 vA, wA, vB, wB;
   double mA, mB;
   PairVelocity(const SolverBody& A, const SolverBody& B)
       : vA(A.v), wA(A.w), vB(B.v), wB(B.w), mA(A.inv_mass), mB(B.inv_mass) {}
   void store(SolverBody& A, SolverBody& B) const {
-    if (movable(A)) {
+    if (kLiveA && movable(A)) {
       A.v = vA;
       A.w = wA;
     }
@@ -66,18 +70,22 @@ struct PairVelocity {
       B.w = wB;
     }
   }
+  double rowVelocity(const ContactRow& r, const Vec3& d) const {
+    if (!kLiveA) return d.dot(vB) + wB.dot(r.angB);
+    return d.dot(vB - vA) + wB.dot(r.angB) - wA.dot(r.angA);
+  }
+  void applyRow(const ContactRow& r, const Vec3& d, double lambda) {
+    if (kLiveA) {
+      vA -= (mA * lambda) * d;
+      wA -= lambda * r.iangA;
+    }
+    vB += (mB * lambda) * d;
+    wB += lambda * r.iangB;
+  }
 };
-inline double rowVelocity(const PairVelocity& u, const ContactRow& r, const Vec3& d) {
-  return d.dot(u.vB - u.vA) + u.wB.dot(r.angB) - u.wA.dot(r.angA);
-}
-inline void applyRow(PairVelocity& u, const ContactRow& r, const Vec3& d, double lambda) {
-  u.vA -= (u.mA * lambda) * d;
-  u.wA -= lambda * r.iangA;
-  u.vB += (u.mB * lambda) * d;
-  u.wB += lambda * r.iangB;
-}
-inline void applyRolling(PairVelocity& u, const ContactConstraint& cc, double l0, double l1) {
-  u.wA -= l0 * cc.roll_iA[0] + l1 * cc.roll_iA[1];
+template <bool kLiveA>
+void applyRolling(PairVelocity<kLiveA>& u, const ContactConstraint& cc, double l0, double l1) {
+  if (kLiveA) u.wA -= l0 * cc.roll_iA[0] + l1 * cc.roll_iA[1];
   u.wB += l0 * cc.roll_iB[0] + l1 * cc.roll_iB[1];
 }
 Vec3 relativeVelocity(const SolverBody& A, const SolverBody& B, const Vec3& rA, const Vec3& rB) {
@@ -171,84 +179,99 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
   }
 }
 
+namespace {
+template <bool kLiveA>
+void warmStartConstraint(ContactConstraint& cc, SolverBody& A, SolverBody& B) {
+  updateSeparations(A, B, cc);
+  PairVelocity<kLiveA> u(A, B);
+  for (int i = 0; i < cc.count; ++i) {
+    const ContactConstraintPoint& p = cc.points[i];
+    u.applyRow(p.normal_row, cc.normal, p.normal_impulse);
+    u.applyRow(p.tangent_row[0], cc.tangent[0], p.tangent_impulse[0]);
+    u.applyRow(p.tangent_row[1], cc.tangent[1], p.tangent_impulse[1]);
+  }
+  if (cc.rolling > 0.0) applyRolling(u, cc, cc.rolling_impulse[0], cc.rolling_impulse[1]);
+  u.store(A, B);
+}
+
+template <bool kLiveA>
+void solveConstraint(ContactConstraint& cc, SolverBody& A, SolverBody& B, const StepContext& ctx,
+                     bool use_bias, bool positions_moved) {
+  const WorldDef& def = *ctx.def;
+  const Softness& soft = ctx.contact_softness;
+  if (positions_moved) updateSeparations(A, B, cc);
+  PairVelocity<kLiveA> u(A, B);
+  for (int i = 0; i < cc.count; ++i) {
+    ContactConstraintPoint& p = cc.points[i];
+    const double s = p.separation;
+    double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
+    if (s > 0.0) {
+      bias = s * ctx.inv_h;
+    } else if (use_bias) {
+      bias = std::max(soft.bias_rate * std::min(s + def.linear_slop, 0.0), -def.max_push_velocity);
+      mass_scale = soft.mass_scale;
+      impulse_scale = soft.impulse_scale;
+    }
+    const double vn = u.rowVelocity(p.normal_row, cc.normal);
+    if (vn < 0.0) mass_scale = 1.0, impulse_scale = 0.0;  // approaching: rigid
+    double lambda = -p.normal_row.mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
+    const double next = std::max(p.normal_impulse + lambda, 0.0);
+    lambda = next - p.normal_impulse;
+    p.normal_impulse = next;
+    p.max_normal_impulse = std::max(p.max_normal_impulse, lambda);
+    u.applyRow(p.normal_row, cc.normal, lambda);
+  }
+  for (int i = 0; i < cc.count; ++i) {
+    ContactConstraintPoint& p = cc.points[i];
+    const double old0 = p.tangent_impulse[0], old1 = p.tangent_impulse[1];
+    double t0 = old0 - p.tangent_row[0].mass * u.rowVelocity(p.tangent_row[0], cc.tangent[0]);
+    double t1 = old1 - p.tangent_row[1].mass * u.rowVelocity(p.tangent_row[1], cc.tangent[1]);
+    const double limit = cc.friction * p.normal_impulse;
+    const double mag = std::sqrt(t0 * t0 + t1 * t1);
+    if (mag > limit) {
+      const double scale = mag > 0.0 ? limit / mag : 0.0;
+      t0 *= scale;
+      t1 *= scale;
+    }
+    p.tangent_impulse[0] = t0;
+    p.tangent_impulse[1] = t1;
+    u.applyRow(p.tangent_row[0], cc.tangent[0], t0 - old0);
+    u.applyRow(p.tangent_row[1], cc.tangent[1], t1 - old1);
+  }
+  if (cc.rolling > 0.0) {
+    double total_normal = 0.0;
+    for (int i = 0; i < cc.count; ++i) total_normal += cc.points[i].normal_impulse;
+    const Eigen::Vector2d cdot((u.wB - u.wA).dot(cc.tangent[0]), (u.wB - u.wA).dot(cc.tangent[1]));
+    const Eigen::Vector2d old(cc.rolling_impulse[0], cc.rolling_impulse[1]);
+    Eigen::Vector2d next = old - cc.roll_mass * cdot;
+    const double limit = cc.rolling * total_normal, mag = next.norm();
+    if (mag > limit) next *= mag > 0.0 ? limit / mag : 0.0;
+    cc.rolling_impulse[0] = next[0];
+    cc.rolling_impulse[1] = next[1];
+    applyRolling(u, cc, next[0] - old[0], next[1] - old[1]);
+  }
+  u.store(A, B);
+}
+}  // namespace
+
 void ContactSolver::warmStart(const StepContext& ctx, int begin, int end) {
   auto& bodies = *ctx.bodies;
   for (int k = begin; k < end; ++k) {
     ContactConstraint& cc = constraints_[k];
     SolverBody &A = bodies[cc.a], &B = bodies[cc.b];
-    updateSeparations(A, B, cc);
-    PairVelocity u(A, B);
-    for (int i = 0; i < cc.count; ++i) {
-      const ContactConstraintPoint& p = cc.points[i];
-      applyRow(u, p.normal_row, cc.normal, p.normal_impulse);
-      applyRow(u, p.tangent_row[0], cc.tangent[0], p.tangent_impulse[0]);
-      applyRow(u, p.tangent_row[1], cc.tangent[1], p.tangent_impulse[1]);
-    }
-    if (cc.rolling > 0.0) applyRolling(u, cc, cc.rolling_impulse[0], cc.rolling_impulse[1]);
-    u.store(A, B);
+    if (movable(A)) warmStartConstraint<true>(cc, A, B);
+    else warmStartConstraint<false>(cc, A, B);
   }
 }
 
 void ContactSolver::solve(const StepContext& ctx, bool use_bias, int begin, int end,
                           bool positions_moved) {
   auto& bodies = *ctx.bodies;
-  const WorldDef& def = *ctx.def;
-  const Softness& soft = ctx.contact_softness;
   for (int k = begin; k < end; ++k) {
     ContactConstraint& cc = constraints_[k];
     SolverBody &A = bodies[cc.a], &B = bodies[cc.b];
-    if (positions_moved) updateSeparations(A, B, cc);
-    PairVelocity u(A, B);
-    for (int i = 0; i < cc.count; ++i) {
-      ContactConstraintPoint& p = cc.points[i];
-      const double s = p.separation;
-      double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
-      if (s > 0.0) {
-        bias = s * ctx.inv_h;
-      } else if (use_bias) {
-        bias = std::max(soft.bias_rate * std::min(s + def.linear_slop, 0.0), -def.max_push_velocity);
-        mass_scale = soft.mass_scale;
-        impulse_scale = soft.impulse_scale;
-      }
-      const double vn = rowVelocity(u, p.normal_row, cc.normal);
-      if (vn < 0.0) mass_scale = 1.0, impulse_scale = 0.0;  // approaching: rigid
-      double lambda = -p.normal_row.mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
-      const double next = std::max(p.normal_impulse + lambda, 0.0);
-      lambda = next - p.normal_impulse;
-      p.normal_impulse = next;
-      p.max_normal_impulse = std::max(p.max_normal_impulse, lambda);
-      applyRow(u, p.normal_row, cc.normal, lambda);
-    }
-    for (int i = 0; i < cc.count; ++i) {
-      ContactConstraintPoint& p = cc.points[i];
-      const double old0 = p.tangent_impulse[0], old1 = p.tangent_impulse[1];
-      double t0 = old0 - p.tangent_row[0].mass * rowVelocity(u, p.tangent_row[0], cc.tangent[0]);
-      double t1 = old1 - p.tangent_row[1].mass * rowVelocity(u, p.tangent_row[1], cc.tangent[1]);
-      const double limit = cc.friction * p.normal_impulse;
-      const double mag = std::sqrt(t0 * t0 + t1 * t1);
-      if (mag > limit) {
-        const double scale = mag > 0.0 ? limit / mag : 0.0;
-        t0 *= scale;
-        t1 *= scale;
-      }
-      p.tangent_impulse[0] = t0;
-      p.tangent_impulse[1] = t1;
-      applyRow(u, p.tangent_row[0], cc.tangent[0], t0 - old0);
-      applyRow(u, p.tangent_row[1], cc.tangent[1], t1 - old1);
-    }
-    if (cc.rolling > 0.0) {
-      double total_normal = 0.0;
-      for (int i = 0; i < cc.count; ++i) total_normal += cc.points[i].normal_impulse;
-      const Eigen::Vector2d cdot((u.wB - u.wA).dot(cc.tangent[0]), (u.wB - u.wA).dot(cc.tangent[1]));
-      const Eigen::Vector2d old(cc.rolling_impulse[0], cc.rolling_impulse[1]);
-      Eigen::Vector2d next = old - cc.roll_mass * cdot;
-      const double limit = cc.rolling * total_normal, mag = next.norm();
-      if (mag > limit) next *= mag > 0.0 ? limit / mag : 0.0;
-      cc.rolling_impulse[0] = next[0];
-      cc.rolling_impulse[1] = next[1];
-      applyRolling(u, cc, next[0] - old[0], next[1] - old[1]);
-    }
-    u.store(A, B);
+    if (movable(A)) solveConstraint<true>(cc, A, B, ctx, use_bias, positions_moved);
+    else solveConstraint<false>(cc, A, B, ctx, use_bias, positions_moved);
   }
 }
 
@@ -278,13 +301,13 @@ void ContactSolver::applyRestitution(const StepContext& ctx) {
     for (int i = 0; i < cc.count; ++i) {
       ContactConstraintPoint& p = cc.points[i];
       if (p.relative_velocity > -threshold || p.max_normal_impulse == 0.0) continue;
-      PairVelocity u(A, B);
-      const double vn = rowVelocity(u, p.normal_row, cc.normal);
+      PairVelocity<true> u(A, B);
+      const double vn = u.rowVelocity(p.normal_row, cc.normal);
       double lambda = -p.normal_row.mass * (vn + cc.restitution * p.relative_velocity);
       const double next = std::max(p.normal_impulse + lambda, 0.0);
       lambda = next - p.normal_impulse;
       p.normal_impulse = next;
-      applyRow(u, p.normal_row, cc.normal, lambda);
+      u.applyRow(p.normal_row, cc.normal, lambda);
       u.store(A, B);
     }
   }
