@@ -1,14 +1,21 @@
 // Joint angles from the relative rotation of the two joint frames, and their rate Jacobians.
 //
 // Hinge: theta = signed angle about the axis a between a perpendicular u carried by frame A
-// and the same u carried by frame B; theta_dot = a . (wB - wA).
+// and the same u carried by frame B; theta_dot = a . (wB - wA). (The twist angle of q_rel
+// about a, equal for a true hinge, left 3 of 8 perturbed copies of scene b at rest vs 7 of 8.)
 //
 // Ball (Euler): R_rel = R(a0,t0) R(a1,t1) R(a2,t2) with orthonormal joint-frame axes. With
 // P = [a0 a1 s a2] (s = +-1 so that det P = +1), R' = P^T R_rel P = Rx(t0) Ry(t1) Rz(s t2):
 //   t1 = asin(R'02), t0 = atan2(-R'12, R'22), s t2 = atan2(-R'01, R'00).
+// P is a rotation, so R' is the matrix of q' = qP^-1 q_rel qP: only the five entries above are
+// formed from q' (no 3x3 products). Since R'12 = -s0 c1, R'22 = c0 c1 and R'02 = s1 with
+// c1 = cos t1 >= 0: c1 = |(R'12, R'22)|, c0 = R'22 / c1, s0 = -R'12 / c1, s1 = R'02, so the
+// rates below need no trigonometry.
 // Rates: w' = t0_dot ex + t1_dot Rx(t0) ey + (s t2)_dot Rx(t0) Ry(t1) ez = M(t) t_dot, with
 //   M = [ (1,0,0), (0,c0,s0), (s1,-s0 c1,c0 c1) ],  det M = cos t1 (gimbal lock at t1 = +-pi/2).
-// So t_dot = diag(1,1,s) M^-1 P^T R_JA^T (wB - wA): each row is one limit's Jacobian.
+// So t_dot = diag(1,1,s) M^-1 P^T R_JA^T (wB - wA): each row is one limit's Jacobian. With
+// Q = R_JA P = [q0 q1 q2] (the matrix of qA qP) and v = -s0 q1 + c0 q2, the rows are
+//   j0 = q0 - (s1 / c1) v,  j1 = c0 q1 + s0 q2,  j2 = s v / c1.
 //
 // Ball (swing-twist): q_rel = qA^-1 qB = q_swing q_twist, q_twist about the twist axis t (joint
 // frame), q_swing the shortest arc carrying t to q_rel t. With tA = qA t, tB = qB t (world):
@@ -20,6 +27,7 @@
 //     twist_dot = (wB - wA) . (tA + tB) / (1 + tA . tB)  (undefined at swing = pi).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -36,11 +44,12 @@ inline double hingeAngle(const Quat& frame_a, const Quat& frame_b, const Vec3& a
 }
 
 struct EulerBasis {
-  Mat3 P = Mat3::Identity();  // columns a0, a1, s a2
+  Quat qP = Quat::Identity();  // the rotation P = [a0 a1 s a2]
   double s = 1.0;
 
   explicit EulerBasis(const std::array<Vec3, 3>& axes = {Vec3::UnitX(), Vec3::UnitY(),
                                                          Vec3::UnitZ()}) {
+    Mat3 P;
     P.col(0) = axes[0].normalized();
     P.col(1) = axes[1].normalized();
     P.col(2) = axes[2].normalized();
@@ -48,26 +57,36 @@ struct EulerBasis {
       s = -1.0;
       P.col(2) = -P.col(2);
     }
+    // The axes are orthonormal to ~1e-6 (the URDF loader's check); the nearest rotation.
+    const Eigen::JacobiSVD<Mat3> svd(P, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    qP = Quat(Mat3(svd.matrixU() * svd.matrixV().transpose())).normalized();
   }
 
-  // Angles (t0, t1, t2) of the relative rotation frame_a^-1 frame_b.
-  Vec3 angles(const Quat& frame_a, const Quat& frame_b) const {
-    const Mat3 R = P.transpose() * (frame_a.conjugate() * frame_b).toRotationMatrix() * P;
-    const double t1 = std::asin(std::clamp(R(0, 2), -1.0, 1.0));
-    return {std::atan2(-R(1, 2), R(2, 2)), t1, s * std::atan2(-R(0, 1), R(0, 0))};
-  }
-
-  // World Jacobian rows j_i (t_i dot = j_i . (wB - wA)); false near gimbal lock.
-  bool rates(const Quat& frame_a, const Vec3& t, std::array<Vec3, 3>& j) const {
-    const double c0 = std::cos(t[0]), s0 = std::sin(t[0]);
-    const double c1 = std::cos(t[1]), s1 = std::sin(t[1]);
-    if (std::abs(c1) < 1e-3) return false;
-    Mat3 Minv;  // M^-1 in closed form (det M = c1)
-    Minv << 1, s1 * s0 / c1, -s1 * c0 / c1, 0, c0, s0, 0, -s0 / c1, c0 / c1;
-    Mat3 rows = Minv * P.transpose() * frame_a.toRotationMatrix().transpose();
-    rows.row(2) *= s;
-    for (int i = 0; i < 3; ++i) j[i] = rows.row(i).transpose();
+  // Angles (t0, t1, t2) of the relative rotation frame_a^-1 frame_b; with rows != nullptr also
+  // their world Jacobian rows j_i (t_i dot = j_i . (wB - wA)), false near gimbal lock.
+  bool angles(const Quat& frame_a, const Quat& frame_b, Vec3& t,
+              std::array<Vec3, 3>* rows = nullptr) const {
+    const Quat q = qP.conjugate() * (frame_a.conjugate() * frame_b) * qP;
+    const double w = q.w(), x = q.x(), y = q.y(), z = q.z();
+    const double r00 = 1.0 - 2.0 * (y * y + z * z), r01 = 2.0 * (x * y - w * z);
+    const double r02 = std::clamp(2.0 * (x * z + w * y), -1.0, 1.0);
+    const double r12 = 2.0 * (y * z - w * x), r22 = 1.0 - 2.0 * (x * x + y * y);
+    t = Vec3(std::atan2(-r12, r22), std::asin(r02), s * std::atan2(-r01, r00));
+    if (!rows) return true;
+    const double c1 = std::hypot(r12, r22);
+    if (c1 < 1e-3) return false;
+    const double c0 = r22 / c1, s0 = -r12 / c1, s1 = r02;
+    const Mat3 Q = (frame_a * qP).toRotationMatrix();
+    const Vec3 v = c0 * Q.col(2) - s0 * Q.col(1);
+    (*rows)[0] = Q.col(0) - (s1 / c1) * v;
+    (*rows)[1] = c0 * Q.col(1) + s0 * Q.col(2);
+    (*rows)[2] = (s / c1) * v;
     return true;
+  }
+  Vec3 angles(const Quat& frame_a, const Quat& frame_b) const {
+    Vec3 t;
+    angles(frame_a, frame_b, t);
+    return t;
   }
 };
 

@@ -25,9 +25,9 @@ void updateBallAngles(Joint& j, const StepContext& ctx) {
     j.angle_count = 0;
     return;
   }
-  const Vec3 t = j.euler.angles(fa, fb);
+  Vec3 t;
+  j.angle_count = j.euler.angles(fa, fb, t, &j.angle_rows) ? 3 : 0;
   j.angles = {t[0], t[1], t[2]};
-  j.angle_count = j.euler.rates(fa, t, j.angle_rows) ? 3 : 0;
 }
 
 }  // namespace ragdoll_sim

@@ -201,7 +201,9 @@ TEST(JointAngles, EulerRoundTripAndRates) {
   const Quat fb = fa * rot(t);
   EXPECT_LT((basis.angles(fa, fb) - t).norm(), 1e-12);
   std::array<Vec3, 3> rows;
-  ASSERT_TRUE(basis.rates(fa, t, rows));
+  Vec3 t_rows;
+  ASSERT_TRUE(basis.angles(fa, fb, t_rows, &rows));
+  EXPECT_LT((t_rows - t).norm(), 1e-12);
   const Vec3 wrel(0.3, -0.2, 0.5);  // world relative angular velocity of B
   const double eps = 1e-7;
   const Quat fb2 = (Quat(Eigen::AngleAxisd(eps * wrel.norm(), wrel.normalized())) * fb).normalized();
