@@ -51,9 +51,10 @@ ContactRow makeRow(const SolverBody& A, const SolverBody& B, const Vec3& rA, con
 // The velocities of a manifold's two bodies, held in locals through its rows and written back
 // once, and only for a movable() body: static bodies are shared by all islands, and writing the
 // ground from both threads on every row was what kept two threads from scaling.
-// kLiveA = false: A is an identity body (the ground: the lower shape index, so side A), whose
-// v = w = 0 and inverse mass 0; its terms are dropped instead of multiplied by zero, which
-// gives the same numbers with half the row work (most contacts of a ragdoll are with the ground).
+// kLiveA = false: A is an identity body (static or asleep: v = w = 0, inverse mass 0); its
+// terms are dropped instead of multiplied by zero, which gives the same numbers with half the
+// row work. Most contacts of a ragdoll are with the ground, which is side A when it was created
+// first (the lower shape index); a static side B takes the general path.
 template <bool kLiveA>
 struct PairVelocity {
   Vec3 vA, wA, vB, wB;

@@ -1,8 +1,9 @@
 // Joint angles from the relative rotation of the two joint frames, and their rate Jacobians.
 //
 // Hinge: theta = signed angle about the axis a between a perpendicular u carried by frame A
-// and the same u carried by frame B; theta_dot = a . (wB - wA). (The twist angle of q_rel
-// about a, equal for a true hinge, left 3 of 8 perturbed copies of scene b at rest vs 7 of 8.)
+// and the same u carried by frame B; theta_dot = a . (wB - wA). (The cheaper twist angle of
+// q_rel about a, equal for a true hinge, was tried: in one 8-copy ensemble of scene b, 3 copies
+// came to rest by 3 s instead of 7.)
 //
 // Ball (Euler): R_rel = R(a0,t0) R(a1,t1) R(a2,t2) with orthonormal joint-frame axes. With
 // P = [a0 a1 s a2] (s = +-1 so that det P = +1), R' = P^T R_rel P = Rx(t0) Ry(t1) Rz(s t2):
