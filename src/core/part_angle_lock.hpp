@@ -40,7 +40,7 @@ struct AngleLockPart {
     Vec3 C = error(A, B);
     if (!trimToSlop(C, slop, max_correction)) return;
     const Mat3 K = A.inv_inertia + B.inv_inertia;
-    if (K.trace() > 1e-300) applyPairAngularPositionImpulse(A, B, -K.ldlt().solve(C));
+    applyPairAngularPositionImpulse(A, B, -(inverseOrZero(K) * C));
   }
 
   // max_impulse caps the accumulated impulse's norm (a breakable weld's break_torque h); true

@@ -47,8 +47,7 @@ struct PointOnLinePart {
     const Vec3 lA = p.leverA();
     const Eigen::Matrix2d K =
         mass(A, B, lA.cross(p.n1), lA.cross(p.n2), p.rB.cross(p.n1), p.rB.cross(p.n2));
-    if (!(K.determinant() > 1e-300)) return;
-    const Eigen::Vector2d l = -(K.inverse() * C);
+    const Eigen::Vector2d l = -(inverseOrZero(K) * C);
     applyPairPositionImpulse(A, B, l.x() * p.n1 + l.y() * p.n2, lA, p.rB);
   }
 
