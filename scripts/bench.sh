@@ -56,9 +56,7 @@ LOG="$BUILD/bench_stderr.log"
 
 # ---- 1. our bench
 echo "bench: building bench_ragdoll (Release, $OWN_FLAGS) in $BUILD"
-cmake -S "$ROOT" -B "$BUILD" -DRAGDOLL_SIM_CORE_ONLY=ON -DCMAKE_BUILD_TYPE=Release \
-  "-DCMAKE_CXX_FLAGS_RELEASE=$OWN_FLAGS" >/dev/null
-cmake --build "$BUILD" -j2 --target bench_ragdoll >/dev/null
+build_bench_ragdoll "$BUILD" "-DCMAKE_CXX_FLAGS_RELEASE=$OWN_FLAGS"
 
 # ---- 2. peer benches (a failed build drops that engine and is reported)
 RAW_TMP="$BENCH_OUT/results_raw.txt.partial"

@@ -25,9 +25,7 @@ if ! [[ "$COPIES" =~ ^[0-9]+$ ]] || ((COPIES < 1 || COPIES > ${#YAWS[@]})); then
 fi
 if [[ -z "${BIN:-}" ]]; then
   BIN="$WS/bench/bench_ragdoll"
-  cmake -S "$ROOT" -B "$WS/bench" -DRAGDOLL_SIM_CORE_ONLY=ON -DCMAKE_BUILD_TYPE=Release \
-    "-DCMAKE_CXX_FLAGS_RELEASE=-O3 -DNDEBUG" >/dev/null
-  cmake --build "$WS/bench" -j2 --target bench_ragdoll >/dev/null
+  build_bench_ragdoll "$WS/bench" "-DCMAKE_CXX_FLAGS_RELEASE=-O3 -DNDEBUG"  # as bench.sh
 fi
 cd "$ROOT"  # bench_ragdoll finds ../shared/peers/ragdoll15.urdf from here
 

@@ -14,9 +14,8 @@ N0="${FLOPS_N0:-1000}"
 N1="${FLOPS_N1:-1200}"
 URDF="${URDF:-$ROOT/../shared/peers/ragdoll15.urdf}"
 BUILD="$WS/flops"
-cmake -S "$ROOT" -B "$BUILD" -DRAGDOLL_SIM_CORE_ONLY=ON -DCMAKE_BUILD_TYPE=Release \
-  -DCMAKE_CXX_FLAGS="-O2 -mfpmath=387 -fno-tree-vectorize -fno-tree-slp-vectorize -DEIGEN_DONT_VECTORIZE" >/dev/null
-cmake --build "$BUILD" -j2 --target bench_ragdoll >/dev/null
+build_bench_ragdoll "$BUILD" \
+  "-DCMAKE_CXX_FLAGS=-O2 -mfpmath=387 -fno-tree-vectorize -fno-tree-slp-vectorize -DEIGEN_DONT_VECTORIZE"
 f64() {
   valgrind --tool=lackey --detailed-counts=yes "$BUILD/bench_ragdoll" a --steps "$1" --no-metrics \
     --urdf "$URDF" 2>&1 >/dev/null | awk '$2 == "F64" {gsub(",", "", $5); print $5}'
