@@ -30,15 +30,30 @@ fi
 cd "$ROOT"  # bench_ragdoll finds ../shared/peers/ragdoll15.urdf from here
 
 LINES=()
+FAILED=0
+ERR=$(mktemp)
+trap 'rm -f "$ERR"' EXIT
 for ((k = 0; k < COPIES; ++k)); do
-  line=$("$BIN" "$SCENE" --opt "${OPTS:+$OPTS,}yaw=${YAWS[k]},threads=$OWN_THREADS" 2>/dev/null)
+  # A copy that fails is reported (status and the last lines of its stderr) and left out of
+  # the summary; the script goes on with the other copies and exits 1 at the end.
+  rc=0
+  line=$("$BIN" "$SCENE" --opt "${OPTS:+$OPTS,}yaw=${YAWS[k]},threads=$OWN_THREADS" 2>"$ERR") || rc=$?
+  if ((rc != 0)); then
+    echo "yaw=${YAWS[k]} FAILED (exit $rc): $(tail -n 3 "$ERR" | tr '\n' ' ')" >&2
+    FAILED=$((FAILED + 1))
+    continue
+  fi
   LINES+=("$line")
   echo "$line" | tr ' ' '\n' | awk -F= -v y="${YAWS[k]}" '
     { v[$1] = $2 }
     END { printf "yaw=%-6s steps_per_s=%s max_anchor_err_m=%s max_ground_pen_m=%s max_limit_viol_rad=%s vmax_3s=%s nan=%s\n",
           y, v["steps_per_s"], v["max_anchor_err_m"], v["max_ground_pen_m"], v["max_limit_viol_rad"], v["vmax_3s"], v["nan"] }'
 done
-printf '%s\n' "${LINES[@]}" | awk -v scene="$SCENE" -v opts="$OPTS" '
+if ((${#LINES[@]} == 0)); then
+  echo "bench_ensemble: every copy failed" >&2
+  exit 1
+fi
+printf '%s\n' "${LINES[@]}" | awk -v scene="$SCENE" -v opts="$OPTS" -v failed="$FAILED" '
   {
     delete v
     for (i = 1; i <= NF; ++i) { split($i, kv, "="); v[kv[1]] = kv[2] }
@@ -56,6 +71,7 @@ printf '%s\n' "${LINES[@]}" | awk -v scene="$SCENE" -v opts="$OPTS" '
     # median steps/s (insertion sort: n <= 16)
     for (i = 2; i <= n; ++i) { x = sps[i]; for (j = i - 1; j >= 1 && sps[j] > x; --j) sps[j + 1] = sps[j]; sps[j + 1] = x }
     med = n % 2 ? sps[(n + 1) / 2] : 0.5 * (sps[n / 2] + sps[n / 2 + 1])
-    printf "ensemble scene=%s opts=%s copies=%d at_rest_3s=%d (vmax_3s <= 0.01) vmax_3s=%g..%g max_anchor_err_m=%g max_ground_pen_m=%g max_limit_viol_rad=%g nan_copies=%d steps_per_s_median=%.0f\n",
-           scene, opts == "" ? "-" : opts, n, rest, vlo, vhi, anc, pen, lim, nan, med
+    printf "ensemble scene=%s opts=%s copies=%d at_rest_3s=%d (vmax_3s <= 0.01) vmax_3s=%g..%g max_anchor_err_m=%g max_ground_pen_m=%g max_limit_viol_rad=%g nan_copies=%d failed_copies=%d steps_per_s_median=%.0f\n",
+           scene, opts == "" ? "-" : opts, n, rest, vlo, vhi, anc, pen, lim, nan, failed, med
   }'
+((FAILED == 0))
