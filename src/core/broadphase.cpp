@@ -1,6 +1,7 @@
 #include "broadphase.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace ragdoll_sim {
 
@@ -8,19 +9,35 @@ void Broadphase::findPairs(const std::vector<Aabb>& aabbs, const std::vector<cha
                            const std::vector<PlaneProxy>& planes, double margin,
                            std::vector<std::pair<int, int>>& pairs) {
   pairs.clear();
-  const int n = int(aabbs.size());
-  // Keep the previous order, drop stale or unbounded ids, append new ones.
-  std::vector<char>& seen = seen_;
-  seen.assign(n, 0);
-  int w = 0;
-  for (int id : order_)
-    if (id < n && !unbounded[id]) {
-      order_[w++] = id;
-      seen[id] = 1;
+  bounded_.clear();
+  for (int i = 0; i < int(aabbs.size()); ++i)
+    if (!unbounded[i]) bounded_.push_back(i);
+  if (int(bounded_.size()) >= kGridMin) grid(aabbs, pairs);
+  else sweep(aabbs, pairs);
+
+  for (const PlaneProxy& p : planes) {
+    for (int id : bounded_) {
+      const Aabb& b = aabbs[id];
+      const Vec3 c = 0.5 * (b.lo + b.hi), e = 0.5 * (b.hi - b.lo);
+      if (p.normal.dot(c) - p.normal.cwiseAbs().dot(e) <= p.offset + margin)
+        pairs.emplace_back(std::min(p.shape, id), std::max(p.shape, id));
     }
-  order_.resize(w);
-  for (int i = 0; i < n; ++i)
-    if (!unbounded[i] && !seen[i]) order_.push_back(i);
+  }
+}
+
+void Broadphase::sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs) {
+  // Keep the previous order, drop stale or unbounded ids, append new ones.
+  seen_.assign(aabbs.size(), 0);
+  for (int id : bounded_) seen_[id] = 1;  // 1: bounded, 2: bounded and already in the order
+  size_t kept = 0;
+  for (int id : order_)
+    if (id < int(seen_.size()) && seen_[id] == 1) {
+      order_[kept++] = id;
+      seen_[id] = 2;
+    }
+  order_.resize(kept);
+  for (int id : bounded_)
+    if (seen_[id] == 1) order_.push_back(id);
 
   // Sweep along the axis the box centres spread most on (a row of ragdolls along y overlaps
   // in x), switching only when another axis spreads clearly more, so that the kept order stays
@@ -38,33 +55,136 @@ void Broadphase::findPairs(const std::vector<Aabb>& aabbs, const std::vector<cha
     var.maxCoeff(&best);
     if (best != axis_ && var[best] > kSwitchRatio * var[axis_]) axis_ = best;
   }
-  const int ax = axis_;
-  for (size_t i = 1; i < order_.size(); ++i) {
+  // The sweep keys sit in a contiguous array sorted along with the ids, and the other bounds
+  // are gathered once into sweep order: the sort and the sweep stream through memory instead
+  // of reading a box through its id at every comparison.
+  const int ax = axis_, ax1 = (ax + 1) % 3, ax2 = (ax + 2) % 3;
+  const size_t m = order_.size();
+  key_.resize(m);
+  for (size_t k = 0; k < m; ++k) key_[k] = aabbs[order_[k]].lo[ax];
+  for (size_t i = 1; i < m; ++i) {
     const int id = order_[i];
-    const double key = aabbs[id].lo[ax];
+    const double key = key_[i];
     size_t j = i;
-    while (j > 0 && aabbs[order_[j - 1]].lo[ax] > key) {
+    while (j > 0 && key_[j - 1] > key) {
       order_[j] = order_[j - 1];
+      key_[j] = key_[j - 1];
       --j;
     }
     order_[j] = id;
+    key_[j] = key;
   }
-
-  for (size_t i = 0; i < order_.size(); ++i) {
-    const Aabb& a = aabbs[order_[i]];
-    for (size_t j = i + 1; j < order_.size(); ++j) {
-      const Aabb& b = aabbs[order_[j]];
-      if (b.lo[ax] > a.hi[ax]) break;
-      if (a.overlaps(b)) pairs.emplace_back(std::min(order_[i], order_[j]), std::max(order_[i], order_[j]));
+  bounds_.resize(m);
+  for (size_t k = 0; k < m; ++k) {
+    const Aabb& b = aabbs[order_[k]];
+    bounds_[k] = {b.hi[ax], b.lo[ax1], b.hi[ax1], b.lo[ax2], b.hi[ax2]};
+  }
+  for (size_t i = 0; i < m; ++i) {
+    const SweepBounds a = bounds_[i];
+    const double lo = key_[i];
+    for (size_t j = i + 1; j < m; ++j) {
+      if (key_[j] > a.hi) break;
+      const SweepBounds& b = bounds_[j];
+      if (lo <= b.hi && b.lo_u <= a.hi_u && a.lo_u <= b.hi_u && b.lo_w <= a.hi_w &&
+          a.lo_w <= b.hi_w)  // Aabb::overlaps
+        pairs.emplace_back(std::min(order_[i], order_[j]), std::max(order_[i], order_[j]));
     }
   }
+}
 
-  for (const PlaneProxy& p : planes) {
-    for (int id : order_) {
-      const Aabb& b = aabbs[id];
-      const Vec3 c = 0.5 * (b.lo + b.hi), e = 0.5 * (b.hi - b.lo);
-      if (p.normal.dot(c) - p.normal.cwiseAbs().dot(e) <= p.offset + margin)
-        pairs.emplace_back(std::min(p.shape, id), std::max(p.shape, id));
+void Broadphase::insert(int proxy, const int cell[3]) {
+  const uint64_t key = (uint64_t(cell[0] + kCellLimit) << 42) |
+                       (uint64_t(cell[1] + kCellLimit) << 21) | uint64_t(cell[2] + kCellLimit);
+  const size_t mask = table_.size() - 1;
+  size_t s = size_t((key * 0x9E3779B97F4A7C15ull) >> 32) & mask;
+  while (table_[s].head >= 0 && table_[s].key != key) s = (s + 1) & mask;
+  Slot& slot = table_[s];
+  if (slot.head < 0) {
+    slot.key = key;
+    std::copy(cell, cell + 3, slot.cell);
+    used_.push_back(int(s));
+  }
+  next_.push_back(slot.head);
+  entry_proxy_.push_back(proxy);
+  slot.head = int(next_.size()) - 1;
+}
+
+void Broadphase::grid(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs) {
+  order_.clear();  // the sweep starts afresh if the shapes drop below kGridMin
+  const auto finite = [](const Aabb& b) { return b.lo.allFinite() && b.hi.allFinite(); };
+  double side_sum = 0.0;
+  for (int i : bounded_)
+    if (finite(aabbs[i])) side_sum += (aabbs[i].hi - aabbs[i].lo).maxCoeff();
+  double cell = 2.0 * side_sum / double(bounded_.size());
+  if (!(cell > 1e-9) || !std::isfinite(cell)) cell = 1.0;
+  const double inv = 1.0 / cell, lim = double(kCellLimit);
+
+  gridded_.clear();
+  large_.clear();
+  range_.resize(aabbs.size());
+  size_t entries = 0;
+  for (int i : bounded_) {
+    const Aabb& b = aabbs[i];
+    if (!finite(b) || (b.hi - b.lo).maxCoeff() > kMaxSpan * cell) {
+      large_.push_back(i);
+      continue;
+    }
+    CellRange& r = range_[i];
+    size_t count = 1;
+    for (int a = 0; a < 3; ++a) {
+      r.lo[a] = int(std::clamp(std::floor(b.lo[a] * inv), -lim, lim - 1.0));
+      r.hi[a] = int(std::clamp(std::floor(b.hi[a] * inv), -lim, lim - 1.0));
+      count *= size_t(r.hi[a] - r.lo[a] + 1);
+    }
+    entries += count;
+    gridded_.push_back(i);
+  }
+
+  size_t size = std::max<size_t>(table_.size(), 16);
+  while (size < 2 * entries) size *= 2;
+  if (size != table_.size()) table_.assign(size, Slot{0, {0, 0, 0}, -1});
+  used_.clear();
+  next_.clear();
+  entry_proxy_.clear();
+  for (int i : gridded_) {
+    const CellRange& r = range_[i];
+    int c[3];
+    for (c[0] = r.lo[0]; c[0] <= r.hi[0]; ++c[0])
+      for (c[1] = r.lo[1]; c[1] <= r.hi[1]; ++c[1])
+        for (c[2] = r.lo[2]; c[2] <= r.hi[2]; ++c[2]) insert(i, c);
+  }
+
+  for (int s : used_) {
+    const Slot& slot = table_[s];
+    cell_ids_.clear();
+    for (int e = slot.head; e >= 0; e = next_[e]) cell_ids_.push_back(entry_proxy_[e]);
+    const size_t m = cell_ids_.size();
+    for (size_t x = 0; x < m; ++x) {
+      const int i = cell_ids_[x];
+      const CellRange& ri = range_[i];
+      for (size_t y = x + 1; y < m; ++y) {
+        const int j = cell_ids_[y];
+        const CellRange& rj = range_[j];
+        // Only in the cell of the overlap's low corner (floor is monotonic: that cell is the
+        // per-axis max of the two boxes' low cells).
+        if (std::max(ri.lo[0], rj.lo[0]) != slot.cell[0] ||
+            std::max(ri.lo[1], rj.lo[1]) != slot.cell[1] ||
+            std::max(ri.lo[2], rj.lo[2]) != slot.cell[2])
+          continue;
+        if (aabbs[i].overlaps(aabbs[j])) pairs.emplace_back(std::min(i, j), std::max(i, j));
+      }
+    }
+  }
+  for (int s : used_) table_[s].head = -1;
+
+  // Large boxes against every bounded box (each large-large pair once).
+  for (size_t k = 0; k < large_.size(); ++k) {
+    const int i = large_[k];
+    for (int j : gridded_)
+      if (aabbs[i].overlaps(aabbs[j])) pairs.emplace_back(std::min(i, j), std::max(i, j));
+    for (size_t l = k + 1; l < large_.size(); ++l) {
+      const int j = large_[l];
+      if (aabbs[i].overlaps(aabbs[j])) pairs.emplace_back(std::min(i, j), std::max(i, j));
     }
   }
 }

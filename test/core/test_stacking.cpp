@@ -1,11 +1,10 @@
 // Multi-body contact cases: sphere collisions, stacks, a pyramid, a heavy box on a light one,
-// a sleeping pile, and the broadphase's candidate pairs against the true overlaps.
+// a sleeping pile (the broadphase's pairs: test_broadphase.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "broadphase.hpp"
 #include "ragdoll_sim/world.hpp"
 #include "scene_util.hpp"
 
@@ -117,27 +116,6 @@ TEST(Sleeping, PileSleepsAndCostsNoIntegration) {
   }
   EXPECT_EQ(w.awakeBodyCount(), 0) << "pile still awake after 5 s";
   std::printf("[ sleep    ] 48-box pile asleep after %.3f s\n", t * kDt);
-}
-
-// Candidate pairs from the sweep and prune equal the true AABB overlaps (no quadratic blow-up).
-TEST(Broadphase, ThousandBodiesCandidatePairsMatchOverlaps) {
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> pos(0.0, 20.0), size(0.05, 0.4);
-  std::vector<Aabb> boxes(1000);
-  for (Aabb& b : boxes) {
-    const Vec3 c(pos(rng), pos(rng), pos(rng) * 0.25), h(size(rng), size(rng), size(rng));
-    b = {c - h, c + h};
-  }
-  std::vector<char> unbounded(boxes.size(), 0);
-  std::vector<std::pair<int, int>> pairs;
-  Broadphase bp;
-  bp.findPairs(boxes, unbounded, {}, 0.0, pairs);
-  size_t truth = 0;
-  for (size_t i = 0; i < boxes.size(); ++i)
-    for (size_t j = i + 1; j < boxes.size(); ++j) truth += boxes[i].overlaps(boxes[j]) ? 1 : 0;
-  EXPECT_EQ(pairs.size(), truth);
-  std::printf("[ broad    ] 1000 boxes: %zu candidate pairs, %zu true overlaps (of %d possible)\n",
-              pairs.size(), truth, 1000 * 999 / 2);
 }
 
 // Overlapping bodies are separated by impulses, so the correction splits by inverse mass
