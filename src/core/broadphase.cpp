@@ -5,6 +5,12 @@
 
 namespace ragdoll_sim {
 
+namespace {
+void addPair(std::vector<std::pair<int, int>>& pairs, int i, int j) {
+  pairs.emplace_back(std::min(i, j), std::max(i, j));
+}
+}  // namespace
+
 void Broadphase::findPairs(const std::vector<Aabb>& aabbs, const std::vector<char>& unbounded,
                            const std::vector<PlaneProxy>& planes, double margin,
                            std::vector<std::pair<int, int>>& pairs) {
@@ -20,7 +26,7 @@ void Broadphase::findPairs(const std::vector<Aabb>& aabbs, const std::vector<cha
       const Aabb& b = aabbs[id];
       const Vec3 c = 0.5 * (b.lo + b.hi), e = 0.5 * (b.hi - b.lo);
       if (p.normal.dot(c) - p.normal.cwiseAbs().dot(e) <= p.offset + margin)
-        pairs.emplace_back(std::min(p.shape, id), std::max(p.shape, id));
+        addPair(pairs, p.shape, id);
     }
   }
 }
@@ -87,7 +93,7 @@ void Broadphase::sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int
       const SweepBounds& b = bounds_[j];
       if (lo <= b.hi && b.lo_u <= a.hi_u && a.lo_u <= b.hi_u && b.lo_w <= a.hi_w &&
           a.lo_w <= b.hi_w)  // Aabb::overlaps
-        pairs.emplace_back(std::min(order_[i], order_[j]), std::max(order_[i], order_[j]));
+        addPair(pairs, order_[i], order_[j]);
     }
   }
 }
@@ -113,9 +119,13 @@ void Broadphase::grid(const std::vector<Aabb>& aabbs, std::vector<std::pair<int,
   order_.clear();  // the sweep starts afresh if the shapes drop below kGridMin
   const auto finite = [](const Aabb& b) { return b.lo.allFinite() && b.hi.allFinite(); };
   double side_sum = 0.0;
+  int finite_count = 0;
   for (int i : bounded_)
-    if (finite(aabbs[i])) side_sum += (aabbs[i].hi - aabbs[i].lo).maxCoeff();
-  double cell = 2.0 * side_sum / double(bounded_.size());
+    if (finite(aabbs[i])) {
+      side_sum += (aabbs[i].hi - aabbs[i].lo).maxCoeff();
+      ++finite_count;
+    }
+  double cell = finite_count > 0 ? 2.0 * side_sum / finite_count : 1.0;
   if (!(cell > 1e-9) || !std::isfinite(cell)) cell = 1.0;
   const double inv = 1.0 / cell, lim = double(kCellLimit);
 
@@ -171,7 +181,7 @@ void Broadphase::grid(const std::vector<Aabb>& aabbs, std::vector<std::pair<int,
             std::max(ri.lo[1], rj.lo[1]) != slot.cell[1] ||
             std::max(ri.lo[2], rj.lo[2]) != slot.cell[2])
           continue;
-        if (aabbs[i].overlaps(aabbs[j])) pairs.emplace_back(std::min(i, j), std::max(i, j));
+        if (aabbs[i].overlaps(aabbs[j])) addPair(pairs, i, j);
       }
     }
   }
@@ -181,10 +191,10 @@ void Broadphase::grid(const std::vector<Aabb>& aabbs, std::vector<std::pair<int,
   for (size_t k = 0; k < large_.size(); ++k) {
     const int i = large_[k];
     for (int j : gridded_)
-      if (aabbs[i].overlaps(aabbs[j])) pairs.emplace_back(std::min(i, j), std::max(i, j));
+      if (aabbs[i].overlaps(aabbs[j])) addPair(pairs, i, j);
     for (size_t l = k + 1; l < large_.size(); ++l) {
       const int j = large_[l];
-      if (aabbs[i].overlaps(aabbs[j])) pairs.emplace_back(std::min(i, j), std::max(i, j));
+      if (aabbs[i].overlaps(aabbs[j])) addPair(pairs, i, j);
     }
   }
 }
