@@ -279,8 +279,19 @@ int main(int argc, char** argv) {
     if (step > steps - window) wall_last += dt_wall;
     wall_trace += dt_wall;
     if (trace > 0 && step % trace == 0) {
-      std::fprintf(stderr, "trace step=%d awake=%d us_per_step=%.1f\n", step, world.awakeBodyCount(),
-                   1e6 * wall_trace / trace);
+      // fastest ragdoll link: COM speed and angular speed (what sleeping compares)
+      // and the mechanical energy (kinetic + potential in the scene's gravity) of the ragdolls
+      double vmax = 0.0, wmax = 0.0, pe = 0.0;
+      for (const Ragdoll& rd : ragdolls)
+        for (BodyId b : rd.bodies) {
+          const BodyState st = world.bodyState(b);
+          pe -= world.bodyDef(b).mass * wd.gravity.dot(st.com_position);
+          vmax = std::max(vmax, st.linear_velocity.norm());
+          wmax = std::max(wmax, st.angular_velocity.norm());
+        }
+      std::fprintf(stderr, "trace step=%d awake=%d us_per_step=%.1f vmax=%.4g wmax=%.4g energy_j=%.2f\n",
+                   step, world.awakeBodyCount(), 1e6 * wall_trace / trace, vmax, wmax,
+                   world.kineticEnergy() + pe);
       wall_trace = 0.0;
     }
     if (metrics || step == 2999 || step == 3000) {

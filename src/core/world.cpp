@@ -18,7 +18,9 @@
 //      are never written (movable(), solver_context.hpp);
 //   4. restitution, store impulses, write the deltas back to the bodies, clear forces;
 //   5. islands that stayed slow long enough go to sleep. Sleeping bodies are identity solver
-//      bodies: not integrated, and pairs of them are not collided or solved.
+//      bodies: not integrated, and pairs of them are not collided or solved; their shapes keep
+//      their boxes. Once a full step has found no body awake, the next steps only advance the
+//      time until something is built, woken, set or reset (World::Impl::settled).
 // Fault guard (around the pipeline): before step 1 every body whose state, force or torque is
 // not finite goes back to its last finite pose (kept per body, no allocation) with zero
 // velocity, and every velocity is clamped to the caps (a huge impulse never reaches the
@@ -98,6 +100,14 @@ struct World::Impl {
   Islands islands;
   // scratch, reused every step
   std::vector<Aabb> aabbs;
+  // Per shape: its box in aabbs is that of the current pose, kept while the body is static or
+  // asleep (such a body has zero velocity and does not move, so the box is recomputed only
+  // after the body woke, was set or was reset).
+  std::vector<char> aabb_kept;
+  // The last step found no body awake and ran the whole pipeline, and nothing has been built,
+  // woken, set or reset since: the next step would give the same contacts and move nothing,
+  // so it only advances the time (a world whose ragdolls all sleep costs almost nothing).
+  bool settled = false;
   std::vector<char> unbounded;
   std::vector<PlaneProxy> planes;
   std::vector<std::pair<int, int>> pairs;
@@ -147,9 +157,15 @@ struct World::Impl {
   }
   bool isDynamic(int b) const { return bodies[b].def.type == BodyType::Dynamic; }
   void wake(int b) {
+    settled = false;  // also for a static body: setBodyState moves it through here
     if (!isDynamic(b)) return;
     motions[b].awake = true;
     motions[b].sleep_time = 0.0;
+  }
+
+  void forgetBoxes(int b) {
+    for (int s : bodies[b].shape_ids)
+      if (s < int(aabb_kept.size())) aabb_kept[s] = 0;
   }
 
   void collide(double dt);
@@ -184,20 +200,24 @@ struct World::Impl {
 void World::Impl::collide(double dt) {
   const int n = int(shapes.size());
   aabbs.resize(n);
+  aabb_kept.resize(n, 0);
   unbounded.assign(n, 0);
   planes.clear();
   const double spec = def.speculative_distance;
   for (int s = 0; s < n; ++s) {
     const Geometry& g = shapeDef(s).geometry;
+    const BodyMotion& m = motions[shapes[s].body];
+    const bool bounded = !isUnbounded(g);
+    if (bounded && !m.awake && aabb_kept[s]) continue;
     const Transform x = shapePose(s);
-    if (isUnbounded(g)) {
+    if (!bounded) {
       unbounded[s] = 1;
       const Vec3 nw = x.q * g.normal;
       planes.push_back({s, nw, g.offset + nw.dot(x.p)});
       continue;
     }
+    aabb_kept[s] = !m.awake;
     Aabb box = computeAabb(g, x);
-    const BodyMotion& m = motions[shapes[s].body];
     const Vec3 grow = Vec3::Constant(spec) + (m.v * dt).cwiseAbs();
     box.lo -= grow;
     box.hi += grow;
@@ -349,6 +369,8 @@ void World::Impl::guardInputs() {
 }
 
 void World::Impl::resetBody(int b, BodyFaultCause cause) {
+  settled = false;
+  forgetBoxes(b);
   BodyMotion& m = motions[b];
   m.x = last_finite[b].x;
   m.q = last_finite[b].q;
@@ -616,6 +638,7 @@ void World::addShape(BodyId id, const ShapeDef& def) {
   b.shapes.push_back(def);
   b.shape_ids.push_back(int(impl_->shapes.size()));
   impl_->shapes.push_back({id.index, int(b.shapes.size() - 1)});
+  impl_->settled = false;
   // farthest shape point from the COM, for the sleep speed
   BodyMotion& m = impl_->motions[id.index];
   m.extent = std::max(m.extent, maxExtent(def.geometry, def.local, m.local_com));
@@ -660,6 +683,7 @@ void World::disableCollision(BodyId a, BodyId b) {
   impl_->checkBody(a);
   impl_->checkBody(b);
   impl_->disabled.insert(bodyPairKey(a.index, b.index));
+  impl_->settled = false;
 }
 
 void World::step(double dt) {
@@ -679,6 +703,13 @@ void World::step(double dt) {
                                       w.def.joint_damping_ratio, ctx.h);
 
   w.guardInputs();
+  const bool any_awake =
+      std::any_of(w.motions.begin(), w.motions.end(), [](const BodyMotion& m) { return m.awake; });
+  if (w.settled && !any_awake) {
+    w.finishStep();  // clears the forces, as a full step does
+    w.time += dt;
+    return;
+  }
   w.collide(dt);
   w.buildIslands();
 
@@ -719,6 +750,7 @@ void World::step(double dt) {
   w.finishStep();
   if (w.any_solver_reset) w.clearWarmStart();
   w.updateSleep(dt);
+  w.settled = !any_awake;
   w.time += dt;
 }
 
@@ -777,6 +809,7 @@ void World::applyTorque(BodyId id, const Vec3& torque) {
 void World::setBodyState(BodyId id, const Transform& pose, const Vec3& v, const Vec3& w) {
   impl_->checkBody(id);
   impl_->wake(id.index);
+  impl_->forgetBoxes(id.index);
   BodyMotion& m = impl_->motions[id.index];
   m.q = pose.q.normalized();
   m.x = pose.p + m.q * m.local_com;

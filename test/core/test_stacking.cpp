@@ -118,6 +118,76 @@ TEST(Sleeping, PileSleepsAndCostsNoIntegration) {
   std::printf("[ sleep    ] 48-box pile asleep after %.3f s\n", t * kDt);
 }
 
+// A world whose bodies all sleep steps without colliding or solving (World::Impl::settled), and
+// sleeping and static bodies keep last step's boxes (aabb_kept): what the world is told between
+// steps must still reach it.
+namespace {
+bool hasContact(const World& w, BodyId a, BodyId b) {
+  for (const ContactInfo& c : w.contacts())
+    if ((c.body_a == a && c.body_b == b) || (c.body_a == b && c.body_b == a)) return true;
+  return false;
+}
+int stepUntilAsleep(World& w) {
+  int t = 0;
+  while (w.awakeBodyCount() > 0 && t < 5000) {
+    w.step(kDt);
+    ++t;
+  }
+  return t;
+}
+}  // namespace
+
+TEST(Sleeping, SettledWorldKeepsPosesAndContacts) {
+  World w;
+  const BodyId g = addGround(w);
+  const BodyId lower = addBox(w, Vec3(0.2, 0.2, 0.2), 1.0, Vec3(0, 0, 0.2));
+  const BodyId upper = addBox(w, Vec3(0.2, 0.2, 0.2), 1.0, Vec3(0.05, 0, 0.6));
+  ASSERT_LT(stepUntilAsleep(w), 5000);
+  const Transform pose = w.bodyPose(upper);
+  const size_t contacts = w.contacts().size();
+  for (int i = 0; i < 500; ++i) w.step(kDt);
+  EXPECT_EQ(w.awakeBodyCount(), 0);
+  EXPECT_EQ((w.bodyPose(upper).p - pose.p).norm(), 0.0);
+  EXPECT_EQ(w.contacts().size(), contacts);
+  EXPECT_TRUE(hasContact(w, g, lower));
+  EXPECT_TRUE(hasContact(w, lower, upper));
+
+  // A pair disabled while both sleep loses its contact at the next step.
+  w.disableCollision(lower, upper);
+  w.step(kDt);
+  EXPECT_FALSE(hasContact(w, lower, upper));
+  EXPECT_TRUE(hasContact(w, g, lower));
+
+  // A wake-up after the quiet steps goes on from the same state: the top box, pushed
+  // sideways, slides and stops again (kinetic friction), and the world falls asleep again.
+  w.applyLinearImpulseToCenter(upper, Vec3(0.5, 0, 0));
+  EXPECT_TRUE(w.isAwake(upper));
+  w.step(kDt);
+  EXPECT_GT(w.bodyState(upper).linear_velocity.x(), 0.1);
+  EXPECT_LT(stepUntilAsleep(w), 5000);
+}
+
+TEST(Sleeping, StaticBodyMovedBesideSleepersIsCollidedAgain) {
+  World w;
+  addGround(w);
+  const BodyId box = addBox(w, Vec3(0.2, 0.2, 0.2), 1.0, Vec3(0, 0, 0.2));
+  BodyDef pd;
+  pd.type = BodyType::Static;
+  pd.pose.p = Vec3(10, 0, 0.05);
+  const BodyId plate = w.createBody(pd);
+  w.addShape(plate, {Geometry::box(Vec3(0.5, 0.5, 0.05)), Transform(), Material()});
+  ASSERT_LT(stepUntilAsleep(w), 5000);
+  for (int i = 0; i < 10; ++i) w.step(kDt);
+  EXPECT_FALSE(hasContact(w, box, plate));
+  // The plate is set right above the sleeping box (a gap of 5 mm, inside the speculative
+  // distance): once the box is awake, the pair is found at the plate's new place.
+  w.setBodyState(plate, Transform(Vec3(0, 0, 0.455), Quat::Identity()), Vec3::Zero(),
+                 Vec3::Zero());
+  w.wake(box);
+  w.step(kDt);
+  EXPECT_TRUE(hasContact(w, box, plate));
+}
+
 // Overlapping bodies are separated by impulses, so the correction splits by inverse mass
 // (the light box moves 3x as far as the 3x heavier one), momentum stays zero, and the relax
 // sweeps take the push-out velocity back: no kinetic energy is added.
