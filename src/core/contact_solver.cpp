@@ -181,9 +181,36 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
 }
 
 namespace {
+// No impulse carried on any point or on rolling: warm starting and the rows of an idle manifold
+// (idleIn) would only add zeros.
+bool noImpulse(const ContactConstraint& cc) {
+  for (int i = 0; i < cc.count; ++i) {
+    const ContactConstraintPoint& p = cc.points[i];
+    if (p.normal_impulse != 0.0 || p.tangent_impulse[0] != 0.0 || p.tangent_impulse[1] != 0.0)
+      return false;
+  }
+  return cc.rolling_impulse[0] == 0.0 && cc.rolling_impulse[1] == 0.0;
+}
+
+// A manifold is idle in a sweep when it carries no impulse and every point is apart (s > 0)
+// and would stay apart at the current velocities through the substep (vn + s / h >= 0): each
+// normal row then clamps to 0, so friction's limit is 0 too, and the sweep changes nothing.
+// Most manifolds of a pile are such speculative ones (scene c: 62 % of the constraint solves,
+// b: 25 %), and this test costs one row velocity per point instead of three rows and stores.
+template <bool kLiveA>
+bool idleIn(const ContactConstraint& cc, const PairVelocity<kLiveA>& u, double inv_h) {
+  for (int i = 0; i < cc.count; ++i) {
+    const ContactConstraintPoint& p = cc.points[i];
+    if (!(p.separation > 0.0) || u.rowVelocity(p.normal_row, cc.normal) + p.separation * inv_h < 0.0)
+      return false;
+  }
+  return noImpulse(cc);
+}
+
 template <bool kLiveA>
 void warmStartConstraint(ContactConstraint& cc, SolverBody& A, SolverBody& B) {
   updateSeparations(A, B, cc);
+  if (noImpulse(cc)) return;
   PairVelocity<kLiveA> u(A, B);
   for (int i = 0; i < cc.count; ++i) {
     const ContactConstraintPoint& p = cc.points[i];
@@ -202,6 +229,7 @@ void solveConstraint(ContactConstraint& cc, SolverBody& A, SolverBody& B, const 
   const Softness& soft = ctx.contact_softness;
   if (positions_moved) updateSeparations(A, B, cc);
   PairVelocity<kLiveA> u(A, B);
+  if (idleIn(cc, u, ctx.inv_h)) return;
   for (int i = 0; i < cc.count; ++i) {
     ContactConstraintPoint& p = cc.points[i];
     const double s = p.separation;
