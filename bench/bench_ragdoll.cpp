@@ -282,16 +282,19 @@ int main(int argc, char** argv) {
       // fastest ragdoll link: COM speed and angular speed (what sleeping compares)
       // and the mechanical energy (kinetic + potential in the scene's gravity) of the ragdolls
       double vmax = 0.0, wmax = 0.0, pe = 0.0;
-      for (const Ragdoll& rd : ragdolls)
-        for (BodyId b : rd.bodies) {
+      std::string vlink = "-", wlink = "-";  // which ragdoll and link: ragdoll#link
+      for (size_t r = 0; r < ragdolls.size(); ++r)
+        for (size_t i = 0; i < ragdolls[r].bodies.size(); ++i) {
+          const BodyId b = ragdolls[r].bodies[i];
           const BodyState st = world.bodyState(b);
           pe -= world.bodyDef(b).mass * wd.gravity.dot(st.com_position);
-          vmax = std::max(vmax, st.linear_velocity.norm());
-          wmax = std::max(wmax, st.angular_velocity.norm());
+          const std::string name = std::to_string(r) + "#" + def.links[i].name;
+          if (st.linear_velocity.norm() > vmax) vmax = st.linear_velocity.norm(), vlink = name;
+          if (st.angular_velocity.norm() > wmax) wmax = st.angular_velocity.norm(), wlink = name;
         }
-      std::fprintf(stderr, "trace step=%d awake=%d us_per_step=%.1f vmax=%.4g wmax=%.4g energy_j=%.2f\n",
-                   step, world.awakeBodyCount(), 1e6 * wall_trace / trace, vmax, wmax,
-                   world.kineticEnergy() + pe);
+      std::fprintf(stderr, "trace step=%d awake=%d us_per_step=%.1f vmax=%.4g (%s) wmax=%.4g (%s) energy_j=%.2f\n",
+                   step, world.awakeBodyCount(), 1e6 * wall_trace / trace, vmax, vlink.c_str(), wmax,
+                   wlink.c_str(), world.kineticEnergy() + pe);
       wall_trace = 0.0;
     }
     if (metrics || step == 2999 || step == 3000) {

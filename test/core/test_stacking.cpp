@@ -102,6 +102,18 @@ TEST(Stacking, HeavyBoxOnLightBoxDoesNotSink) {
   std::printf("[ ratio    ] 100 kg on 1 kg: max penetration %.4f m\n", sink);
 }
 
+namespace {
+// Steps until no body is awake, at most 5000 steps; returns the steps taken.
+int stepUntilAsleep(World& w) {
+  int t = 0;
+  while (w.awakeBodyCount() > 0 && t < 5000) {
+    w.step(kDt);
+    ++t;
+  }
+  return t;
+}
+}  // namespace
+
 TEST(Sleeping, PileSleepsAndCostsNoIntegration) {
   World w;
   addGround(w);
@@ -109,11 +121,7 @@ TEST(Sleeping, PileSleepsAndCostsNoIntegration) {
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j)
       for (int k = 0; k < 3; ++k) addBox(w, half, 1.0, Vec3(i * 0.45, j * 0.45, 0.2 + 0.45 * k));
-  int t = 0;
-  while (w.awakeBodyCount() > 0 && t < 5000) {
-    w.step(kDt);
-    ++t;
-  }
+  const int t = stepUntilAsleep(w);
   EXPECT_EQ(w.awakeBodyCount(), 0) << "pile still awake after 5 s";
   std::printf("[ sleep    ] 48-box pile asleep after %.3f s\n", t * kDt);
 }
@@ -126,14 +134,6 @@ bool hasContact(const World& w, BodyId a, BodyId b) {
   for (const ContactInfo& c : w.contacts())
     if ((c.body_a == a && c.body_b == b) || (c.body_a == b && c.body_b == a)) return true;
   return false;
-}
-int stepUntilAsleep(World& w) {
-  int t = 0;
-  while (w.awakeBodyCount() > 0 && t < 5000) {
-    w.step(kDt);
-    ++t;
-  }
-  return t;
 }
 }  // namespace
 
