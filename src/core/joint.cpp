@@ -27,6 +27,31 @@ void advanceAngles(Joint& j, const SolverBody& A, const SolverBody& B, const Ste
   for (int i = 0; i < j.angle_count; ++i) j.angles[i] += ctx.h * j.angle_rows[i].dot(dw);
 }
 
+// After the first substep of a step, a joint whose limits are all open (no impulse carried) and
+// at least kOpenMargin away along the advanced angles, and which stays so at its current rate
+// over the substep, keeps the advanced angles and last substep's rows instead of recomputing
+// them: its limit rows take the speculative early exit (C > 0, nothing accumulated, C + h rate
+// >= 0) with either, so they apply nothing. Motors and swing-twist rows read the angles and
+// rows themselves and always recompute. The first substep recomputes: the projection of the
+// previous step moved the bodies without advancing the angles.
+constexpr double kOpenMargin = 0.05;  // rad, >> the first-order error of the advanced angles
+
+bool limitsOpen(const Joint& j, const SolverBody& A, const SolverBody& B, double h) {
+  if (j.angle_count == 0 || !j.limits_enabled || j.swing_twist_limits) return false;
+  for (const JointMotor& m : j.motors)
+    if (m.enabled || m.damping > 0.0) return false;
+  const Vec3 dw = B.w - A.w;
+  for (int i = 0; i < j.angle_count; ++i) {
+    const AngleLimitPart& l = j.limits[i];
+    if (l.lower_impulse != 0.0 || l.upper_impulse != 0.0) return false;
+    const double travel = h * std::abs(j.angle_rows[i].dot(dw));
+    if (j.angles[i] - j.lower[i] < kOpenMargin + travel ||
+        j.upper[i] - j.angles[i] < kOpenMargin + travel)
+      return false;
+  }
+  return true;
+}
+
 void warmStartAnchor(Joint& j, SolverBody& A, SolverBody& B, const StepContext& ctx) {
   const double k = j.spring.stiffness;
   j.point.updateMass(A, B, k > 0.0 ? PointPart::springGamma(k, j.spring.damping, ctx.h) : 0.0);
@@ -55,11 +80,11 @@ void prepareJoint(Joint& j, const StepContext& ctx) {
   }
 }
 
-void warmStartJoint(Joint& j, const StepContext& ctx) {
+void warmStartJoint(Joint& j, const StepContext& ctx, bool first_substep) {
   auto& s = *ctx.bodies;
   SolverBody &A = s[j.a], &B = s[j.b];
   if (j.type == JointType::Prismatic) return warmStartPrismaticJoint(j, A, B);
-  updateAngles(j, ctx);
+  if (first_substep || !limitsOpen(j, A, B, ctx.h)) updateAngles(j, ctx);
   for (int i = 0; i < j.angle_count; ++i) {
     j.motor_parts[i].warmStart(A, B, j.angle_rows[i]);
     if (j.limits_enabled) j.limits[i].warmStart(A, B, j.angle_rows[i]);

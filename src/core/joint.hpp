@@ -80,7 +80,9 @@ void prepareJoint(Joint& j, const StepContext& ctx);
 // Type-specific: fill angle_count / angles / angle_rows for the current poses.
 void updateBallAngles(Joint& j, const StepContext& ctx);
 void updateHingeAngles(Joint& j, const StepContext& ctx);
-void warmStartJoint(Joint& j, const StepContext& ctx);
+// first_substep: the angles and rows are recomputed exactly; later substeps keep the advanced
+// ones for joints whose limits stay open (joint.cpp, limitsOpen).
+void warmStartJoint(Joint& j, const StepContext& ctx, bool first_substep);
 void solveJoint(Joint& j, const StepContext& ctx, bool use_bias);
 // After the position update of a substep, before the relax sweeps: angles advance by h rate.
 void advanceJoint(Joint& j, const StepContext& ctx);

@@ -508,7 +508,7 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int 
   for (int sub = 0; sub < substeps; ++sub) {
     integrateVelocities(ctx.h, r.body_begin, r.body_end);
     for (int k = r.joint_begin; k < r.joint_end; ++k)
-      if (!js[k]->broken) warmStartJoint(*js[k], ctx);
+      if (!js[k]->broken) warmStartJoint(*js[k], ctx, sub == 0);
     contact_solver.warmStart(ctx, r.contact_begin, r.contact_end);
     for (int k = r.joint_begin; k < r.joint_end; ++k)
       if (!js[k]->broken) solveJoint(*js[k], ctx, true);
