@@ -32,6 +32,13 @@ struct AngleLimitPart {
   // k = j^T (IA^-1 + IB^-1) j, computed with the row.
   void solve(SolverBody& A, SolverBody& B, const Vec3& j, double k, double theta, double lower,
              double upper, const StepContext& ctx, bool use_bias) {
+    // Both rows open with nothing accumulated: each would take solveInequalityRow's speculative
+    // exit (the upper row's rate is exactly -rate), so one rate decides for the two.
+    if (lower_impulse == 0.0 && upper_impulse == 0.0) {
+      const double travel = ctx.h * j.dot(B.w - A.w);
+      const double cl = theta - lower, cu = upper - theta;
+      if (cl > 0.0 && cu > 0.0 && cl + travel >= 0.0 && cu - travel >= 0.0) return;
+    }
     const AngularRow row(j, k);
     solveInequalityRow(A, B, row, theta - lower, lower_impulse, ctx, use_bias);
     solveInequalityRow(A, B, row.negated(), upper - theta, upper_impulse, ctx, use_bias);
