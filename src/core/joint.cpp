@@ -67,7 +67,6 @@ void solveAnchor(Joint& j, SolverBody& A, SolverBody& B, const StepContext& ctx,
   }
   const double max_impulse = j.spring.break_force * ctx.h;
   if (j.point.solve(A, B, ctx.joint_softness, use_bias, max_impulse)) j.overloaded = true;
-  j.force = j.point.impulse.norm() * ctx.inv_h;
 }
 }  // namespace
 
@@ -119,6 +118,16 @@ void solveJoint(Joint& j, const StepContext& ctx, bool use_bias) {
     j.torque = j.angle_lock.impulse.norm() * ctx.inv_h;
   }
   solveAnchor(j, A, B, ctx, use_bias);
+}
+
+bool breaksAfterSubstep(Joint& j, const StepContext& ctx) {
+  if (j.broken) return false;
+  // A rigid anchor's force is its impulse accumulated over the substep (a spring's and a
+  // prismatic joint's are set by their solve).
+  if (j.type != JointType::Prismatic && !(j.spring.stiffness > 0.0))
+    j.force = j.point.impulse.norm() * ctx.inv_h;
+  return j.overloaded || j.force > j.spring.break_force ||
+         j.torque >= (1.0 - 1e-9) * j.spring.break_torque;
 }
 
 // After the position update: the relax sweeps see the moved anchors and axes.

@@ -84,6 +84,9 @@ void updateHingeAngles(Joint& j, const StepContext& ctx);
 // ones for joints whose limits stay open (joint.cpp, limitsOpen).
 void warmStartJoint(Joint& j, const StepContext& ctx, bool first_substep);
 void solveJoint(Joint& j, const StepContext& ctx, bool use_bias);
+// After a substep's last sweep: sets a rigid anchor's force (N, from its accumulated impulse)
+// and says whether the joint breaks (break force or torque passed, or the anchor capped).
+bool breaksAfterSubstep(Joint& j, const StepContext& ctx);
 // After the position update of a substep, before the relax sweeps: angles advance by h rate.
 void advanceJoint(Joint& j, const StepContext& ctx);
 // Position projection after the substeps (the error beyond the slops, no velocity added):

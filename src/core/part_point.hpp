@@ -124,9 +124,12 @@ struct PointPart {
       impulse_scale = soft.impulse_scale;
     }
     Vec3 next = impulse - mass_scale * (k_inv * (cdot + bias)) - impulse_scale * impulse;
-    const double n = next.norm();
-    const bool saturated = n > max_impulse;
-    if (saturated) next *= max_impulse / n;
+    bool saturated = false;
+    if (max_impulse < std::numeric_limits<double>::infinity()) {  // unbreakable: no square root
+      const double n = next.norm();
+      saturated = n > max_impulse;
+      if (saturated) next *= max_impulse / n;
+    }
     applyPairImpulse(A, B, next - impulse, rA, rB);
     impulse = next;
     return saturated;

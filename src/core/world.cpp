@@ -522,12 +522,8 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int 
           if (!js[k]->broken) solveJoint(*js[k], ctx, false);
       contact_solver.solve(ctx, false, r.contact_begin, r.contact_end, it == 0);
     }
-    for (int k = r.joint_begin; k < r.joint_end; ++k) {
-      Joint& j = *js[k];
-      if (!j.broken && (j.overloaded || j.force > j.spring.break_force ||
-                        j.torque >= (1.0 - 1e-9) * j.spring.break_torque))
-        j.broken = true;
-    }
+    for (int k = r.joint_begin; k < r.joint_end; ++k)
+      if (breaksAfterSubstep(*js[k], ctx)) js[k]->broken = true;
   }
   for (int it = 0; it < def.position_iterations; ++it) {
     contact_solver.project(ctx, r.contact_begin, r.contact_end);
