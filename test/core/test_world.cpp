@@ -158,34 +158,47 @@ TEST(World, HingeLimitHolds) {
   EXPECT_NEAR(w.hingeAngle(j), 0.4, 0.01);
 }
 
-TEST(World, BallJointEulerLimitsHold) {
+namespace {
+// An arm (1 kg, COM 0.3 m out) on a static anchor through a ball joint with Euler limits
+// (y-x-z, as a URDF chain), started spinning at `spin`; steps it and returns the worst excess
+// of an angle over its range.
+struct LimitedArm {
   World w;
-  BodyDef anchor_def;
-  anchor_def.type = BodyType::Static;
-  const BodyId anchor = w.createBody(anchor_def);
-  BodyDef arm;
-  arm.mass = 1.0;
-  arm.com = Vec3(0.3, 0.0, 0.0);
-  arm.inertia = Mat3::Identity() * 0.01;
-  arm.angular_velocity = Vec3(3.0, -2.0, 4.0);
-  const BodyId b = w.createBody(arm);
   BallJointDef bj;
-  bj.body_a = anchor;
-  bj.body_b = b;
-  bj.axes = {Vec3::UnitY(), Vec3::UnitX(), Vec3::UnitZ()};
-  bj.enable_limits = true;
-  bj.lower = {-0.5, -0.3, -0.4};
-  bj.upper = {0.6, 0.3, 0.2};
-  const JointId j = w.createBallJoint(bj);
-  double worst = 0.0;
-  for (int i = 0; i < 3000; ++i) {
-    w.step(kDt);
-    const auto t = w.ballAngles(j);
-    for (int k = 0; k < 3; ++k)
-      worst = std::max({worst, bj.lower[k] - t[k], t[k] - bj.upper[k]});
+  JointId joint;
+  LimitedArm(const WorldDef& wd, const Vec3& spin) : w(wd) {
+    BodyDef anchor_def;
+    anchor_def.type = BodyType::Static;
+    BodyDef arm;
+    arm.mass = 1.0;
+    arm.com = Vec3(0.3, 0.0, 0.0);
+    arm.inertia = Mat3::Identity() * 0.01;
+    arm.angular_velocity = spin;
+    bj.body_a = w.createBody(anchor_def);
+    bj.body_b = w.createBody(arm);
+    bj.axes = {Vec3::UnitY(), Vec3::UnitX(), Vec3::UnitZ()};
+    bj.enable_limits = true;
+    bj.lower = {-0.5, -0.3, -0.4};
+    bj.upper = {0.6, 0.3, 0.2};
+    joint = w.createBallJoint(bj);
   }
-  EXPECT_LT(worst, 0.02);
-  EXPECT_LT(w.jointAnchorError(j).norm(), 1e-4);
+  double stepWorstExcess(int steps) {
+    double worst = 0.0;
+    for (int i = 0; i < steps; ++i) {
+      w.step(kDt);
+      const auto t = w.ballAngles(joint);
+      for (int k = 0; k < 3; ++k)
+        worst = std::max({worst, bj.lower[k] - t[k], t[k] - bj.upper[k]});
+    }
+    return worst;
+  }
+};
+}  // namespace
+
+TEST(World, BallJointEulerLimitsHold) {
+  LimitedArm arm(WorldDef(), Vec3(3.0, -2.0, 4.0));
+  EXPECT_LT(arm.stepWorstExcess(3000), 0.02);
+  EXPECT_LT(arm.w.jointAnchorError(arm.joint).norm(), 1e-4);
 }
 
 // Spun fast, the arm crosses most of a range within one step (up to 0.2 rad per 1 ms step):
@@ -195,39 +208,16 @@ TEST(World, BallJointEulerLimitsHold) {
 // that a limit whose two rows are skipped together (part_angle_limit.hpp) is not skipped when
 // the arm would cross it within the substep.
 TEST(World, BallJointEulerLimitsHoldWhenSpunFast) {
+  WorldDef wd;
+  wd.enable_sleep = false;
   // Each spin and its reverse: every axis runs into its lower and its upper limit first.
   for (const Vec3& spin : {Vec3(40.0, -30.0, 50.0), Vec3(-120.0, 80.0, 100.0),
                            Vec3(0.0, 150.0, -60.0), Vec3(-40.0, 30.0, -50.0),
                            Vec3(120.0, -80.0, -100.0), Vec3(0.0, -150.0, 60.0)}) {
-    WorldDef wd;
-    wd.enable_sleep = false;
-    World w(wd);
-    BodyDef anchor_def;
-    anchor_def.type = BodyType::Static;
-    const BodyId anchor = w.createBody(anchor_def);
-    BodyDef arm;
-    arm.mass = 1.0;
-    arm.com = Vec3(0.3, 0.0, 0.0);
-    arm.inertia = Mat3::Identity() * 0.01;
-    arm.angular_velocity = spin;
-    const BodyId b = w.createBody(arm);
-    BallJointDef bj;
-    bj.body_a = anchor;
-    bj.body_b = b;
-    bj.axes = {Vec3::UnitY(), Vec3::UnitX(), Vec3::UnitZ()};
-    bj.enable_limits = true;
-    bj.lower = {-0.5, -0.3, -0.4};
-    bj.upper = {0.6, 0.3, 0.2};
-    const JointId j = w.createBallJoint(bj);
-    double worst = 0.0;
-    for (int i = 0; i < 1000; ++i) {
-      w.step(kDt);
-      const auto t = w.ballAngles(j);
-      for (int k = 0; k < 3; ++k)
-        worst = std::max({worst, bj.lower[k] - t[k], t[k] - bj.upper[k]});
-    }
+    LimitedArm arm(wd, spin);
+    const double worst = arm.stepWorstExcess(1000);
     EXPECT_LT(worst, 2e-3) << "spin " << spin.transpose();  // the speculative rows stop it
-    EXPECT_LT(w.jointAnchorError(j).norm(), 1e-3) << "spin " << spin.transpose();
+    EXPECT_LT(arm.w.jointAnchorError(arm.joint).norm(), 1e-3) << "spin " << spin.transpose();
     std::printf("[ limits   ] spin (%g, %g, %g) rad/s: worst excess %.4f rad\n", spin.x(),
                 spin.y(), spin.z(), worst);
   }
