@@ -37,9 +37,8 @@ void advanceAngles(Joint& j, const SolverBody& A, const SolverBody& B, const Ste
 constexpr double kOpenMargin = 0.05;  // rad, >> the first-order error of the advanced angles
 
 bool limitsOpen(const Joint& j, const SolverBody& A, const SolverBody& B, double h) {
-  if (j.angle_count == 0 || !j.limits_enabled || j.swing_twist_limits) return false;
-  for (const JointMotor& m : j.motors)
-    if (m.enabled || m.damping > 0.0) return false;
+  if (j.angle_count == 0 || !j.limits_enabled || j.swing_twist_limits || j.motorsActive())
+    return false;
   const Vec3 dw = B.w - A.w;
   for (int i = 0; i < j.angle_count; ++i) {
     const AngleLimitPart& l = j.limits[i];

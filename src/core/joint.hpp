@@ -67,11 +67,12 @@ struct Joint {
   std::array<Vec3, 3> angle_rows;
   std::array<double, 3> angle_k{};  // row^T (IA^-1 + IB^-1) row
 
-  bool angleRowsNeeded() const {
-    bool motor = false;
-    for (const JointMotor& m : motors) motor |= m.enabled || m.damping > 0.0;
-    return limits_enabled || motor;
+  bool motorsActive() const {  // a drive or viscous damping on some axis
+    for (const JointMotor& m : motors)
+      if (m.enabled || m.damping > 0.0) return true;
+    return false;
   }
+  bool angleRowsNeeded() const { return limits_enabled || motorsActive(); }
   Quat frameRotationA(const Quat& qa) const { return qa * frame_a.q; }
   Quat frameRotationB(const Quat& qb) const { return qb * frame_b.q; }
 };
