@@ -253,9 +253,12 @@ void solveConstraint(ContactConstraint& cc, SolverBody& A, SolverBody& B, const 
   for (int i = 0; i < cc.count; ++i) {
     ContactConstraintPoint& p = cc.points[i];
     const double old0 = p.tangent_impulse[0], old1 = p.tangent_impulse[1];
+    const double limit = cc.friction * p.normal_impulse;
+    // No normal impulse (a speculative point) and no friction carried: the cone is a point and
+    // the friction impulse stays zero.
+    if (limit == 0.0 && old0 == 0.0 && old1 == 0.0) continue;
     double t0 = old0 - p.tangent_row[0].mass * u.rowVelocity(p.tangent_row[0], cc.tangent[0]);
     double t1 = old1 - p.tangent_row[1].mass * u.rowVelocity(p.tangent_row[1], cc.tangent[1]);
-    const double limit = cc.friction * p.normal_impulse;
     const double mag = std::sqrt(t0 * t0 + t1 * t1);
     if (mag > limit) {
       const double scale = mag > 0.0 ? limit / mag : 0.0;
