@@ -208,8 +208,9 @@ bool idleIn(const ContactConstraint& cc, const PairVelocity<kLiveA>& u, double i
 }
 
 template <bool kLiveA>
-void warmStartConstraint(ContactConstraint& cc, SolverBody& A, SolverBody& B) {
-  updateSeparations(A, B, cc);
+void warmStartConstraint(ContactConstraint& cc, SolverBody& A, SolverBody& B,
+                         bool positions_moved) {
+  if (positions_moved) updateSeparations(A, B, cc);
   if (noImpulse(cc)) return;
   PairVelocity<kLiveA> u(A, B);
   for (int i = 0; i < cc.count; ++i) {
@@ -286,13 +287,13 @@ void solveConstraint(ContactConstraint& cc, SolverBody& A, SolverBody& B, const 
 }
 }  // namespace
 
-void ContactSolver::warmStart(const StepContext& ctx, int begin, int end) {
+void ContactSolver::warmStart(const StepContext& ctx, int begin, int end, bool positions_moved) {
   auto& bodies = *ctx.bodies;
   for (int k = begin; k < end; ++k) {
     ContactConstraint& cc = constraints_[k];
     SolverBody &A = bodies[cc.a], &B = bodies[cc.b];
-    if (movable(A)) warmStartConstraint<true>(cc, A, B);
-    else warmStartConstraint<false>(cc, A, B);
+    if (movable(A)) warmStartConstraint<true>(cc, A, B, positions_moved);
+    else warmStartConstraint<false>(cc, A, B, positions_moved);
   }
 }
 

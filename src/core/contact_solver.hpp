@@ -53,7 +53,9 @@ class ContactSolver {
   // when there are at least parallel_min contacts).
   void prepare(const std::vector<Contact>& contacts, const StepContext& ctx, int threads,
                int parallel_min);
-  void warmStart(const StepContext& ctx, int begin, int end);
+  // positions_moved: as for solve; false when a sweep already recomputed the separations at
+  // the current deltas (the first relax sweep after the last position update).
+  void warmStart(const StepContext& ctx, int begin, int end, bool positions_moved);
   // positions_moved: the deltas changed since the last warm start or sweep, so the
   // separations are recomputed (they stay fixed through the sweeps of one position state).
   void solve(const StepContext& ctx, bool use_bias, int begin, int end, bool positions_moved);

@@ -51,9 +51,11 @@ bool limitsOpen(const Joint& j, const SolverBody& A, const SolverBody& B, double
   return true;
 }
 
-void warmStartAnchor(Joint& j, SolverBody& A, SolverBody& B, const StepContext& ctx) {
+void warmStartAnchor(Joint& j, SolverBody& A, SolverBody& B, const StepContext& ctx,
+                     bool anchors_current) {
   const double k = j.spring.stiffness;
-  j.point.updateMass(A, B, k > 0.0 ? PointPart::springGamma(k, j.spring.damping, ctx.h) : 0.0);
+  j.point.updateMass(A, B, k > 0.0 ? PointPart::springGamma(k, j.spring.damping, ctx.h) : 0.0,
+                     anchors_current);
   if (k > 0.0) return;
   j.point.warmStart(A, B);
 }
@@ -83,17 +85,20 @@ void warmStartJoint(Joint& j, const StepContext& ctx, bool first_substep) {
   SolverBody &A = s[j.a], &B = s[j.b];
   if (j.type == JointType::Prismatic) return warmStartPrismaticJoint(j, A, B);
   if (first_substep || !limitsOpen(j, A, B, ctx.h)) updateAngles(j, ctx);
+  // After the first substep the anchors and the hinge axis are the ones advanceJoint refreshed
+  // after the last position update: only velocities have changed since.
+  const bool current = !first_substep;
   for (int i = 0; i < j.angle_count; ++i) {
     j.motor_parts[i].warmStart(A, B, j.angle_rows[i]);
     if (j.limits_enabled) j.limits[i].warmStart(A, B, j.angle_rows[i]);
   }
   if (j.type == JointType::Hinge) {
-    j.hinge_axis.updateMass(A, B);
+    j.hinge_axis.updateMass(A, B, current);
     j.hinge_axis.warmStart(A, B);
   }
   if (j.swing_twist_limits) j.swing_twist.warmStart(A, B);
   if (j.type == JointType::Fixed) j.angle_lock.warmStart(A, B);
-  warmStartAnchor(j, A, B, ctx);
+  warmStartAnchor(j, A, B, ctx, current);
 }
 
 void solveJoint(Joint& j, const StepContext& ctx, bool use_bias) {

@@ -45,9 +45,9 @@ struct HingeAxisPart {
 
   void refresh(const SolverBody& A, const SolverBody& B) { at(A, B, u1, u2, C); }
 
-  // Refreshes U and C and forms K^-1 there.
-  void updateMass(const SolverBody& A, const SolverBody& B) {
-    refresh(A, B);
+  // Forms K^-1 at U, refreshed first (with C) unless current (the deltas have not moved since).
+  void updateMass(const SolverBody& A, const SolverBody& B, bool axes_current) {
+    if (!axes_current) refresh(A, B);
     k_inv = inverseOrZero(mass(A, B, u1, u2));
   }
 

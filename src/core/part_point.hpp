@@ -76,9 +76,10 @@ struct PointPart {
   // C at the refreshed anchors.
   Vec3 error(const SolverBody& A, const SolverBody& B) const { return errorAt(A, B, rA, rB); }
 
-  // Refreshes the anchors and forms K^-1 there; gamma > 0 softens K for a spring.
-  void updateMass(const SolverBody& A, const SolverBody& B, double gamma = 0.0) {
-    refresh(A, B);
+  // Forms K^-1 at the anchors, refreshed first unless they are current (the deltas have not
+  // moved since the last refresh); gamma > 0 softens K for a spring.
+  void updateMass(const SolverBody& A, const SolverBody& B, double gamma, bool anchors_current) {
+    if (!anchors_current) refresh(A, B);
     k_inv = inverseOrZero(pointMass(A, B, rA, rB, gamma));
   }
 

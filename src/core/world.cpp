@@ -509,7 +509,10 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int 
     integrateVelocities(ctx.h, r.body_begin, r.body_end);
     for (int k = r.joint_begin; k < r.joint_end; ++k)
       if (!js[k]->broken) warmStartJoint(*js[k], ctx, sub == 0);
-    contact_solver.warmStart(ctx, r.contact_begin, r.contact_end);
+    // From the second substep on, the first relax sweep of the last one (if any) already set
+    // the separations at the current deltas.
+    contact_solver.warmStart(ctx, r.contact_begin, r.contact_end,
+                             sub == 0 || def.contact_relax_iterations < 1);
     for (int k = r.joint_begin; k < r.joint_end; ++k)
       if (!js[k]->broken) solveJoint(*js[k], ctx, true);
     contact_solver.solve(ctx, true, r.contact_begin, r.contact_end, false);

@@ -239,11 +239,14 @@ TEST(Penetration, PushOutAddsNoEnergy) {
 // a point still apart (s > 0) allows closing the gap within the substep but no more. Checks the
 // solver's idle test (a manifold apart and not closing is skipped): a sphere 5 mm above the
 // ground (plus a fraction, so that no substep ends exactly on it), falling in zero gravity at
-// 0.23..1.3 m/s, never sinks more than a micrometre.
+// 0.23..1.3 m/s, never sinks more than a micrometre. Also without relax sweeps, where the
+// warm start of each substep is the only place the separations follow the position updates.
 TEST(Speculative, SlowApproachStopsAtTheSurface) {
+  for (int relax : {4, 0})
   for (double speed : {0.23, 0.37, 0.71, 1.3}) {
     WorldDef def;
     def.gravity = Vec3::Zero();
+    def.contact_relax_iterations = relax;
     World w(def);
     addGround(w);
     const double r = 0.1;
@@ -255,7 +258,10 @@ TEST(Speculative, SlowApproachStopsAtTheSurface) {
       w.step(kDt);
       deepest = std::max(deepest, r - w.bodyPose(ball).p.z());
     }
-    EXPECT_LT(deepest, 1e-6) << "approach at " << speed << " m/s";
-    EXPECT_NEAR(w.bodyState(ball).linear_velocity.z(), 0.0, 1e-6) << speed;
+    // Without relax sweeps the biased row's soft push leaves a few micrometres (2.9 and 5.9);
+    // separations left at their step-start values let it sink 0.15-0.5 mm.
+    EXPECT_LT(deepest, relax > 0 ? 1e-6 : 1e-5)
+        << "approach at " << speed << " m/s, relax " << relax;
+    EXPECT_NEAR(w.bodyState(ball).linear_velocity.z(), 0.0, 1e-6) << speed << ", relax " << relax;
   }
 }
