@@ -5,8 +5,8 @@
 //   K    = U^T (IA^-1 + IB^-1) U                                   2x2
 //   lambda = -mass_scale K^-1 (Cdot + bias_rate C) - impulse_scale lambda_acc,
 //   angular impulse U lambda on B, minus on A. K^-1 is formed once per substep (updateMass).
-// U and C change only with the positions: refresh() forms them at the warm start and after the
-// position update, and every sweep in between reads them.
+// U and C change only with the positions: refresh() forms them at the first substep's warm
+// start and after each position update, and every sweep in between reads them.
 // Position projection (after the substeps): C beyond the slop (at most max_correction) is
 // turned back by the angular position impulse U lambda, lambda = -K^-1 C'; no velocity added.
 #pragma once

@@ -12,8 +12,9 @@
 // rotated by the delta rotation and the centres moved by the delta positions. K^-1 is formed
 // once per substep (at the warm start) from the current anchors: a stale K from the step start
 // over-corrects once a body spins a good part of a radian per step, and Gauss-Seidel diverges.
-// The rotated anchors rA, rB only change when the positions do, so they are computed twice per
-// substep (refresh: at the warm start and after the position update) and read by every sweep.
+// The rotated anchors rA, rB only change when the positions do, so they are computed once per
+// position state (refresh: at the first substep's warm start and after each position update)
+// and read by every sweep.
 // -skew(r) I skew(r) = S^T I S (S = skew(r), S^T = -S) is formed entry by entry:
 // (S^T I S)_ij = c_i . I c_j with c_j = r x e_j, which has a zero; symmetric, ~30 products
 // instead of the ~110 of two 3x3 products (perf: the K of the point part was ~6 % of a step).
