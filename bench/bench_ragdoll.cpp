@@ -282,19 +282,22 @@ int main(int argc, char** argv) {
       // fastest ragdoll link: COM speed and angular speed (what sleeping compares)
       // and the mechanical energy (kinetic + potential in the scene's gravity) of the ragdolls
       double vmax = 0.0, wmax = 0.0, pe = 0.0;
-      std::string vlink = "-", wlink = "-";  // which ragdoll and link: ragdoll#link
+      size_t vr = 0, vi = 0, wr = 0, wi = 0;  // ragdoll and link of each maximum
       for (size_t r = 0; r < ragdolls.size(); ++r)
         for (size_t i = 0; i < ragdolls[r].bodies.size(); ++i) {
           const BodyId b = ragdolls[r].bodies[i];
           const BodyState st = world.bodyState(b);
           pe -= world.bodyDef(b).mass * wd.gravity.dot(st.com_position);
-          const std::string name = std::to_string(r) + "#" + def.links[i].name;
-          if (st.linear_velocity.norm() > vmax) vmax = st.linear_velocity.norm(), vlink = name;
-          if (st.angular_velocity.norm() > wmax) wmax = st.angular_velocity.norm(), wlink = name;
+          const double v = st.linear_velocity.norm(), w = st.angular_velocity.norm();
+          if (v > vmax) vmax = v, vr = r, vi = i;
+          if (w > wmax) wmax = w, wr = r, wi = i;
         }
-      std::fprintf(stderr, "trace step=%d awake=%d us_per_step=%.1f vmax=%.4g (%s) wmax=%.4g (%s) energy_j=%.2f\n",
-                   step, world.awakeBodyCount(), 1e6 * wall_trace / trace, vmax, vlink.c_str(), wmax,
-                   wlink.c_str(), world.kineticEnergy() + pe);
+      std::fprintf(stderr,
+                   "trace step=%d awake=%d us_per_step=%.1f vmax=%.4g (%zu#%s) wmax=%.4g (%zu#%s) "
+                   "energy_j=%.2f\n",
+                   step, world.awakeBodyCount(), 1e6 * wall_trace / trace, vmax, vr,
+                   def.links[vi].name.c_str(), wmax, wr, def.links[wi].name.c_str(),
+                   world.kineticEnergy() + pe);
       wall_trace = 0.0;
     }
     if (metrics || step == 2999 || step == 3000) {

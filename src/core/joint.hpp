@@ -81,8 +81,9 @@ void prepareJoint(Joint& j, const StepContext& ctx);
 // Type-specific: fill angle_count / angles / angle_rows for the current poses.
 void updateBallAngles(Joint& j, const StepContext& ctx);
 void updateHingeAngles(Joint& j, const StepContext& ctx);
-// first_substep: the angles and rows are recomputed exactly; later substeps keep the advanced
-// ones for joints whose limits stay open (joint.cpp, limitsOpen).
+// first_substep: the angles and rows are recomputed exactly, and the anchors and hinge axes
+// refreshed; later substeps keep the advanced angles of joints whose limits stay open
+// (joint.cpp, limitsOpen) and the anchors and axes advanceJoint refreshed.
 void warmStartJoint(Joint& j, const StepContext& ctx, bool first_substep);
 void solveJoint(Joint& j, const StepContext& ctx, bool use_bias);
 // After a substep's last sweep: sets a rigid anchor's force (N, from its accumulated impulse)
