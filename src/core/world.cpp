@@ -7,7 +7,9 @@
 //   2. islands (island.hpp): awake bodies, joints and contacts grouped per island; prepare
 //      joints and contacts (in parallel, each into its own slot); substep h = dt / substeps;
 //   3. per island (islands in parallel, WorldDef::threads; each island in a fixed order, so
-//      the result does not depend on the thread count), per substep: integrate velocities
+//      the result does not depend on the thread count; an island of kSplitMin bodies or more
+//      is split into two halves solved at once, then its boundary contacts, see
+//      island_split.hpp), per substep: integrate velocities
 //      (gravity, forces, damping), warm start, solve with bias (soft), integrate positions,
 //      relax without bias (contacts several sweeps, the joints in the first sweeps: Gauss-
 //      Seidel over a manifold's points and along a limb needs them to take back the push-out
@@ -44,6 +46,7 @@
 #include "contact_solver.hpp"
 #include "gjk.hpp"
 #include "island.hpp"
+#include "island_split.hpp"
 #include "joint.hpp"
 
 namespace ragdoll_sim {
@@ -54,6 +57,10 @@ namespace {
 // (30 bodies, ~130 us per step) are about where two threads start to pay: 4 ragdolls on 2
 // threads ran 1.4x faster with 32 than with 128 here.
 constexpr int kParallelMin = 32;
+// An island with at least this many awake bodies is split in two (island_split.hpp). Its ~22
+// boundary sweeps per step wait at two barriers each, ~0.6 us per sweep here; the substeps of
+// 60 bodies take ~120 us on one thread.
+constexpr int kSplitMin = 60;
 
 uint64_t bodyPairKey(int a, int b) { return pairKey(std::min(a, b), std::max(a, b)); }
 
@@ -120,7 +127,24 @@ struct World::Impl {
   struct IslandRange {
     int body_begin = 0, body_end = 0, joint_begin = 0, joint_end = 0;
     int contact_begin = 0, contact_end = 0;
+    // A split island (island_split.hpp): halves [begin, mid) and [mid, end) of bodies and
+    // joints, contacts [contact_begin, contact_mid) and [contact_mid, boundary_begin), then the
+    // boundary contacts up to contact_end.
+    bool split = false;
+    int body_mid = 0, joint_mid = 0, contact_mid = 0, boundary_begin = 0;
+    IslandRange half(int k) const {
+      IslandRange r = *this;
+      r.split = false;
+      if (k == 0) {
+        r.body_end = body_mid, r.joint_end = joint_mid, r.contact_end = contact_mid;
+      } else {
+        r.body_begin = body_mid, r.joint_begin = joint_mid;
+        r.contact_begin = contact_mid, r.contact_end = boundary_begin;
+      }
+      return r;
+    }
   };
+  IslandSplitter splitter;
   std::vector<IslandRange> island_ranges;
   std::vector<int> island_order;  // biggest first, for load balance
   std::vector<int> island_bodies, island_of_body, group_offsets, group_cursor, body_scratch;
@@ -484,12 +508,26 @@ void World::Impl::partitionIslands() {
     island_ranges[k].joint_end = group_offsets[k + 1];
   }
   // The contacts are grouped as indices before they are prepared: a constraint is ~1.9 kB.
-  groupBy(contact_solver.selectActive(contacts, motions), count,
+  std::vector<int>& active_contacts = contact_solver.selectActive(contacts, motions);
+  groupBy(active_contacts, count,
           [&](int ci) { return pairIsland(contacts[ci].body_a, contacts[ci].body_b); },
           contact_index_scratch, group_offsets, group_cursor);
   for (int k = 0; k < count; ++k) {
     island_ranges[k].contact_begin = group_offsets[k];
     island_ranges[k].contact_end = group_offsets[k + 1];
+  }
+  for (IslandRange& r : island_ranges) {
+    if (r.body_end - r.body_begin < kSplitMin) continue;
+    IslandHalves h;
+    r.split = splitter.split(island_bodies.data() + r.body_begin, r.body_end - r.body_begin,
+                             active_joints.data() + r.joint_begin, r.joint_end - r.joint_begin,
+                             active_contacts.data() + r.contact_begin,
+                             r.contact_end - r.contact_begin, contacts, n, h);
+    if (!r.split) continue;
+    r.body_mid = r.body_begin + h.body_mid;
+    r.joint_mid = r.joint_begin + h.joint_mid;
+    r.contact_mid = r.contact_begin + h.contact_mid;
+    r.boundary_begin = r.contact_begin + h.boundary_begin;
   }
   island_order.resize(count);
   for (int k = 0; k < count; ++k) island_order[k] = k;
@@ -502,36 +540,74 @@ void World::Impl::partitionIslands() {
                    [&](int x, int y) { return size(x) > size(y); });
 }
 
-// The substep loop for one island; touches only the island's bodies and constraints.
+// The substep loop for one island; touches only the island's bodies and constraints. A split
+// island is solved by the team of the enclosing parallel region. Each sweep first solves the
+// boundary contacts on one thread while the others wait, then the threads take the halves
+// (with one thread: the same work in the same order); the halves' joints thus follow the
+// boundary's impulses in every sweep, as they follow the contacts in a sweep of a whole
+// island. Work on the halves alone needs no barrier: they touch disjoint bodies.
 void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int substeps) {
   Joint* const* js = active_joints.data();
+  const IslandRange halves[2] = {r.half(0), r.half(1)};
+  const auto parts = [&](auto&& part) {
+    if (!r.split) return part(r);
+#ifdef _OPENMP
+    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+#else
+    const int t = 0, nt = 1;
+#endif
+    for (int k = t; k < 2; k += nt) part(halves[k]);
+  };
+  const auto boundary = [&](auto&& contacts) {
+    if (!r.split) return;
+#pragma omp barrier
+#pragma omp single
+    contacts(r.boundary_begin, r.contact_end);
+  };
+  const auto joints = [&](const IslandRange& p, auto&& f) {
+    for (int k = p.joint_begin; k < p.joint_end; ++k)
+      if (!js[k]->broken) f(*js[k]);
+  };
+  const int relax = def.contact_relax_iterations;
   for (int sub = 0; sub < substeps; ++sub) {
-    integrateVelocities(ctx.h, r.body_begin, r.body_end);
-    for (int k = r.joint_begin; k < r.joint_end; ++k)
-      if (!js[k]->broken) warmStartJoint(*js[k], ctx, sub == 0);
     // From the second substep on, the first relax sweep of the last one (if any) already set
     // the separations at the current deltas.
-    contact_solver.warmStart(ctx, r.contact_begin, r.contact_end,
-                             sub == 0 || def.contact_relax_iterations < 1);
-    for (int k = r.joint_begin; k < r.joint_end; ++k)
-      if (!js[k]->broken) solveJoint(*js[k], ctx, true);
-    contact_solver.solve(ctx, true, r.contact_begin, r.contact_end, false);
-    integratePositions(ctx.h, r.body_begin, r.body_end);
-    for (int k = r.joint_begin; k < r.joint_end; ++k)
-      if (!js[k]->broken) advanceJoint(*js[k], ctx);
-    for (int it = 0; it < def.contact_relax_iterations; ++it) {
-      if (it < def.joint_relax_iterations)
-        for (int k = r.joint_begin; k < r.joint_end; ++k)
-          if (!js[k]->broken) solveJoint(*js[k], ctx, false);
-      contact_solver.solve(ctx, false, r.contact_begin, r.contact_end, it == 0);
+    const bool moved = sub == 0 || relax < 1;
+    parts([&](const IslandRange& p) {
+      integrateVelocities(ctx.h, p.body_begin, p.body_end);
+      joints(p, [&](Joint& j) { warmStartJoint(j, ctx, sub == 0); });
+      contact_solver.warmStart(ctx, p.contact_begin, p.contact_end, moved);
+    });
+    boundary([&](int b, int e) {
+      contact_solver.warmStart(ctx, b, e, moved);
+      contact_solver.solve(ctx, true, b, e, false);
+    });
+    parts([&](const IslandRange& p) {
+      joints(p, [&](Joint& j) { solveJoint(j, ctx, true); });
+      contact_solver.solve(ctx, true, p.contact_begin, p.contact_end, false);
+      integratePositions(ctx.h, p.body_begin, p.body_end);
+      joints(p, [&](Joint& j) { advanceJoint(j, ctx); });
+    });
+    for (int it = 0; it < relax; ++it) {
+      boundary([&](int b, int e) { contact_solver.solve(ctx, false, b, e, it == 0); });
+      parts([&](const IslandRange& p) {
+        if (it < def.joint_relax_iterations)
+          joints(p, [&](Joint& j) { solveJoint(j, ctx, false); });
+        contact_solver.solve(ctx, false, p.contact_begin, p.contact_end, it == 0);
+      });
     }
-    for (int k = r.joint_begin; k < r.joint_end; ++k)
-      if (breaksAfterSubstep(*js[k], ctx)) js[k]->broken = true;
+    parts([&](const IslandRange& p) {  // reads only the joint
+      for (int k = p.joint_begin; k < p.joint_end; ++k)
+        if (breaksAfterSubstep(*js[k], ctx)) js[k]->broken = true;
+    });
   }
   for (int it = 0; it < def.position_iterations; ++it) {
-    contact_solver.project(ctx, r.contact_begin, r.contact_end);
-    for (int k = r.joint_begin; k < r.joint_end; ++k) projectJointLimits(*js[k], ctx);
-    for (int k = r.joint_begin; k < r.joint_end; ++k) projectJointAnchor(*js[k], ctx);
+    boundary([&](int b, int e) { contact_solver.project(ctx, b, e); });
+    parts([&](const IslandRange& p) {
+      contact_solver.project(ctx, p.contact_begin, p.contact_end);
+      for (int k = p.joint_begin; k < p.joint_end; ++k) projectJointLimits(*js[k], ctx);
+      for (int k = p.joint_begin; k < p.joint_end; ++k) projectJointAnchor(*js[k], ctx);
+    });
   }
 }
 
@@ -738,10 +814,20 @@ void World::step(double dt) {
   w.partitionIslands();
   w.contact_solver.prepare(w.contacts, ctx, w.threadCount(), kParallelMin);
 
+  // Split islands one after another, each by the whole team (two threads at most: it has two
+  // halves); then the others, one island per thread.
   const int islands = int(w.island_ranges.size());
+  for (const World::Impl::IslandRange& r : w.island_ranges) {
+    if (!r.split) continue;
+#pragma omp parallel num_threads(std::min(2, w.threadCount()))
+    w.solveIsland(r, ctx, substeps);
+  }
 #pragma omp parallel for schedule(dynamic, 1) num_threads(w.threadCount()) \
     if (islands > 1 && int(w.island_bodies.size()) >= kParallelMin)
-  for (int k = 0; k < islands; ++k) w.solveIsland(w.island_ranges[w.island_order[k]], ctx, substeps);
+  for (int k = 0; k < islands; ++k) {
+    const World::Impl::IslandRange& r = w.island_ranges[w.island_order[k]];
+    if (!r.split) w.solveIsland(r, ctx, substeps);
+  }
   w.breakJoints();
   w.contact_solver.applyRestitution(ctx);
   w.contact_solver.storeImpulses(w.contacts);

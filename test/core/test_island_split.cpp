@@ -1,0 +1,163 @@
+// A big island is split in two halves of whole limbs plus the boundary contacts between them
+// (island_split.hpp). The splitter's halves and boundary on a small graph; then a world whose
+// one island is split: momentum is conserved through the boundary, the chains do not sink
+// into each other, and 1 and 2 threads give the same poses.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "island_split.hpp"
+#include "scene_util.hpp"
+
+using namespace ragdoll_sim;
+using namespace ragdoll_sim::test;
+
+namespace {
+
+Contact contactBetween(int a, int b) {
+  Contact c;
+  c.body_a = a;
+  c.body_b = b;
+  return c;
+}
+
+}  // namespace
+
+// Body 0 is static (outside the island). Limbs of three bodies: {1,2,3} {4,5,6} {7,8,9}
+// {10,11,12} {13,14,15}, touching in a row; the first half grows from limb 0 until it holds
+// half the bodies (limbs 0..2: 9 of 15), so only the contact between limbs 2 and 3 is cut.
+TEST(IslandSplitter, HalvesAreWholeLimbsAndTheBoundaryIsTheCut) {
+  std::vector<Joint> joints(10);
+  for (int limb = 0; limb < 5; ++limb)
+    for (int k = 0; k < 2; ++k) {
+      Joint& j = joints[2 * limb + k];
+      j.a = 1 + 3 * limb + k;
+      j.b = j.a + 1;
+    }
+  // listed from the far end, so the halves must regroup them
+  std::vector<Joint*> js;
+  for (int k = int(joints.size()) - 1; k >= 0; --k) js.push_back(&joints[k]);
+  const std::vector<Contact> all = {
+      contactBetween(13, 12),  // 0: limbs 4-3
+      contactBetween(0, 15),   // 1: ground - limb 4
+      contactBetween(9, 10),   // 2: limbs 2-3, the cut
+      contactBetween(7, 9),    // 3: inside limb 2
+      contactBetween(6, 7),    // 4: limbs 1-2
+      contactBetween(1, 0),    // 5: limb 0 - ground
+      contactBetween(3, 5),    // 6: limbs 0-1
+  };
+  std::vector<int> contacts = {0, 1, 2, 3, 4, 5, 6};
+  std::vector<int> bodies;  // ascending, as World lists an island's bodies
+  for (int b = 1; b <= 15; ++b) bodies.push_back(b);
+
+  IslandSplitter splitter;
+  IslandHalves h;
+  ASSERT_TRUE(splitter.split(bodies.data(), 15, js.data(), int(js.size()), contacts.data(), 7,
+                             all, 16, h));
+  EXPECT_EQ(h.body_mid, 9);
+  EXPECT_EQ(bodies, (std::vector<int>{1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15}));
+  // Stable: each half keeps the given (descending) order.
+  EXPECT_EQ(h.joint_mid, 6);
+  EXPECT_EQ(js[0]->a, 8);
+  EXPECT_EQ(js[6]->a, 14);
+  for (int k = 0; k < int(js.size()); ++k)
+    EXPECT_EQ(k < h.joint_mid, js[k]->a < 10) << "joint " << js[k]->a << "-" << js[k]->b;
+  EXPECT_EQ(h.contact_mid, 4);
+  EXPECT_EQ(h.boundary_begin, 6);
+  EXPECT_EQ(contacts, (std::vector<int>{3, 4, 5, 6, 0, 1, 2}));
+
+  // The splitter leaves no state behind: a second island of other bodies splits the same way.
+  std::vector<int> again = bodies;
+  std::vector<int> contacts2 = contacts;
+  ASSERT_TRUE(splitter.split(again.data(), 15, js.data(), int(js.size()), contacts2.data(), 7,
+                             all, 16, h));
+  EXPECT_EQ(again, bodies);
+  EXPECT_EQ(contacts2, contacts);
+}
+
+TEST(IslandSplitter, OneLimbIsNotSplit) {
+  std::vector<Joint> joints(3);
+  std::vector<Joint*> js;
+  for (int k = 0; k < 3; ++k) joints[k].a = k, joints[k].b = k + 1, js.push_back(&joints[k]);
+  std::vector<int> bodies = {3, 1, 2, 0};
+  const std::vector<Contact> all = {contactBetween(0, 2)};
+  std::vector<int> contacts = {0};
+  IslandSplitter splitter;
+  IslandHalves h;
+  EXPECT_FALSE(splitter.split(bodies.data(), 4, js.data(), 3, contacts.data(), 1, all, 4, h));
+  EXPECT_EQ(bodies, (std::vector<int>{3, 1, 2, 0}));
+  EXPECT_EQ(js[0], &joints[0]);
+}
+
+namespace {
+
+// 8 chains of 8 boxes (ball joints between the faces) side by side, touching, in zero
+// gravity: one island of 64 bodies, which World splits. Alternate chains move against each
+// other and spin, so the boundary contacts carry load.
+struct Raft {
+  static constexpr int kChains = 8, kLinks = 8;
+  static constexpr double kHalf = 0.1;
+  std::unique_ptr<World> world;
+  std::vector<BodyId> boxes;
+
+  explicit Raft(int threads) {
+    WorldDef def;
+    def.gravity.setZero();
+    def.enable_sleep = false;
+    def.threads = threads;
+    world = std::make_unique<World>(def);
+    const Vec3 half(kHalf, kHalf, kHalf);
+    for (int c = 0; c < kChains; ++c)
+      for (int k = 0; k < kLinks; ++k) {
+        const Vec3 pos(2 * kHalf * k, 2 * kHalf * c, 0);
+        const Vec3 v(0, c % 2 ? -0.4 : 0.4, 0.05 * c);
+        const BodyId b = addBody(*world, Geometry::box(half), 1.0 + 0.1 * k, boxInertia(half, 1.0 + 0.1 * k),
+                                 Transform(pos, Quat::Identity()), Material(), v);
+        boxes.push_back(b);
+        if (k == 0) continue;
+        BallJointDef j;
+        j.body_a = boxes[boxes.size() - 2];
+        j.body_b = b;
+        j.frame_a = Transform(Vec3(kHalf, 0, 0), Quat::Identity());
+        j.frame_b = Transform(Vec3(-kHalf, 0, 0), Quat::Identity());
+        world->createBallJoint(j);
+      }
+  }
+
+  // Deepest overlap between boxes of different chains, from the contacts.
+  double deepest() const {
+    double d = 0;
+    for (const ContactInfo& c : world->contacts()) d = std::max(d, -c.separation);
+    return d;
+  }
+};
+
+}  // namespace
+
+TEST(SplitIsland, MomentumConservedChainsStayApartSameForOneAndTwoThreads) {
+  Raft one(1), two(2);
+  const Vec3 p0 = one.world->linearMomentum();
+  double deepest = 0;
+  for (int i = 0; i < 400; ++i) {
+    one.world->step(1e-3);
+    two.world->step(1e-3);
+    deepest = std::max(deepest, one.deepest());
+  }
+  int across = 0;  // contacts between different chains: the island is one
+  for (const ContactInfo& c : one.world->contacts())
+    across += c.body_a.index / Raft::kLinks != c.body_b.index / Raft::kLinks;
+  EXPECT_GT(across, Raft::kChains);
+  const Vec3 p1 = one.world->linearMomentum();
+  EXPECT_LT((p1 - p0).norm(), 1e-9 * p0.norm()) << p0.transpose() << " -> " << p1.transpose();
+  EXPECT_LT(deepest, 0.005);
+  for (const BodyId& b : one.boxes) {
+    const Transform x1 = one.world->bodyPose(b), x2 = two.world->bodyPose(b);
+    ASSERT_EQ(std::memcmp(x1.p.data(), x2.p.data(), sizeof(double) * 3), 0) << "body " << b.index;
+    ASSERT_EQ(std::memcmp(x1.q.coeffs().data(), x2.q.coeffs().data(), sizeof(double) * 4), 0);
+  }
+  std::printf("[ split    ] 64 boxes, one island: %d contacts across chains, |dp|/|p| = %.1e, "
+              "deepest overlap %.2e m\n",
+              across, (p1 - p0).norm() / p0.norm(), deepest);
+}
