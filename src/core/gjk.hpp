@@ -21,8 +21,9 @@ struct CoreDistance {
   Vec3 pa, pb;      // witness points on the cores (pb - pa == distance * normal)
 };
 
-// GJK for separated cores; EPA on the Minkowski difference when they overlap.
-CoreDistance coreDistance(const ConvexCore& a, const ConvexCore& b);
+// GJK for separated cores; EPA on the Minkowski difference when they overlap. guess: a likely
+// normal from A to B (last step's), or null; GJK then starts on the near side of A - B.
+CoreDistance coreDistance(const ConvexCore& a, const ConvexCore& b, const Vec3* guess = nullptr);
 
 }  // namespace np
 }  // namespace ragdoll_sim

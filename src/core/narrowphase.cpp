@@ -188,7 +188,7 @@ bool isPolytope(ShapeType t) { return t == ShapeType::Box || t == ShapeType::Con
 
 // a comes first in the canonical order.
 void collideOrdered(const Geometry& a, const Transform& xa, const Geometry& b,
-                    const Transform& xb, double spec, Manifold& out) {
+                    const Transform& xb, double spec, Manifold& out, const Vec3* guess) {
   if (a.type == ShapeType::Plane) {
     if (b.type != ShapeType::Plane) planeVsShape(a, xa, b, xb, spec, out);
   } else if (isRound(a.type) && isRound(b.type)) {
@@ -202,21 +202,22 @@ void collideOrdered(const Geometry& a, const Transform& xa, const Geometry& b,
   } else if (isPolytope(a.type) && isPolytope(b.type)) {
     np::collidePolytopes(a, xa, b, xb, spec, out);
   } else {
-    np::collideConvex(a, xa, b, xb, spec, out);
+    np::collideConvex(a, xa, b, xb, spec, out, guess);
   }
 }
 
 }  // namespace
 
 void collide(const Geometry& a, const Transform& xa, const Geometry& b, const Transform& xb,
-             double speculative_distance, Manifold& out) {
+             double speculative_distance, Manifold& out, const Vec3* normal_guess) {
   out.count = 0;
   if ((a.type == ShapeType::ConvexHull && !a.hull) || (b.type == ShapeType::ConvexHull && !b.hull))
     return;
   if (rank(a.type) <= rank(b.type)) {
-    collideOrdered(a, xa, b, xb, speculative_distance, out);
+    collideOrdered(a, xa, b, xb, speculative_distance, out, normal_guess);
   } else {
-    collideOrdered(b, xb, a, xa, speculative_distance, out);
+    const Vec3 flipped = normal_guess ? Vec3(-*normal_guess) : Vec3::Zero();
+    collideOrdered(b, xb, a, xa, speculative_distance, out, normal_guess ? &flipped : nullptr);
     out.normal = -out.normal;
   }
 }

@@ -22,9 +22,10 @@ struct Manifold {
 
 // Fills `out` with up to 4 points whose separation is below `speculative_distance`; out.count
 // is 0 when the shapes are farther apart. Works for every pair of shape types except
-// plane-plane; the order of the arguments only flips the normal.
+// plane-plane; the order of the arguments only flips the normal. normal_guess (A to B, e.g.
+// last step's normal of the pair) or null: where GJK runs, its first search direction.
 void collide(const Geometry& a, const Transform& xa, const Geometry& b, const Transform& xb,
-             double speculative_distance, Manifold& out);
+             double speculative_distance, Manifold& out, const Vec3* normal_guess = nullptr);
 
 // World-space axis-aligned bounding box; planes are unbounded (see isUnbounded).
 struct Aabb {

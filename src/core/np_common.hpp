@@ -86,7 +86,8 @@ void collidePolytopes(const Geometry& a, const Transform& xa, const Geometry& b,
                       const Transform& xb, double speculative, Manifold& out);
 // Any two convex shapes: GJK/EPA on the cores, then clipping of the support features.
 void collideConvex(const Geometry& a, const Transform& xa, const Geometry& b,
-                   const Transform& xb, double speculative, Manifold& out);
+                   const Transform& xb, double speculative, Manifold& out,
+                   const Vec3* guess = nullptr);
 
 }  // namespace np
 }  // namespace ragdoll_sim

@@ -119,11 +119,11 @@ double boundingRadius(const Geometry& g) {
 }  // namespace
 
 void collideConvex(const Geometry& a, const Transform& xa, const Geometry& b,
-                   const Transform& xb, double spec, Manifold& out) {
+                   const Transform& xb, double spec, Manifold& out, const Vec3* guess) {
   out.count = 0;
   if ((xb.p - xa.p).norm() - boundingRadius(a) - boundingRadius(b) > spec) return;
   const ConvexCore ca{&a, xa}, cb{&b, xb};
-  const CoreDistance cd = coreDistance(ca, cb);
+  const CoreDistance cd = coreDistance(ca, cb, guess);
   const double ra = ca.radius(), rb = cb.radius();
   const double sep = cd.distance - ra - rb;
   const Vec3 n = cd.normal;

@@ -300,7 +300,9 @@ void World::Impl::collide(double dt) {
         continue;
       }
     }
-    ragdoll_sim::collide(da.geometry, xa, db.geometry, xb, spec, c.manifold);
+    // Last step's normal of the pair (kept as sep_axis) starts GJK near its answer.
+    const Vec3* guess = o >= 0 ? &contacts[o].sep_axis : nullptr;
+    ragdoll_sim::collide(da.geometry, xa, db.geometry, xb, spec, c.manifold, guess);
     // Cache the normal of a separated pair as its axis (not for planes: they are cheap).
     c.sep_valid = c.manifold.count == 0 && !unbounded[c.shape_a] && !unbounded[c.shape_b];
     c.sep_axis = c.manifold.normal;
