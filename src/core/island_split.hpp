@@ -7,8 +7,8 @@
 // which keeps the contacts across the cut few) until it holds half the bodies. Each half's
 // joints and contacts touch only its own bodies (and static ones, which are never written), so
 // the two halves can be solved at the same time; the contacts across the cut (the boundary)
-// are solved afterwards, on one thread. The split depends only on the island, never on the
-// thread count, so the result is the same for 1 and 2 threads.
+// are solved on one thread, first in every sweep (World's solveIsland). The split depends only
+// on the island, never on the thread count, so the result is the same for 1 and 2 threads.
 #pragma once
 
 #include <vector>

@@ -544,7 +544,7 @@ void World::Impl::partitionIslands() {
 
 // The substep loop for one island; touches only the island's bodies and constraints. A split
 // island is solved by the team of the enclosing parallel region. Each sweep first solves the
-// boundary contacts on one thread while the others wait, then the threads take the halves
+// boundary contacts on thread 0 while the others wait, then the threads take the halves
 // (with one thread: the same work in the same order); the halves' joints thus follow the
 // boundary's impulses in every sweep, as they follow the contacts in a sweep of a whole
 // island. Work on the halves alone needs no barrier: they touch disjoint bodies.
@@ -562,9 +562,13 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int 
   };
   const auto boundary = [&](auto&& contacts) {
     if (!r.split) return;
+    // Always thread 0 (master, not single): the boundary's constraints then stay in one core's
+    // cache (with single the boundary took 48 us of a c step on 2 threads, 36 with master,
+    // 19.5 on 1 thread).
 #pragma omp barrier
-#pragma omp single
+#pragma omp master
     contacts(r.boundary_begin, r.contact_end);
+#pragma omp barrier
   };
   const auto joints = [&](const IslandRange& p, auto&& f) {
     for (int k = p.joint_begin; k < p.joint_end; ++k)
