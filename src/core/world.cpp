@@ -8,8 +8,8 @@
 //      joints and contacts (in parallel, each into its own slot); substep h = dt / substeps;
 //   3. per island (islands in parallel, WorldDef::threads; each island in a fixed order, so
 //      the result does not depend on the thread count; an island of kSplitMin bodies or more
-//      is split into two halves solved at once, then its boundary contacts, see
-//      island_split.hpp), per substep: integrate velocities
+//      is split in two halves: each sweep solves its boundary contacts on one thread, then
+//      both halves at once, see island_split.hpp), per substep: integrate velocities
 //      (gravity, forces, damping), warm start, solve with bias (soft), integrate positions,
 //      relax without bias (contacts several sweeps, the joints in the first sweeps: Gauss-
 //      Seidel over a manifold's points and along a limb needs them to take back the push-out
