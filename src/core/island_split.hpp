@@ -9,6 +9,9 @@
 // the two halves can be solved at the same time; the contacts across the cut (the boundary)
 // are solved on one thread, first in every sweep (World's solveIsland). The split depends only
 // on the island, never on the thread count, so the result is the same for 1 and 2 threads.
+// Picking the best of several seed limbs (fewest contacts cut, or the most even work) ran scene
+// c 4-7 % faster but doubled the tails of its perturbed copies (anchor 1.0 mm, penetration
+// 11 mm): that choice flips from step to step and reorders the constraints; this one is stable.
 #pragma once
 
 #include <vector>
