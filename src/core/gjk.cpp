@@ -275,7 +275,8 @@ CoreDistance epa(const ConvexCore& A, const ConvexCore& B, SV* s, int n) {
 
 CoreDistance coreDistance(const ConvexCore& A, const ConvexCore& B, const Vec3* guess) {
   // The point of A - B nearest the origin is its support along the normal (A to B); without a
-  // guess, the centres' offset gives the far side, one iteration more.
+  // guess, the centres' offset starts on the far side (ragdoll piles: ~2.5 iterations more of
+  // ~10 per call).
   Vec3 d = guess ? *guess : Vec3(A.x.p - B.x.p);
   if (d.squaredNorm() < 1e-24) d = Vec3::UnitX();
   SV s[4] = {supportM(A, B, d)};
