@@ -116,16 +116,11 @@ std::vector<int>& ContactSolver::selectActive(const std::vector<Contact>& contac
 }
 
 void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepContext& ctx,
-                            int threads, int parallel_min) {
+                            int begin, int end) {
   const auto& motions = *ctx.motions;
   const auto& bodies = *ctx.bodies;
   const WorldDef& def = *ctx.def;
-  // Each constraint is prepared on its own (in parallel, into its own slot: the order does
-  // not depend on the thread count).
-  const int n = int(active_.size());
-  constraints_.resize(n);
-#pragma omp parallel for schedule(static) num_threads(threads) if (n >= parallel_min)
-  for (int slot = 0; slot < n; ++slot) {
+  for (int slot = begin; slot < end; ++slot) {
     const int ci = active_[slot];
     const Contact& c = contacts[ci];
     ContactConstraint& cc = constraints_[slot];

@@ -41,18 +41,19 @@ struct ContactConstraint {
   ContactConstraintPoint points[Manifold::kMaxPoints];
 };
 
-// Constraints are stored grouped by island (World sorts them after prepare); the per-substep
-// calls take the range [begin, end) of one island, so islands can be solved in parallel.
+// Constraints are stored grouped by island (World groups the selected contacts, then each
+// island's are prepared by the thread that solves it); the per-substep calls take the range
+// [begin, end) of one island, so islands can be solved in parallel.
 class ContactSolver {
  public:
   // The contacts that become constraints this step (touching, one body awake), in contact
   // order; the caller may reorder them (grouped by island) before prepare.
   std::vector<int>& selectActive(const std::vector<Contact>& contacts,
                                  const std::vector<BodyMotion>& motions);
-  // One constraint per selected contact, in the selected order (on up to `threads` threads
-  // when there are at least parallel_min contacts).
-  void prepare(const std::vector<Contact>& contacts, const StepContext& ctx, int threads,
-               int parallel_min);
+  // One constraint slot per selected contact, in the selected order; then prepare fills the
+  // slots [begin, end) (each on its own: ranges may be prepared on different threads).
+  void resize() { constraints_.resize(active_.size()); }
+  void prepare(const std::vector<Contact>& contacts, const StepContext& ctx, int begin, int end);
   // positions_moved: as for solve; false when a sweep already recomputed the separations at
   // the current deltas (the first relax sweep after the last position update).
   void warmStart(const StepContext& ctx, int begin, int end, bool positions_moved);
