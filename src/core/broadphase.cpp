@@ -5,21 +5,22 @@
 
 namespace ragdoll_sim {
 
-namespace {
-void addPair(std::vector<std::pair<int, int>>& pairs, int i, int j) {
-  pairs.emplace_back(std::min(i, j), std::max(i, j));
+void Broadphase::addPair(std::vector<std::pair<int, int>>& pairs, int i, int j) const {
+  const int a = std::min(i, j), b = std::max(i, j);
+  if (!accept_ || !*accept_ || (*accept_)(a, b)) pairs.emplace_back(a, b);
 }
-}  // namespace
 
 void Broadphase::findPairs(const std::vector<Aabb>& aabbs, const std::vector<char>& unbounded,
                            const std::vector<PlaneProxy>& planes, double margin,
-                           std::vector<std::pair<int, int>>& pairs) {
+                           std::vector<std::pair<int, int>>& pairs, const Filter& accept,
+                           int threads) {
+  accept_ = &accept;
   pairs.clear();
   bounded_.clear();
   for (int i = 0; i < int(aabbs.size()); ++i)
     if (!unbounded[i]) bounded_.push_back(i);
   if (int(bounded_.size()) >= kGridMin) grid(aabbs, pairs);
-  else sweep(aabbs, pairs);
+  else sweep(aabbs, pairs, int(bounded_.size()) >= kParallelMin ? std::max(1, threads) : 1);
 
   for (const PlaneProxy& p : planes) {
     for (int id : bounded_) {
@@ -29,9 +30,11 @@ void Broadphase::findPairs(const std::vector<Aabb>& aabbs, const std::vector<cha
         addPair(pairs, p.shape, id);
     }
   }
+  accept_ = nullptr;
 }
 
-void Broadphase::sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs) {
+void Broadphase::sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs,
+                       int threads) {
   // Keep the previous order, drop stale or unbounded ids, append new ones.
   seen_.assign(aabbs.size(), 0);
   for (int id : bounded_) seen_[id] = 1;  // 1: bounded, 2: bounded and already in the order
@@ -85,17 +88,30 @@ void Broadphase::sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int
     const Aabb& b = aabbs[order_[k]];
     bounds_[k] = {b.hi[ax], b.lo[ax1], b.hi[ax1], b.lo[ax2], b.hi[ax2]};
   }
-  for (size_t i = 0; i < m; ++i) {
-    const SweepBounds a = bounds_[i];
-    const double lo = key_[i];
-    for (size_t j = i + 1; j < m; ++j) {
-      if (key_[j] > a.hi) break;
-      const SweepBounds& b = bounds_[j];
-      if (lo <= b.hi && b.lo_u <= a.hi_u && a.lo_u <= b.hi_u && b.lo_w <= a.hi_w &&
-          a.lo_w <= b.hi_w)  // Aabb::overlaps
-        addPair(pairs, order_[i], order_[j]);
+  // Slice t of the sweep order: the boxes [m t / T, m (t + 1) / T) against those after them.
+  const auto slice = [&](int t, int slices, std::vector<std::pair<int, int>>& out) {
+    const size_t end = m * size_t(t + 1) / size_t(slices);
+    for (size_t i = m * size_t(t) / size_t(slices); i < end; ++i) {
+      const SweepBounds a = bounds_[i];
+      const double lo = key_[i];
+      for (size_t j = i + 1; j < m; ++j) {
+        if (key_[j] > a.hi) break;
+        const SweepBounds& b = bounds_[j];
+        if (lo <= b.hi && b.lo_u <= a.hi_u && a.lo_u <= b.hi_u && b.lo_w <= a.hi_w &&
+            a.lo_w <= b.hi_w)  // Aabb::overlaps
+          addPair(out, order_[i], order_[j]);
+      }
     }
+  };
+  if (threads <= 1) return slice(0, 1, pairs);
+  slice_pairs_.resize(threads);
+#pragma omp parallel for schedule(static, 1) num_threads(threads)
+  for (int t = 0; t < threads; ++t) {
+    slice_pairs_[t].clear();
+    slice(t, threads, slice_pairs_[t]);
   }
+  for (int t = 0; t < threads; ++t)
+    pairs.insert(pairs.end(), slice_pairs_[t].begin(), slice_pairs_[t].end());
 }
 
 void Broadphase::insert(int proxy, const int cell[3]) {

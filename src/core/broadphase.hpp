@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -32,20 +33,34 @@ struct PlaneProxy {
 
 class Broadphase {
  public:
-  // aabbs[i] is shape i's box (ignored when unbounded[i]); pairs get (i, j) with i < j.
+  // accept(i, j), i < j: whether an overlapping pair is kept (the world drops the pairs it
+  // never collides before they are stored); it may be called from several threads at once.
+  using Filter = std::function<bool(int, int)>;
+
+  // aabbs[i] is shape i's box (ignored when unbounded[i]); pairs get (i, j) with i < j. The
+  // sweep's pair loop runs on up to `threads` threads (from kParallelMin bounded shapes), each
+  // over a slice of the sweep order; the slices' pairs are joined in order, so the list is the
+  // same for any thread count.
   void findPairs(const std::vector<Aabb>& aabbs, const std::vector<char>& unbounded,
                  const std::vector<PlaneProxy>& planes, double margin,
-                 std::vector<std::pair<int, int>>& pairs);
+                 std::vector<std::pair<int, int>>& pairs, const Filter& accept = nullptr,
+                 int threads = 1);
 
   static constexpr int kGridMin = 768;  // bounded shapes from which the grid is used
+  static constexpr int kParallelMin = 128;  // bounded shapes from which the sweep is split
 
  private:
-  void sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs);
+  void sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs,
+             int threads);
   void grid(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs);
+  // Appends (min, max) of i and j when accept_ takes it.
+  void addPair(std::vector<std::pair<int, int>>& pairs, int i, int j) const;
   void insert(int proxy, const int cell[3]);
 
   // scratch, kept between steps to avoid a per-step allocation
   std::vector<int> bounded_;  // ids of the bounded shapes, ascending
+  const Filter* accept_ = nullptr;  // this call's filter (null: keep all)
+  std::vector<std::vector<std::pair<int, int>>> slice_pairs_;  // per thread of the sweep
 
   // sweep and prune
   static constexpr double kSwitchRatio = 1.5;  // another axis must spread this much more

@@ -2,8 +2,9 @@
 //
 // step(dt) (Box2D v3 soft step, in 3D):
 //   1. collide: broadphase pairs -> narrowphase manifolds at the poses of the step start
-//      (pairs in parallel, separated pairs skipped by their cached axis); impulses carried
-//      over by feature id (warm starting);
+//      (boxes, the sweep's pair loop with the pair filter, and the pairs in parallel;
+//      separated pairs skipped by their cached axis); impulses carried over by feature id
+//      (warm starting);
 //   2. islands (island.hpp): awake bodies, joints and contacts grouped per island; substep
 //      h = dt / substeps;
 //   3. per island (islands in parallel, WorldDef::threads, each thread a run of consecutive
@@ -244,40 +245,39 @@ void World::Impl::collide(double dt) {
   const int n = int(shapes.size());
   aabbs.resize(n);
   aabb_kept.resize(n, 0);
-  unbounded.assign(n, 0);
-  planes.clear();
+  unbounded.resize(n);
   const double spec = def.speculative_distance;
+  // Boxes in parallel (each shape its own slot), the few planes after.
+#pragma omp parallel for schedule(static) num_threads(threadCount()) if (n >= kParallelMin)
   for (int s = 0; s < n; ++s) {
     const Geometry& g = shapeDef(s).geometry;
     const BodyMotion& m = motions[shapes[s].body];
-    const bool bounded = !isUnbounded(g);
-    if (bounded && !m.awake && aabb_kept[s]) continue;
-    const Transform x = shapePose(s);
-    if (!bounded) {
-      unbounded[s] = 1;
-      const Vec3 nw = x.q * g.normal;
-      planes.push_back({s, nw, g.offset + nw.dot(x.p)});
-      continue;
-    }
+    unbounded[s] = isUnbounded(g);
+    if (unbounded[s] || (!m.awake && aabb_kept[s])) continue;
     aabb_kept[s] = !m.awake;
-    Aabb box = computeAabb(g, x);
+    Aabb box = computeAabb(g, shapePose(s));
     const Vec3 grow = Vec3::Constant(spec) + (m.v * dt).cwiseAbs();
     box.lo -= grow;
     box.hi += grow;
     aabbs[s] = box;
   }
-  broadphase.findPairs(aabbs, unbounded, planes, spec, pairs);
-
-  // Keep pairs between different bodies, at least one dynamic, not disabled; sort by key to
-  // merge with last step's contacts (also sorted by key). The keys are sorted, not the contacts
-  // (a Contact is ~400 bytes).
-  pair_keys.clear();
-  for (const auto& [sa, sb] : pairs) {
-    const int ba = shapes[sa].body, bb = shapes[sb].body;
-    if (ba == bb || (!isDynamic(ba) && !isDynamic(bb))) continue;
-    if (disabled.count(bodyPairKey(ba, bb))) continue;
-    pair_keys.push_back(pairKey(sa, sb));
+  planes.clear();
+  for (int s = 0; s < n; ++s) {
+    if (!unbounded[s]) continue;
+    const Transform x = shapePose(s);
+    const Vec3 nw = x.q * shapeDef(s).geometry.normal;
+    planes.push_back({s, nw, shapeDef(s).geometry.offset + nw.dot(x.p)});
   }
+  // Keep pairs between different bodies, at least one dynamic, not disabled (checked inside
+  // the broadphase, on its threads); sort by key to merge with last step's contacts (also
+  // sorted by key). The keys are sorted, not the contacts (a Contact is ~400 bytes).
+  const Broadphase::Filter accept = [this](int sa, int sb) {
+    const int ba = shapes[sa].body, bb = shapes[sb].body;
+    return ba != bb && (isDynamic(ba) || isDynamic(bb)) && !disabled.count(bodyPairKey(ba, bb));
+  };
+  broadphase.findPairs(aabbs, unbounded, planes, spec, pairs, accept, threadCount());
+  pair_keys.clear();
+  for (const auto& [sa, sb] : pairs) pair_keys.push_back(pairKey(sa, sb));
   std::sort(pair_keys.begin(), pair_keys.end());
   // Sized only: every contact is reset in the parallel loop below (a Contact is ~400 bytes, and
   // constructing them serially was ~15 us of a 32-ragdoll step).

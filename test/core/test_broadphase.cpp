@@ -1,6 +1,7 @@
 // The broadphase's pairs are exactly the brute-force overlaps, for both of its methods (sweep
 // and prune below Broadphase::kGridMin bounded shapes, hash grid from it), over steps in which
-// the boxes move (the sweep keeps its order between calls) and shapes come and go.
+// the boxes move (the sweep keeps its order between calls) and shapes come and go; the sweep
+// split over threads gives the same list, and a filter drops exactly the pairs it rejects.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -68,8 +69,11 @@ TEST_P(BroadphaseExact, PairsEqualBruteForceWhileBoxesMove) {
   unbounded[3] = 1;  // a plane's slot: its box is ignored
   const std::vector<PlaneProxy> planes = {{3, Vec3::UnitZ(), -0.2}};
   std::normal_distribution<double> step(0.0, 0.05);
-  Broadphase bp;
-  Pairs pairs;
+  // bp on one thread; sliced on three (the same list, in the same order); filtered on two,
+  // with a filter that drops a third of the pairs.
+  Broadphase bp, sliced, filtered;
+  const Broadphase::Filter keep = [](int i, int j) { return (i + j) % 3 != 0; };
+  Pairs pairs, sliced_pairs, filtered_pairs;
   size_t total = 0;
   int grid_calls = 0;
   for (int call = 0; call < 6; ++call) {
@@ -77,10 +81,18 @@ TEST_P(BroadphaseExact, PairsEqualBruteForceWhileBoxesMove) {
     std::vector<char> ub(unbounded.begin(), unbounded.begin() + boxes.size());
     grid_calls += int(std::count(ub.begin(), ub.end(), 0)) >= Broadphase::kGridMin;
     bp.findPairs(boxes, ub, planes, 0.01, pairs);
+    sliced.findPairs(boxes, ub, planes, 0.01, sliced_pairs, nullptr, 3);
+    filtered.findPairs(boxes, ub, planes, 0.01, filtered_pairs, keep, 2);
+    ASSERT_EQ(sliced_pairs, pairs) << "call " << call;
     for (const auto& [i, j] : pairs) ASSERT_LT(i, j);
     std::sort(pairs.begin(), pairs.end());
+    std::sort(filtered_pairs.begin(), filtered_pairs.end());
     const Pairs truth = bruteForce(boxes, ub, planes, 0.01);
     ASSERT_EQ(pairs, truth) << "call " << call;
+    Pairs kept;
+    for (const auto& [i, j] : truth)
+      if (keep(i, j)) kept.emplace_back(i, j);
+    ASSERT_EQ(filtered_pairs, kept) << "call " << call;
     total += truth.size();
     for (Aabb& b : boxes) {  // every box moves a few cm, as bodies do between steps
       const Vec3 d(step(rng), step(rng), step(rng));
