@@ -320,10 +320,11 @@ void ContactSolver::project(const StepContext& ctx, int begin, int end) {
   }
 }
 
-void ContactSolver::applyRestitution(const StepContext& ctx) {
+void ContactSolver::applyRestitution(const StepContext& ctx, int begin, int end) {
   auto& bodies = *ctx.bodies;
   const double threshold = ctx.def->restitution_threshold;
-  for (ContactConstraint& cc : constraints_) {
+  for (int k = begin; k < end; ++k) {
+    ContactConstraint& cc = constraints_[k];
     if (cc.restitution == 0.0) continue;
     SolverBody &A = bodies[cc.a], &B = bodies[cc.b];
     for (int i = 0; i < cc.count; ++i) {
@@ -341,8 +342,9 @@ void ContactSolver::applyRestitution(const StepContext& ctx) {
   }
 }
 
-void ContactSolver::storeImpulses(std::vector<Contact>& contacts) const {
-  for (const ContactConstraint& cc : constraints_) {
+void ContactSolver::storeImpulses(std::vector<Contact>& contacts, int begin, int end) const {
+  for (int k = begin; k < end; ++k) {
+    const ContactConstraint& cc = constraints_[k];
     Contact& c = contacts[cc.contact];
     for (int i = 0; i < cc.count; ++i) {
       const ContactConstraintPoint& p = cc.points[i];

@@ -62,8 +62,10 @@ class ContactSolver {
   void solve(const StepContext& ctx, bool use_bias, int begin, int end, bool positions_moved);
   // Position projection of penetrations deeper than the slop (after the substeps).
   void project(const StepContext& ctx, int begin, int end);
-  void applyRestitution(const StepContext& ctx);
-  void storeImpulses(std::vector<Contact>& contacts) const;
+  // Restitution, then the impulses kept for the next step's warm start, of constraints
+  // [begin, end) (after the island's substeps).
+  void applyRestitution(const StepContext& ctx, int begin, int end);
+  void storeImpulses(std::vector<Contact>& contacts, int begin, int end) const;
 
  private:
   std::vector<ContactConstraint> constraints_;

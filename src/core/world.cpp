@@ -21,7 +21,8 @@
 //      rows, joint anchors), which remove the error beyond the slops (linear_slop, angular_slop,
 //      joint_slop) without touching velocities. Static bodies are shared by all islands and
 //      are never written (movable(), solver_context.hpp);
-//   4. restitution, store impulses, write the deltas back to the bodies, clear forces;
+//   4. per island, on the thread that solved it: restitution, store impulses, write the
+//      deltas back to the bodies, clear forces (a body left non-finite is reset after);
 //   5. islands that stayed slow long enough go to sleep. Sleeping bodies are identity solver
 //      bodies: not integrated, and pairs of them are not collided or solved; their shapes keep
 //      their boxes. Once a full step has found no body awake, the next steps only advance the
@@ -166,6 +167,7 @@ struct World::Impl {
   int64_t fault_count = 0;
   std::vector<char> solver_reset;
   bool any_solver_reset = false;
+  std::vector<char> solver_fault;  // finishBody left it non-finite: resetFaulted resets it
 
   int threadCount() const {
 #ifdef _OPENMP
@@ -217,6 +219,8 @@ struct World::Impl {
     s.inv_mass = m.inv_mass;
     s.inv_inertia = R * m.inv_inertia_local * R.transpose();
   }
+  void finishBody(int i);
+  void resetFaulted();
   void finishStep();
   void guardInputs();
   void resetBody(int b, BodyFaultCause cause);
@@ -373,26 +377,40 @@ void World::Impl::integratePositions(double h, int begin, int end) {
   }
 }
 
-void World::Impl::finishStep() {
-  for (size_t i = 0; i < bodies.size(); ++i) {
-    BodyMotion& m = motions[i];
-    SolverBody& s = solver[i];
-    if (m.awake) {
-      m.x += s.dp;
-      m.q = (s.dq * m.q).normalized();
-      m.v = s.v;
-      m.w = s.w;
-      if (motionFinite(m)) {
-        clampNorm(m.v, def.max_linear_speed);
-        clampNorm(m.w, def.max_angular_speed);
-        last_finite[i] = {m.x, m.q};
-      } else {
-        resetBody(int(i), BodyFaultCause::Solver);
-      }
+// An awake body takes the step's deltas and velocities; forces are cleared. A body the
+// solver left non-finite is only marked here (islands finish on their own threads):
+// resetFaulted resets the marked ones, in body order.
+void World::Impl::finishBody(int i) {
+  BodyMotion& m = motions[i];
+  const SolverBody& s = solver[i];
+  if (m.awake) {
+    m.x += s.dp;
+    m.q = (s.dq * m.q).normalized();
+    m.v = s.v;
+    m.w = s.w;
+    if (motionFinite(m)) {
+      clampNorm(m.v, def.max_linear_speed);
+      clampNorm(m.w, def.max_angular_speed);
+      last_finite[i] = {m.x, m.q};
+    } else {
+      solver_fault[i] = 1;
     }
-    m.force.setZero();
-    m.torque.setZero();
   }
+  m.force.setZero();
+  m.torque.setZero();
+}
+
+void World::Impl::resetFaulted() {
+  for (size_t i = 0; i < bodies.size(); ++i)
+    if (solver_fault[i]) {
+      solver_fault[i] = 0;
+      resetBody(int(i), BodyFaultCause::Solver);
+    }
+}
+
+void World::Impl::finishStep() {
+  for (size_t i = 0; i < bodies.size(); ++i) finishBody(int(i));
+  resetFaulted();
 }
 
 // Before the step: what was set since the last one (impulses, forces, setBodyState) must be
@@ -743,6 +761,7 @@ BodyId World::createBody(const BodyDef& def) {
   w.solver.emplace_back();
   w.last_finite.push_back({m.x, m.q});
   w.solver_reset.push_back(0);
+  w.solver_fault.push_back(0);
   return BodyId{int32_t(w.bodies.size() - 1)};
 }
 
@@ -844,6 +863,15 @@ void World::step(double dt) {
     for (int k = p.joint_begin; k < p.joint_end; ++k) prepareJoint(*w.active_joints[k], ctx);
     w.contact_solver.prepare(w.contacts, ctx, p.contact_begin, p.contact_end);
   };
+  // After an island's substeps, on the same thread: restitution and the impulses stored for
+  // the next warm start, then its bodies take the step (joint breaks only mark the joints).
+  const auto restitute = [&](int begin, int end) {
+    w.contact_solver.applyRestitution(ctx, begin, end);
+    w.contact_solver.storeImpulses(w.contacts, begin, end);
+  };
+  const auto finishBodies = [&](const World::Impl::IslandRange& p) {
+    for (int k = p.body_begin; k < p.body_end; ++k) w.finishBody(w.island_bodies[k]);
+  };
 
   // Split islands one after another, each by the whole team (two threads at most: it has two
   // halves): each thread prepares a half, then thread 0 the boundary contacts (their bodies
@@ -864,6 +892,14 @@ void World::step(double dt) {
       w.contact_solver.prepare(w.contacts, ctx, r.boundary_begin, r.contact_end);
 #pragma omp barrier
       w.solveIsland(r, ctx, substeps);
+      // Restitution reads the halves' bodies as the boundary's does: halves first, then the
+      // boundary, then the bodies take their velocities.
+      for (int k = t; k < 2; k += nt) restitute(r.half(k).contact_begin, r.half(k).contact_end);
+#pragma omp barrier
+#pragma omp master
+      restitute(r.boundary_begin, r.contact_end);
+#pragma omp barrier
+      for (int k = t; k < 2; k += nt) finishBodies(r.half(k));
     }
   }
   const auto solveRun = [&](int t) {
@@ -872,6 +908,8 @@ void World::step(double dt) {
       if (r.split) continue;
       prepare(r);
       w.solveIsland(r, ctx, substeps);
+      restitute(r.contact_begin, r.contact_end);
+      finishBodies(r);
     }
   };
   if (islands > 1 && int(w.island_bodies.size()) >= kParallelMin) {
@@ -885,9 +923,9 @@ void World::step(double dt) {
     for (int t = 0; t < w.threadCount(); ++t) solveRun(t);
   }
   w.breakJoints();
-  w.contact_solver.applyRestitution(ctx);
-  w.contact_solver.storeImpulses(w.contacts);
-  w.finishStep();
+  for (int i = 0; i < body_count; ++i)
+    if (w.island_of_body[i] < 0) w.finishBody(i);
+  w.resetFaulted();
   if (w.any_solver_reset) w.clearWarmStart();
   w.updateSleep(dt);
   w.settled = !any_awake;

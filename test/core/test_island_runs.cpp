@@ -15,7 +15,8 @@ using namespace ragdoll_sim::test;
 namespace {
 
 // 8 jointed chains of 2..9 boxes, 1.5 m apart (8 islands, 44 bodies), dropped on the ground,
-// their boxes moving sideways against each other.
+// their boxes moving sideways against each other; every other chain bounces (restitution,
+// applied per island after its substeps).
 struct Chains {
   static constexpr int kChains = 8;
   std::unique_ptr<World> world;
@@ -28,11 +29,13 @@ struct Chains {
     world = std::make_unique<World>(def);
     addGround(*world);
     const Vec3 half(0.1, 0.05, 0.05);
+    Material bouncy;
+    bouncy.restitution = 0.5;
     for (int c = 0; c < kChains; ++c)
       for (int k = 0; k < 2 + c; ++k) {
         const Vec3 pos(0.2 * k, 1.5 * c, 0.4 + 0.02 * k);
         const BodyId b = addBody(*world, Geometry::box(half), 1.0, boxInertia(half, 1.0),
-                                 Transform(pos, Quat::Identity()), Material(),
+                                 Transform(pos, Quat::Identity()), c % 2 ? bouncy : Material(),
                                  Vec3(0.3 * c, k % 2 ? 0.2 : -0.2, 0));
         boxes.push_back(b);
         if (k == 0) continue;
@@ -50,13 +53,13 @@ struct Chains {
 
 TEST(IslandRuns, EveryIslandSolvedOnceForAnyThreadCount) {
   Chains one(1);
-  for (int i = 0; i < 400; ++i) one.world->step(1e-3);
+  for (int i = 0; i < 700; ++i) one.world->step(1e-3);
   // each chain fell and landed (its boxes rest 5 cm above the ground; they started >= 40 cm)
   for (size_t k = 0; k < one.boxes.size(); ++k)
     EXPECT_LT(one.world->bodyPose(one.boxes[k]).p.z(), 0.1) << "box " << k;
   for (const int threads : {2, 3, 5, 16}) {
     Chains many(threads);
-    for (int i = 0; i < 400; ++i) many.world->step(1e-3);
+    for (int i = 0; i < 700; ++i) many.world->step(1e-3);
     for (const BodyId& b : one.boxes) {
       const Transform x1 = one.world->bodyPose(b), xn = many.world->bodyPose(b);
       ASSERT_EQ(std::memcmp(x1.p.data(), xn.p.data(), sizeof(double) * 3), 0)
