@@ -204,6 +204,7 @@ int main(int argc, char** argv) {
         else if (k == "static_friction_speed") wd.static_friction_speed = v;
         else if (k == "joint_slop") wd.joint_slop = v;
         else if (k == "angular_slop") wd.angular_slop = v;
+        else if (k == "speculative") wd.speculative_distance = v;
         else if (k == "rolling") rolling = v;
         else if (k == "yaw") yaw = v;
         else if (k == "trace") trace = int(v);

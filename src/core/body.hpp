@@ -39,12 +39,12 @@ struct BodyMotion {
   Transform linkPose() const { return {x - q * local_com, q}; }
 };
 
-struct SolverBody {
+struct alignas(64) SolverBody {
   Vec3 v = Vec3::Zero();
   Vec3 w = Vec3::Zero();
-  Vec3 dp = Vec3::Zero();        // COM displacement since the start of the step
-  Quat dq = Quat::Identity();    // rotation since the start of the step (world, left-multiplied)
   double inv_mass = 0.0;
+  Quat dq = Quat::Identity();    // rotation since the start of the step (world, left-multiplied)
+  Vec3 dp = Vec3::Zero();        // COM displacement since the start of the step
   Mat3 inv_inertia = Mat3::Zero();  // world, frozen at the start of the step
 };
 
