@@ -110,6 +110,30 @@ bool IslandSplitter::split(int* bodies, int nb, Joint** joints, int nj, int* con
     int second = 0;
     for (int k = out.contact_mid; k < nc && contactKey(contacts[k]) == 1; ++k) ++second;
     out.boundary_begin = out.contact_mid + second;
+    // Boundary components: union-find over the island's bodies (both bodies of a boundary
+    // contact are in the island; parent_ and weight_ reused). Each component goes whole, in
+    // the order of its first contact, to the group with fewer contacts so far.
+    int* boundary = contacts + out.boundary_begin;
+    const int nbc = nc - out.boundary_begin;
+    for (int i = 0; i < nb; ++i) parent_[i] = i;
+    const auto bodyRoot = [&](int ci) { return root(localOf(all_contacts[ci].body_a)); };
+    for (int k = 0; k < nbc; ++k) {
+      const int ra = bodyRoot(boundary[k]), rb = root(localOf(all_contacts[boundary[k]].body_b));
+      if (ra != rb) parent_[std::max(ra, rb)] = std::min(ra, rb);
+    }
+    weight_.assign(nb, 0);  // now contacts per component root
+    for (int k = 0; k < nbc; ++k) ++weight_[bodyRoot(boundary[k])];
+    group_.assign(nb, -1);
+    int load[2] = {0, 0};
+    for (int k = 0; k < nbc; ++k) {
+      const int r = bodyRoot(boundary[k]);
+      if (group_[r] >= 0) continue;
+      group_[r] = load[1] < load[0] ? 1 : 0;
+      load[group_[r]] += weight_[r];
+    }
+    out.boundary_mid = out.boundary_begin +
+                       stableSplit(boundary, nbc, 2, [&](int ci) { return group_[bodyRoot(ci)]; },
+                                   int_scratch_);
     out.body_mid = stableSplit(bodies, nb, 2, halfOf, int_scratch_);
   }
   for (int i = 0; i < nb; ++i) local_[bodies[i]] = -1;

@@ -40,6 +40,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <unordered_set>
+#include <utility>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -67,6 +68,15 @@ constexpr int kParallelMin = 32;
 constexpr int kSplitMin = 60;
 
 uint64_t bodyPairKey(int a, int b) { return pairKey(std::min(a, b), std::max(a, b)); }
+
+// This thread's number and the team's size in the enclosing parallel region ({0, 1} outside).
+std::pair<int, int> teamSlot() {
+#ifdef _OPENMP
+  return {omp_get_thread_num(), omp_get_num_threads()};
+#else
+  return {0, 1};
+#endif
+}
 
 // One test instead of one per component: NaN or inf anywhere makes the sum non-finite. Finite
 // values whose sum overflows fall through to the exact check.
@@ -133,9 +143,11 @@ struct World::Impl {
     int contact_begin = 0, contact_end = 0;
     // A split island (island_split.hpp): halves [begin, mid) and [mid, end) of bodies and
     // joints, contacts [contact_begin, contact_mid) and [contact_mid, boundary_begin), then the
-    // boundary contacts up to contact_end.
+    // boundary contacts up to contact_end, in two groups that share no body (boundary(k)).
     bool split = false;
-    int body_mid = 0, joint_mid = 0, contact_mid = 0, boundary_begin = 0;
+    int body_mid = 0, joint_mid = 0, contact_mid = 0, boundary_begin = 0, boundary_mid = 0;
+    int boundaryBegin(int k) const { return k == 0 ? boundary_begin : boundary_mid; }
+    int boundaryEnd(int k) const { return k == 0 ? boundary_mid : contact_end; }
     IslandRange half(int k) const {
       IslandRange r = *this;
       r.split = false;
@@ -567,6 +579,7 @@ void World::Impl::partitionIslands() {
     r.joint_mid = r.joint_begin + h.joint_mid;
     r.contact_mid = r.contact_begin + h.contact_mid;
     r.boundary_begin = r.contact_begin + h.boundary_begin;
+    r.boundary_mid = r.contact_begin + h.boundary_mid;
   }
   // Each thread takes a run of consecutive islands (in body order) of about equal work, the
   // same run step after step while the islands last: its bodies and constraints stay in that
@@ -596,30 +609,24 @@ void World::Impl::partitionIslands() {
 
 // The substep loop for one island; touches only the island's bodies and constraints. A split
 // island is solved by the team of the enclosing parallel region. Each sweep first solves the
-// boundary contacts on thread 0 while the others wait, then the threads take the halves
-// (with one thread: the same work in the same order); the halves' joints thus follow the
-// boundary's impulses in every sweep, as they follow the contacts in a sweep of a whole
-// island. Work on the halves alone needs no barrier: they touch disjoint bodies.
+// boundary contacts, its two groups at once (they share no body), then the threads take the
+// halves (with one thread: the same work in the same order); the halves' joints thus follow
+// the boundary's impulses in every sweep, as they follow the contacts in a sweep of a whole
+// island. Work on the halves alone needs no barrier: they touch disjoint bodies. Thread k
+// always takes half k and boundary group k, so their constraints stay in its core's cache.
 void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int substeps) {
   Joint* const* js = active_joints.data();
   const IslandRange halves[2] = {r.half(0), r.half(1)};
   const auto parts = [&](auto&& part) {
     if (!r.split) return part(r);
-#ifdef _OPENMP
-    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
-#else
-    const int t = 0, nt = 1;
-#endif
+    const auto [t, nt] = teamSlot();
     for (int k = t; k < 2; k += nt) part(halves[k]);
   };
   const auto boundary = [&](auto&& contacts) {
     if (!r.split) return;
-    // Always thread 0 (master, not single): the boundary's constraints then stay in one core's
-    // cache (with single the boundary took 48 us of a c step on 2 threads, 36 with master,
-    // 19.5 on 1 thread).
+    const auto [t, nt] = teamSlot();
 #pragma omp barrier
-#pragma omp master
-    contacts(r.boundary_begin, r.contact_end);
+    for (int k = t; k < 2; k += nt) contacts(r.boundaryBegin(k), r.boundaryEnd(k));
 #pragma omp barrier
   };
   const auto joints = [&](const IslandRange& p, auto&& f) {
@@ -874,30 +881,25 @@ void World::step(double dt) {
   };
 
   // Split islands one after another, each by the whole team (two threads at most: it has two
-  // halves): each thread prepares a half, then thread 0 the boundary contacts (their bodies
+  // halves): each thread prepares a half, then a group of the boundary contacts (their bodies
   // are in both halves). Then the others, each thread its run of islands.
   const int islands = int(w.island_ranges.size());
   for (const World::Impl::IslandRange& r : w.island_ranges) {
     if (!r.split) continue;
 #pragma omp parallel num_threads(std::min(2, w.threadCount()))
     {
-#ifdef _OPENMP
-      const int t = omp_get_thread_num(), nt = omp_get_num_threads();
-#else
-      const int t = 0, nt = 1;
-#endif
+      const auto [t, nt] = teamSlot();
       for (int k = t; k < 2; k += nt) prepare(r.half(k));
 #pragma omp barrier
-#pragma omp master
-      w.contact_solver.prepare(w.contacts, ctx, r.boundary_begin, r.contact_end);
+      for (int k = t; k < 2; k += nt)
+        w.contact_solver.prepare(w.contacts, ctx, r.boundaryBegin(k), r.boundaryEnd(k));
 #pragma omp barrier
       w.solveIsland(r, ctx, substeps);
       // Restitution reads the halves' bodies as the boundary's does: halves first, then the
       // boundary, then the bodies take their velocities.
       for (int k = t; k < 2; k += nt) restitute(r.half(k).contact_begin, r.half(k).contact_end);
 #pragma omp barrier
-#pragma omp master
-      restitute(r.boundary_begin, r.contact_end);
+      for (int k = t; k < 2; k += nt) restitute(r.boundaryBegin(k), r.boundaryEnd(k));
 #pragma omp barrier
       for (int k = t; k < 2; k += nt) finishBodies(r.half(k));
     }

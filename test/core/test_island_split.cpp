@@ -67,6 +67,7 @@ TEST(IslandSplitter, HalvesAreWholeLimbsAndTheBoundaryIsTheCut) {
     EXPECT_EQ(k < h.joint_mid, js[k]->a < 10) << "joint " << js[k]->a << "-" << js[k]->b;
   EXPECT_EQ(h.contact_mid, 4);
   EXPECT_EQ(h.boundary_begin, 6);
+  EXPECT_EQ(h.boundary_mid, 7);  // the one boundary contact is group 0
   EXPECT_EQ(contacts, (std::vector<int>{3, 4, 5, 6, 0, 1, 2}));
 
   // The splitter leaves no state behind: a second island of other bodies splits the same way.
@@ -76,6 +77,48 @@ TEST(IslandSplitter, HalvesAreWholeLimbsAndTheBoundaryIsTheCut) {
                              all, 16, h));
   EXPECT_EQ(again, bodies);
   EXPECT_EQ(contacts2, contacts);
+}
+
+// Limbs {1,2,3} {4,5,6} {7,8,9} {10,11,12}: the first half is limbs 0 and 1. Three contacts
+// cross the cut; two share body 5, so they form one boundary component and stay together, in
+// their order, in group 0; the third goes to group 1 (fewer contacts). The groups share no
+// body, which is what lets two threads solve them at once.
+TEST(IslandSplitter, BoundaryGroupsAreWholeComponentsSharingNoBody) {
+  std::vector<Joint> joints(8);
+  for (int limb = 0; limb < 4; ++limb)
+    for (int k = 0; k < 2; ++k) {
+      Joint& j = joints[2 * limb + k];
+      j.a = 1 + 3 * limb + k;
+      j.b = j.a + 1;
+    }
+  std::vector<Joint*> js;
+  for (Joint& j : joints) js.push_back(&j);
+  const std::vector<Contact> all = {
+      contactBetween(2, 4),    // 0: limbs 0-1
+      contactBetween(5, 7),    // 1: limbs 1-2, boundary, shares body 5 with 3
+      contactBetween(1, 10),   // 2: limbs 0-3, boundary
+      contactBetween(8, 5),    // 3: limbs 2-1, boundary
+      contactBetween(11, 12),  // 4: inside limb 3
+  };
+  std::vector<int> contacts = {0, 1, 2, 3, 4};
+  std::vector<int> bodies;
+  for (int b = 1; b <= 12; ++b) bodies.push_back(b);
+  IslandSplitter splitter;
+  IslandHalves h;
+  ASSERT_TRUE(splitter.split(bodies.data(), 12, js.data(), int(js.size()), contacts.data(), 5,
+                             all, 13, h));
+  EXPECT_EQ(h.body_mid, 6);
+  EXPECT_EQ(h.boundary_begin, 2);
+  EXPECT_EQ(h.boundary_mid, 4);
+  EXPECT_EQ(contacts, (std::vector<int>{0, 4, 1, 3, 2}));
+  const auto touches = [&](int begin, int end, int body) {
+    for (int k = begin; k < end; ++k)
+      if (all[contacts[k]].body_a == body || all[contacts[k]].body_b == body) return true;
+    return false;
+  };
+  for (int body = 1; body <= 12; ++body)
+    EXPECT_FALSE(touches(h.boundary_begin, h.boundary_mid, body) && touches(h.boundary_mid, 5, body))
+        << "body " << body << " in both groups";
 }
 
 TEST(IslandSplitter, OneLimbIsNotSplit) {
