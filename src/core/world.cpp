@@ -148,6 +148,13 @@ struct World::Impl {
     int body_mid = 0, joint_mid = 0, contact_mid = 0, boundary_begin = 0, boundary_mid = 0;
     int boundaryBegin(int k) const { return k == 0 ? boundary_begin : boundary_mid; }
     int boundaryEnd(int k) const { return k == 0 ? boundary_mid : contact_end; }
+    // Split: the whole islands solved along with half k, attached_islands[attach[k],
+    // attach[k + 1]). Whole: attached to a split island's half (not in a run).
+    int attach[3] = {0, 0, 0};
+    bool attached = false;
+    int work() const {
+      return (body_end - body_begin) + (joint_end - joint_begin) + (contact_end - contact_begin);
+    }
     IslandRange half(int k) const {
       IslandRange r = *this;
       r.split = false;
@@ -163,6 +170,11 @@ struct World::Impl {
   IslandSplitter splitter;
   std::vector<IslandRange> island_ranges;
   std::vector<int> island_runs;  // thread t solves islands [island_runs[t], island_runs[t + 1])
+  std::vector<int> attached_islands;  // grouped by split island and half (IslandRange::attach)
+  std::vector<std::pair<int, int>> attach_scratch;
+  std::vector<long> island_load;
+  long run_work = 0;  // work of the islands in runs (none when all go along with split ones)
+  std::vector<int> island_split_of_slot;
   std::vector<int> island_bodies, island_of_body, group_offsets, group_cursor, body_scratch;
   std::vector<Joint*> joint_scratch;
   std::vector<int> contact_index_scratch;
@@ -211,6 +223,7 @@ struct World::Impl {
 
   void collide(double dt);
   void partitionIslands();
+  void attachToSplitHalves();
   void solveIsland(const IslandRange& r, const StepContext& ctx, int substeps);
   void integrateVelocities(double h, int begin, int end);
   void integratePositions(double h, int begin, int end);
@@ -581,6 +594,7 @@ void World::Impl::partitionIslands() {
     r.boundary_begin = r.contact_begin + h.boundary_begin;
     r.boundary_mid = r.contact_begin + h.boundary_mid;
   }
+  attachToSplitHalves();
   // Each thread takes a run of consecutive islands (in body order) of about equal work, the
   // same run step after step while the islands last: its bodies and constraints stay in that
   // core's cache. (Handing out islands dynamically, biggest first, moved them between the
@@ -589,11 +603,10 @@ void World::Impl::partitionIslands() {
   long total = 0;
   const auto work = [&](int k) {
     const IslandRange& r = island_ranges[k];
-    return r.split ? 0L
-                   : long(r.body_end - r.body_begin) + (r.joint_end - r.joint_begin) +
-                         (r.contact_end - r.contact_begin);
+    return r.split || r.attached ? 0L : long(r.work());
   };
   for (int k = 0; k < count; ++k) total += work(k);
+  run_work = total;
   island_runs.assign(threads + 1, count);
   island_runs[0] = 0;
   long prefix = 0;  // work of islands [0, k)
@@ -604,6 +617,54 @@ void World::Impl::partitionIslands() {
     while (k < count && prefix + work(k) <= share) prefix += work(k++);
     if (k < count && prefix + work(k) - share < share - prefix) prefix += work(k++);
     island_runs[t] = k;
+  }
+}
+
+// With a split island, the whole islands go along with its halves instead of into runs: each,
+// in order, to the half with the least work so far (its bodies, joints and contacts plus its
+// boundary group's). The threads wait for each other at every boundary sweep, and the thread
+// of the lighter half (scene c: the upper ragdolls of the pile, 95 against 129 us per step)
+// now solves, e.g., a ragdoll that lies apart in that time, instead of after the split island
+// while the other thread idles. An attached island goes through the same substep sequence as
+// alone, in lockstep with the half, so the result does not change. With more than two threads
+// (a split island takes two) an island only fills a lighter half up to the other's work: the
+// runs spread the rest over all threads.
+void World::Impl::attachToSplitHalves() {
+  attached_islands.clear();
+  attach_scratch.clear();  // (slot, island); slot = 2 x (split island's rank) + half
+  std::vector<long>& load = island_load;
+  load.clear();
+  std::vector<int>& split_of_slot = island_split_of_slot;
+  split_of_slot.clear();
+  for (int s = 0; s < int(island_ranges.size()); ++s) {
+    const IslandRange& r = island_ranges[s];
+    if (!r.split) continue;
+    for (int k = 0; k < 2; ++k) {
+      load.push_back(r.half(k).work() + (r.boundaryEnd(k) - r.boundaryBegin(k)));
+      split_of_slot.push_back(s);
+    }
+  }
+  if (load.empty()) return;
+  const bool fill_only = threadCount() > 2;
+  for (int i = 0; i < int(island_ranges.size()); ++i) {
+    IslandRange& r = island_ranges[i];
+    if (r.split) continue;
+    const int slot = int(std::min_element(load.begin(), load.end()) - load.begin());
+    if (fill_only && load[slot] + r.work() > load[slot ^ 1]) continue;
+    load[slot] += r.work();
+    r.attached = true;
+    attach_scratch.push_back({slot, i});
+  }
+  std::stable_sort(attach_scratch.begin(), attach_scratch.end(),
+                   [](const auto& x, const auto& y) { return x.first < y.first; });
+  size_t next = 0;
+  for (int slot = 0; slot < int(load.size()); ++slot) {
+    IslandRange& r = island_ranges[split_of_slot[slot]];
+    const int k = slot % 2;
+    r.attach[k] = int(attached_islands.size());
+    while (next < attach_scratch.size() && attach_scratch[next].first == slot)
+      attached_islands.push_back(attach_scratch[next++].second);
+    r.attach[k + 1] = int(attached_islands.size());
   }
 }
 
@@ -620,7 +681,10 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int 
   const auto parts = [&](auto&& part) {
     if (!r.split) return part(r);
     const auto [t, nt] = teamSlot();
-    for (int k = t; k < 2; k += nt) part(halves[k]);
+    for (int k = t; k < 2; k += nt) {
+      part(halves[k]);
+      for (int a = r.attach[k]; a < r.attach[k + 1]; ++a) part(island_ranges[attached_islands[a]]);
+    }
   };
   const auto boundary = [&](auto&& contacts) {
     if (!r.split) return;
@@ -889,7 +953,13 @@ void World::step(double dt) {
 #pragma omp parallel num_threads(std::min(2, w.threadCount()))
     {
       const auto [t, nt] = teamSlot();
-      for (int k = t; k < 2; k += nt) prepare(r.half(k));
+      // half k and the islands attached to it (attachToSplitHalves)
+      const auto withAttached = [&](int k, auto&& f) {
+        f(r.half(k));
+        for (int a = r.attach[k]; a < r.attach[k + 1]; ++a)
+          f(w.island_ranges[w.attached_islands[a]]);
+      };
+      for (int k = t; k < 2; k += nt) withAttached(k, prepare);
 #pragma omp barrier
       for (int k = t; k < 2; k += nt)
         w.contact_solver.prepare(w.contacts, ctx, r.boundaryBegin(k), r.boundaryEnd(k));
@@ -897,31 +967,35 @@ void World::step(double dt) {
       w.solveIsland(r, ctx, substeps);
       // Restitution reads the halves' bodies as the boundary's does: halves first, then the
       // boundary, then the bodies take their velocities.
-      for (int k = t; k < 2; k += nt) restitute(r.half(k).contact_begin, r.half(k).contact_end);
+      for (int k = t; k < 2; k += nt)
+        withAttached(k, [&](const World::Impl::IslandRange& p) {
+          restitute(p.contact_begin, p.contact_end);
+        });
 #pragma omp barrier
       for (int k = t; k < 2; k += nt) restitute(r.boundaryBegin(k), r.boundaryEnd(k));
 #pragma omp barrier
-      for (int k = t; k < 2; k += nt) finishBodies(r.half(k));
+      for (int k = t; k < 2; k += nt) withAttached(k, finishBodies);
     }
   }
   const auto solveRun = [&](int t) {
     for (int k = w.island_runs[t]; k < w.island_runs[t + 1]; ++k) {
       const World::Impl::IslandRange& r = w.island_ranges[k];
-      if (r.split) continue;
+      if (r.split || r.attached) continue;
       prepare(r);
       w.solveIsland(r, ctx, substeps);
       restitute(r.contact_begin, r.contact_end);
       finishBodies(r);
     }
   };
-  if (islands > 1 && int(w.island_bodies.size()) >= kParallelMin) {
+  // (no runs when every island is split or goes along with a split one's half)
+  if (w.run_work > 0 && islands > 1 && int(w.island_bodies.size()) >= kParallelMin) {
 #ifdef _OPENMP
 #pragma omp parallel num_threads(w.threadCount())
     solveRun(omp_get_thread_num());
 #else
     solveRun(0);  // threadCount() is 1
 #endif
-  } else {
+  } else if (w.run_work > 0) {
     for (int t = 0; t < w.threadCount(); ++t) solveRun(t);
   }
   w.breakJoints();
