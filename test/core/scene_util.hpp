@@ -62,6 +62,17 @@ inline BodyId addSphere(World& w, double r, double mass, const Vec3& pos, const 
                  Transform(pos, Quat::Identity()), m);
 }
 
+// Ball joint from the +x face of a (centre + half_x) to the -x face of b: links of a chain
+// along x.
+inline JointId chainLink(World& w, BodyId a, BodyId b, double half_x) {
+  BallJointDef j;
+  j.body_a = a;
+  j.body_b = b;
+  j.frame_a = Transform(Vec3(half_x, 0, 0), Quat::Identity());
+  j.frame_b = Transform(Vec3(-half_x, 0, 0), Quat::Identity());
+  return w.createBallJoint(j);
+}
+
 // Period of an oscillating value: steps the world `steps` times and averages the time between
 // downward zero crossings (linearly interpolated). Returns -1 with fewer than 3 crossings.
 template <class Value>

@@ -37,14 +37,8 @@ struct Chains {
         const BodyId b = addBody(*world, Geometry::box(half), 1.0, boxInertia(half, 1.0),
                                  Transform(pos, Quat::Identity()), c % 2 ? bouncy : Material(),
                                  Vec3(0.3 * c, k % 2 ? 0.2 : -0.2, 0));
+        if (k > 0) chainLink(*world, boxes.back(), b, 0.1);
         boxes.push_back(b);
-        if (k == 0) continue;
-        BallJointDef j;
-        j.body_a = boxes[boxes.size() - 2];
-        j.body_b = b;
-        j.frame_a = Transform(Vec3(0.1, 0, 0), Quat::Identity());
-        j.frame_b = Transform(Vec3(-0.1, 0, 0), Quat::Identity());
-        world->createBallJoint(j);
       }
   }
 };

@@ -24,19 +24,25 @@ Contact contactBetween(int a, int b) {
   return c;
 }
 
+// Limbs of three bodies {1,2,3} {4,5,6} ...: two joints each, 1-2, 2-3, 4-5, ...
+std::vector<Joint> limbJoints(int limbs) {
+  std::vector<Joint> joints(2 * limbs);
+  for (int limb = 0; limb < limbs; ++limb)
+    for (int k = 0; k < 2; ++k) {
+      Joint& j = joints[2 * limb + k];
+      j.a = 1 + 3 * limb + k;
+      j.b = j.a + 1;
+    }
+  return joints;
+}
+
 }  // namespace
 
 // Body 0 is static (outside the island). Limbs of three bodies: {1,2,3} {4,5,6} {7,8,9}
 // {10,11,12} {13,14,15}, touching in a row; the first half grows from limb 0 until it holds
 // half the bodies (limbs 0..2: 9 of 15), so only the contact between limbs 2 and 3 is cut.
 TEST(IslandSplitter, HalvesAreWholeLimbsAndTheBoundaryIsTheCut) {
-  std::vector<Joint> joints(10);
-  for (int limb = 0; limb < 5; ++limb)
-    for (int k = 0; k < 2; ++k) {
-      Joint& j = joints[2 * limb + k];
-      j.a = 1 + 3 * limb + k;
-      j.b = j.a + 1;
-    }
+  std::vector<Joint> joints = limbJoints(5);
   // listed from the far end, so the halves must regroup them
   std::vector<Joint*> js;
   for (int k = int(joints.size()) - 1; k >= 0; --k) js.push_back(&joints[k]);
@@ -84,13 +90,7 @@ TEST(IslandSplitter, HalvesAreWholeLimbsAndTheBoundaryIsTheCut) {
 // their order, in group 0; the third goes to group 1 (fewer contacts). The groups share no
 // body, which is what lets two threads solve them at once.
 TEST(IslandSplitter, BoundaryGroupsAreWholeComponentsSharingNoBody) {
-  std::vector<Joint> joints(8);
-  for (int limb = 0; limb < 4; ++limb)
-    for (int k = 0; k < 2; ++k) {
-      Joint& j = joints[2 * limb + k];
-      j.a = 1 + 3 * limb + k;
-      j.b = j.a + 1;
-    }
+  std::vector<Joint> joints = limbJoints(4);
   std::vector<Joint*> js;
   for (Joint& j : joints) js.push_back(&j);
   const std::vector<Contact> all = {
@@ -164,14 +164,8 @@ struct Raft {
         const Vec3 v(0, c % 2 ? 0.8 : -0.8, 0.05 * c);
         const BodyId b = addBody(*world, Geometry::box(half), 1.0 + 0.1 * k, boxInertia(half, 1.0 + 0.1 * k),
                                  Transform(pos, Quat::Identity()), bouncy, v);
+        if (k > 0) chainLink(*world, boxes.back(), b, kHalf);
         boxes.push_back(b);
-        if (k == 0) continue;
-        BallJointDef j;
-        j.body_a = boxes[boxes.size() - 2];
-        j.body_b = b;
-        j.frame_a = Transform(Vec3(kHalf, 0, 0), Quat::Identity());
-        j.frame_b = Transform(Vec3(-kHalf, 0, 0), Quat::Identity());
-        world->createBallJoint(j);
       }
   }
 
@@ -234,14 +228,8 @@ std::vector<BodyId> addChains(World& world) {
       const BodyId b = addBody(world, Geometry::box(half), 1.0 + 0.2 * k,
                                boxInertia(half, 1.0 + 0.2 * k), pose, Material(), v);
       world.setBodyState(b, pose, v, Vec3(0, 0, 2.0 + c));
+      if (k > 0) chainLink(world, boxes.back(), b, 0.1);
       boxes.push_back(b);
-      if (k == 0) continue;
-      BallJointDef j;
-      j.body_a = boxes[boxes.size() - 2];
-      j.body_b = b;
-      j.frame_a = Transform(Vec3(0.1, 0, 0), Quat::Identity());
-      j.frame_b = Transform(Vec3(-0.1, 0, 0), Quat::Identity());
-      world.createBallJoint(j);
     }
   return boxes;
 }
