@@ -118,7 +118,8 @@ bool IslandSplitter::split(int* bodies, int nb, Joint** joints, int nj, int* con
     for (int i = 0; i < nb; ++i) parent_[i] = i;
     const auto bodyRoot = [&](int ci) { return root(localOf(all_contacts[ci].body_a)); };
     for (int k = 0; k < nbc; ++k) {
-      const int ra = bodyRoot(boundary[k]), rb = root(localOf(all_contacts[boundary[k]].body_b));
+      const Contact& c = all_contacts[boundary[k]];
+      const int ra = root(localOf(c.body_a)), rb = root(localOf(c.body_b));
       if (ra != rb) parent_[std::max(ra, rb)] = std::min(ra, rb);
     }
     weight_.assign(nb, 0);  // now contacts per component root
