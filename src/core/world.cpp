@@ -655,15 +655,14 @@ void World::Impl::attachToSplitHalves() {
     r.attached = true;
     attach_scratch.push_back({slot, i});
   }
-  std::stable_sort(attach_scratch.begin(), attach_scratch.end(),
-                   [](const auto& x, const auto& y) { return x.first < y.first; });
-  size_t next = 0;
+  // Grouped by slot, in island order (a pass per slot: there are two per split island, and
+  // std::stable_sort would take a buffer from the heap every step).
   for (int slot = 0; slot < int(load.size()); ++slot) {
     IslandRange& r = island_ranges[split_of_slot[slot]];
     const int k = slot % 2;
     r.attach[k] = int(attached_islands.size());
-    while (next < attach_scratch.size() && attach_scratch[next].first == slot)
-      attached_islands.push_back(attach_scratch[next++].second);
+    for (const auto& [s, island] : attach_scratch)
+      if (s == slot) attached_islands.push_back(island);
     r.attach[k + 1] = int(attached_islands.size());
   }
 }
