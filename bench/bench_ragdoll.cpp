@@ -95,8 +95,8 @@ double lowestZ(const Geometry& g, const Transform& x) {
 
 struct Metrics {
   double max_anchor = 0, max_pen = 0, max_limit = 0;
-  std::string worst_joint = "-";
-  int worst_step = -1;
+  std::string worst_joint = "-", pen_link = "-";
+  int worst_step = -1, pen_step = -1;
   bool nan = false;
   double pel_mean = NAN, pel_min = NAN, pel_max = NAN, pen3 = NAN, anchor3 = NAN, vmax3 = NAN;
   std::vector<Vec3> prev;
@@ -106,13 +106,16 @@ struct Metrics {
     const size_t L = def.links.size();
     double pen = 0, anchor = 0, lim = 0;
     const RagdollJointDef* wj = nullptr;
+    const std::string* pen_name = nullptr;
     for (const Transform& p : poses)
       if (!p.p.allFinite() || !p.q.coeffs().allFinite()) nan = true;
     for (int r = 0; r < n; ++r) {
       const Transform* W = &poses[r * L];
       for (size_t i = 0; i < L; ++i)
-        for (const ShapeDef& s : def.links[i].shapes)
-          pen = std::max(pen, -lowestZ(s.geometry, W[i] * s.local));
+        for (const ShapeDef& s : def.links[i].shapes) {
+          const double d = -lowestZ(s.geometry, W[i] * s.local);
+          if (d > pen) pen = d, pen_name = &def.links[i].name;
+        }
       for (const RagdollJointDef& j : def.joints) {
         const Transform fa = W[j.parent] * j.frame_parent, fb = W[j.child] * j.frame_child;
         anchor = std::max(anchor, (fb.p - fa.p).norm());
@@ -130,7 +133,11 @@ struct Metrics {
         }
       }
     }
-    max_pen = std::max(max_pen, pen);
+    if (pen > max_pen) {
+      max_pen = pen;
+      pen_link = *pen_name;
+      pen_step = step;
+    }
     max_anchor = std::max(max_anchor, anchor);
     if (lim > max_limit) {
       max_limit = lim;
@@ -205,6 +212,7 @@ int main(int argc, char** argv) {
         else if (k == "joint_slop") wd.joint_slop = v;
         else if (k == "angular_slop") wd.angular_slop = v;
         else if (k == "speculative") wd.speculative_distance = v;
+        else if (k == "cache_distance") wd.manifold_cache_distance = v;
         else if (k == "rolling") rolling = v;
         else if (k == "yaw") yaw = v;
         else if (k == "trace") trace = int(v);
@@ -332,11 +340,12 @@ int main(int argc, char** argv) {
       "max_limit_viol_rad=%.3g pelvis_z_3s_mean=%.4f pelvis_z_3s_min=%.4f pelvis_z_3s_max=%.4f "
       "ground_pen_3s_m=%.4f anchor_err_3s_m=%.3g vmax_3s=%.3g worst_limit=%s@%d nan=%d "
       "loop_wall_s=%.3f substeps=%d joint_hertz=%g contact_hertz=%g sleep=%d threads=%d rolling=%g yaw=%g max_contacts=%zu "
-      "us_per_step_first_1s=%.1f us_per_step_last_1s=%.1f awake_bodies_end=%d%s\n",
+      "us_per_step_first_1s=%.1f us_per_step_last_1s=%.1f awake_bodies_end=%d worst_pen=%s@%d%s\n",
       sc.id, n, bodies, steps, wall, sps, sps * bodies, 1e6 * wall / (steps * double(bodies)),
       m.max_anchor, m.max_pen, m.max_limit, m.pel_mean, m.pel_min, m.pel_max, m.pen3, m.anchor3,
       m.vmax3, m.worst_joint.c_str(), m.worst_step, m.nan ? 1 : 0, loop_wall, wd.substeps,
       wd.joint_hertz, wd.contact_hertz, wd.enable_sleep ? 1 : 0, wd.threads, rolling, yaw, world.contacts().size(),
-      1e6 * wall_first / window, 1e6 * wall_last / window, world.awakeBodyCount(), pit.c_str());
+      1e6 * wall_first / window, 1e6 * wall_last / window, world.awakeBodyCount(),
+      m.pen_link.c_str(), m.pen_step, pit.c_str());
   return 0;
 }

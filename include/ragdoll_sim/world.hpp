@@ -46,6 +46,11 @@ struct WorldDef {
   double restitution_threshold = 1.0;   // m/s, no bounce below this approach speed
   double static_friction_speed = 0.02;  // m/s, below this tangential speed static friction holds
   double speculative_distance = 0.02;   // m, contacts are made this far before touching
+  // m: a touching pair keeps its manifold (carried along with the shapes) instead of running
+  // the narrowphase while no point of one shape has moved more than this relative to the
+  // other since the manifold was computed, and both bodies move less than
+  // (speculative_distance - this) per step (src/core/manifold_cache.hpp). 0 turns it off.
+  double manifold_cache_distance = 0.001;
   double linear_slop = 0.0005;          // m, penetration allowed to keep contacts warm
   // Clamps against blow-ups, applied to every body before the step (a huge impulse never
   // enters the solver) and after it.

@@ -273,7 +273,8 @@ CoreDistance epa(const ConvexCore& A, const ConvexCore& B, SV* s, int n) {
 
 }  // namespace
 
-CoreDistance coreDistance(const ConvexCore& A, const ConvexCore& B, const Vec3* guess) {
+CoreDistance coreDistance(const ConvexCore& A, const ConvexCore& B, const Vec3* guess,
+                          double far) {
   // The point of A - B nearest the origin is its support along the normal (A to B); without a
   // guess, the centres' offset starts on the far side (ragdoll piles: ~2.5 iterations more of
   // ~10 per call).
@@ -305,6 +306,10 @@ CoreDistance coreDistance(const ConvexCore& A, const ConvexCore& B, const Vec3* 
     // 1e-7 m (or relatively to 5e-9), far below the slops (0.5 mm). A curved core converges
     // only linearly, and iterating to round-off piles up near-duplicate points.
     separated |= vw > 0.0;
+    if (vw > 0.0 && vw * vw > far * far * vv) {  // the lower bound is beyond `far`
+      const double len = std::sqrt(vv);
+      return {-v / len, vw / len, combine(s, n, lam, &SV::a), combine(s, n, lam, &SV::b)};
+    }
     if (vv - vw <= std::max(5e-9 * vv, 1e-7 * std::sqrt(vv)) || iter == 64) break;
     bool dup = false;
     for (int i = 0; i < n; ++i) dup |= (s[i].w - w.w).squaredNorm() < 1e-24;

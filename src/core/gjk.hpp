@@ -1,6 +1,8 @@
 // Distance or penetration between two convex cores given by support mappings.
 #pragma once
 
+#include <limits>
+
 #include "ragdoll_sim/shape.hpp"
 
 namespace ragdoll_sim {
@@ -23,7 +25,10 @@ struct CoreDistance {
 
 // GJK for separated cores; EPA on the Minkowski difference when they overlap. guess: a likely
 // normal from A to B (last step's), or null; GJK then starts on the near side of A - B.
-CoreDistance coreDistance(const ConvexCore& a, const ConvexCore& b, const Vec3* guess = nullptr);
+// far: GJK stops as soon as it proves the cores farther apart than this, and returns that
+// lower bound as the distance (the normal is the current search direction, a separating axis).
+CoreDistance coreDistance(const ConvexCore& a, const ConvexCore& b, const Vec3* guess = nullptr,
+                          double far = std::numeric_limits<double>::infinity());
 
 }  // namespace np
 }  // namespace ragdoll_sim

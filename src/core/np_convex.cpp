@@ -123,8 +123,9 @@ void collideConvex(const Geometry& a, const Transform& xa, const Geometry& b,
   out.count = 0;
   if ((xb.p - xa.p).norm() - boundingRadius(a) - boundingRadius(b) > spec) return;
   const ConvexCore ca{&a, xa}, cb{&b, xb};
-  const CoreDistance cd = coreDistance(ca, cb, guess);
   const double ra = ca.radius(), rb = cb.radius();
+  // Farther apart than the speculative distance: GJK may stop at its first lower bound beyond.
+  const CoreDistance cd = coreDistance(ca, cb, guess, spec + ra + rb);
   const double sep = cd.distance - ra - rb;
   const Vec3 n = cd.normal;
   out.normal = n;

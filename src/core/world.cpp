@@ -3,8 +3,9 @@
 // step(dt) (Box2D v3 soft step, in 3D):
 //   1. collide: broadphase pairs -> narrowphase manifolds at the poses of the step start
 //      (boxes, the sweep's pair loop with the pair filter, and the pairs in parallel;
-//      separated pairs skipped by their cached axis); impulses carried over by feature id
-//      (warm starting);
+//      separated pairs skipped by their cached axis, touching pairs that barely moved keep
+//      their manifold, manifold_cache.hpp); impulses carried over by feature id (warm
+//      starting);
 //   2. islands (island.hpp): awake bodies, joints and contacts grouped per island; substep
 //      h = dt / substeps;
 //   3. per island (islands in parallel, WorldDef::threads, each thread a run of consecutive
@@ -53,6 +54,7 @@
 #include "island.hpp"
 #include "island_split.hpp"
 #include "joint.hpp"
+#include "manifold_cache.hpp"
 
 namespace ragdoll_sim {
 
@@ -117,6 +119,8 @@ struct World::Impl {
   std::unordered_set<uint64_t> disabled;
   Broadphase broadphase;
   std::vector<Contact> contacts, next_contacts;
+  // Per contact (same index): its manifold in the shapes' frames (manifold_cache.hpp).
+  std::vector<ManifoldCache> manifold_caches, next_manifold_caches;
   ContactSolver contact_solver;
   Islands islands;
   // scratch, reused every step
@@ -311,6 +315,7 @@ void World::Impl::collide(double dt) {
   // Sized only: every contact is reset in the parallel loop below (a Contact is ~400 bytes, and
   // constructing them serially was ~15 us of a 32-ragdoll step).
   next_contacts.resize(pair_keys.size());
+  next_manifold_caches.resize(pair_keys.size());
 
   // Merge with last step's contacts (both sorted by key), then run the narrowphase on each
   // pair independently (in parallel; each writes only its own contact).
@@ -321,22 +326,47 @@ void World::Impl::collide(double dt) {
     if (old < contacts.size() && contacts[old].key == pair_keys[i]) old_contact[i] = int(old);
   }
   const int count = int(next_contacts.size());
+  // Manifold cache (manifold_cache.hpp): a feature the kept manifold lacks is at least
+  // (speculative - cache distance) away, so both bodies must move less than that in the step,
+  // (|v| + extent |w|) dt, for it not to be reached unseen.
+  const double cache_distance = def.manifold_cache_distance;
+  const bool cache_on = cache_distance > 0.0 && cache_distance < spec;
+  const double cache_speed = (spec - cache_distance) / dt;
+  const auto slow = [&](int b) {
+    const BodyMotion& m = motions[b];
+    return m.v.norm() + m.extent * m.w.norm() <= cache_speed;
+  };
 #pragma omp parallel for schedule(static) num_threads(threadCount()) if (count >= kParallelMin)
   for (int i = 0; i < count; ++i) {
     Contact& c = next_contacts[i];
+    ManifoldCache& cache = next_manifold_caches[i];
     const int o = old_contact[i];
-    c = Contact();
-    c.key = pair_keys[i];
-    c.shape_a = int(pair_keys[i] >> 32);
-    c.shape_b = int(uint32_t(pair_keys[i]));
-    c.body_a = shapes[c.shape_a].body;
-    c.body_b = shapes[c.shape_b].body;
-    if (!motions[c.body_a].awake && !motions[c.body_b].awake) {
-      if (o >= 0) c = contacts[o];  // asleep: the manifold and impulses stay as they were
+    const int sa = int(pair_keys[i] >> 32), sb = int(uint32_t(pair_keys[i]));
+    const int ba = shapes[sa].body, bb = shapes[sb].body;
+    const bool asleep = !motions[ba].awake && !motions[bb].awake;
+    if (o >= 0 && asleep) {  // the manifold and impulses stay as they were
+      c = contacts[o];
+      cache = manifold_caches[o];
       continue;
     }
-    const ShapeDef &da = shapeDef(c.shape_a), &db = shapeDef(c.shape_b);
-    const Transform xa = shapePose(c.shape_a), xb = shapePose(c.shape_b);
+    const Transform xa = shapePose(sa), xb = shapePose(sb);
+    if (o >= 0 && cache_on && manifold_caches[o].holds(xa, xb, cache_distance) && slow(ba) &&
+        slow(bb)) {  // the manifold moves along with the shapes; ids and impulses stay
+      c = contacts[o];
+      cache = manifold_caches[o];
+      cache.apply(xa, xb, c.manifold);
+      c.sep_axis = c.manifold.normal;
+      continue;
+    }
+    c = Contact();
+    c.key = pair_keys[i];
+    c.shape_a = sa;
+    c.shape_b = sb;
+    c.body_a = ba;
+    c.body_b = bb;
+    cache.valid = false;
+    if (asleep) continue;
+    const ShapeDef &da = shapeDef(sa), &db = shapeDef(sb);
     if (o >= 0 && contacts[o].sep_valid) {
       const np::ConvexCore ca{&da.geometry, xa}, cb{&db.geometry, xb};
       const Vec3& n = contacts[o].sep_axis;
@@ -351,8 +381,9 @@ void World::Impl::collide(double dt) {
     // Last step's normal of the pair (kept as sep_axis) starts GJK near its answer.
     const Vec3* guess = o >= 0 ? &contacts[o].sep_axis : nullptr;
     ragdoll_sim::collide(da.geometry, xa, db.geometry, xb, spec, c.manifold, guess);
+    if (cache_on) cache.store(c.manifold, da.geometry, xa, db.geometry, xb);
     // Cache the normal of a separated pair as its axis (not for planes: they are cheap).
-    c.sep_valid = c.manifold.count == 0 && !unbounded[c.shape_a] && !unbounded[c.shape_b];
+    c.sep_valid = c.manifold.count == 0 && !unbounded[sa] && !unbounded[sb];
     c.sep_axis = c.manifold.normal;
     const Material pair = def.materials.resolve(da.material, db.material);
     c.static_friction = pair.static_friction;
@@ -363,6 +394,7 @@ void World::Impl::collide(double dt) {
                     : 0.0;
     matchImpulses(o >= 0 ? contacts[o] : Contact(), c);
   }
+  manifold_caches.swap(next_manifold_caches);
   contacts.swap(next_contacts);
 }
 

@@ -777,3 +777,38 @@ TEST(Narrowphase, GjkGuessOnlyChangesWhereItStarts) {
   EXPECT_LT(worst_n, 1e-2);
   std::printf("[ gjk      ] guessed vs unguessed: distance %.1e m, normal %.1e\n", worst_d, worst_n);
 }
+
+TEST(Narrowphase, GjkFarStopsOnlyBeyondTheBound) {
+  // collideConvex lets GJK stop once it proves the cores farther apart than the speculative
+  // band. Where it does not stop early the answer must be the full one, bit for bit (the same
+  // iterations); an early stop must return a lower bound beyond `far` and at most the distance.
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const Geometry shapes[3] = {Geometry::box(Vec3(0.11, 0.17, 0.21)), Geometry::cylinder(0.07, 0.18),
+                              Geometry::capsule(0.05, 0.2)};
+  int early = 0, same = 0;
+  for (int it = 0; it < 3000; ++it) {
+    const Quat qa = Quat(u(rng), u(rng), u(rng), u(rng)).normalized();
+    const Quat qb = Quat(u(rng), u(rng), u(rng), u(rng)).normalized();
+    const np::ConvexCore ca{&shapes[it % 3], Transform(Vec3::Zero(), qa)};
+    const np::ConvexCore cb{&shapes[(it / 3) % 3], Transform(0.7 * Vec3(u(rng), u(rng), u(rng)), qb)};
+    const double far = 0.02 + 0.1 * std::abs(u(rng));
+    const Vec3 guess = Vec3(u(rng), u(rng), u(rng));
+    const np::CoreDistance ref = np::coreDistance(ca, cb, &guess);
+    const np::CoreDistance cd = np::coreDistance(ca, cb, &guess, far);
+    if (cd.distance == ref.distance && cd.normal == ref.normal) {
+      ++same;
+    } else {
+      ++early;
+      EXPECT_GT(cd.distance, far);
+      EXPECT_LE(cd.distance, ref.distance + 1e-12);
+      EXPECT_NEAR(cd.normal.norm(), 1.0, 1e-12);
+    }
+    if (ref.distance <= far) {
+      EXPECT_EQ(cd.distance, ref.distance) << "it " << it;
+    }
+  }
+  EXPECT_GT(early, 100);  // the test reaches both cases
+  EXPECT_GT(same, 100);
+  std::printf("[ gjk      ] far bound: %d early stops, %d full answers\n", early, same);
+}

@@ -1,0 +1,190 @@
+// Manifold cache (src/core/manifold_cache.hpp): a kept manifold carried along with the shapes
+// matches a fresh narrowphase within the cache distance, is refused beyond it, and a world with
+// the cache moves like one without it; a box sliding off a ledge loses its kept support.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "manifold_cache.hpp"
+#include "narrowphase.hpp"
+#include "ragdoll_sim/world.hpp"
+#include "scene_util.hpp"
+
+using namespace ragdoll_sim;
+using namespace ragdoll_sim::test;
+
+namespace {
+
+constexpr double kSpec = 0.02;
+constexpr double kDistance = 0.001;
+
+Quat turn(double angle, const Vec3& axis) {
+  return Quat(Eigen::AngleAxisd(angle, axis.normalized()));
+}
+
+struct Pair {
+  const char* name;
+  Geometry a, b;
+  Transform xa, xb;  // touching: b rests on a (or on the plane a)
+};
+
+std::vector<Pair> restingPairs() {
+  const Geometry plane = Geometry::plane(Vec3::UnitZ(), 0.0);
+  const Geometry box = Geometry::box(Vec3(0.2, 0.1, 0.05));
+  const Geometry cyl = Geometry::cylinder(0.05, 0.2);
+  // cylinder axis along y, rolled off the rim points' directions (an exactly aligned rim point
+  // is dropped for the deepest one, and the slightest turn brings it back: a different count)
+  const Quat lying = turn(M_PI / 2, Vec3::UnitX()) * turn(0.3, Vec3::UnitZ());
+  return {
+      {"box on plane", plane, box, Transform(), Transform(Vec3(0, 0, 0.049), Quat::Identity())},
+      {"cylinder on plane", plane, cyl, Transform(), Transform(Vec3(0, 0, 0.0495), lying)},
+      {"cylinder on box", box, cyl, Transform(Vec3(0, 0, 0.05), Quat::Identity()),
+       Transform(Vec3(0.05, 0, 0.1495), lying)},
+      // tilted 0.02 rad: B's face is clearly the reference (parallel faces tie, and a tiny
+      // turn picks the other one, with other ids)
+      {"box on box", box, box, Transform(Vec3(0, 0, 0.05), Quat::Identity()),
+       Transform(Vec3(0.03, 0.01, 0.151), turn(0.3, Vec3::UnitZ()) * turn(0.02, Vec3::UnitX()))},
+      // the plane as B: A (the box) is the shape that moves in the plane's frame
+      {"plane as B", box, plane, Transform(Vec3(0, 0, 0.049), Quat::Identity()), Transform()},
+  };
+}
+
+}  // namespace
+
+TEST(ManifoldCache, CarriedManifoldMatchesAFreshOne) {
+  // Random rigid motions of B (or A where B is the plane) that keep every point within the
+  // cache distance: the carried manifold keeps its points and ids; the points a fresh manifold
+  // has too agree to r (1 - cos a) (flat features: exact). The deepest separations agree to
+  // 0.2 mm, well inside the 0.5 mm linear slop: a point where a tilted face was clipped by the
+  // other face's side rides along with its body instead of sliding along the edge (0.02 rad
+  // tilt and a few mm of slide on the box pair).
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  double worst = 0.0, worst_same_id = 0.0;
+  for (const Pair& p : restingPairs()) {
+    Manifold m0;
+    collide(p.a, p.xa, p.b, p.xb, kSpec, m0);
+    ASSERT_GT(m0.count, 0) << p.name;
+    ManifoldCache cache;
+    cache.store(m0, p.a, p.xa, p.b, p.xb);
+    const bool b_moves = p.b.type != ShapeType::Plane;
+    const double lever = maxExtent(b_moves ? p.b : p.a, Transform(), Vec3::Zero());
+    int matched = 0;
+    for (int it = 0; it < 200; ++it) {
+      // a shift and a turn about the moving shape's origin, together within the distance
+      const Vec3 shift = 0.45 * kDistance * Vec3(u(rng), u(rng), u(rng)).normalized();
+      const double angle = 0.45 * kDistance / lever * std::abs(u(rng));
+      const Transform move(shift, turn(angle, Vec3(u(rng), u(rng), u(rng))));
+      Transform xa = p.xa, xb = p.xb;
+      if (b_moves) xb = Transform(xb.p + move.p, (move.q * xb.q).normalized());
+      else xa = Transform(xa.p + move.p, (move.q * xa.q).normalized());
+      ASSERT_TRUE(cache.holds(xa, xb, kDistance)) << p.name;
+      Manifold fresh, kept = m0;
+      collide(p.a, xa, p.b, xb, kSpec, fresh);
+      cache.apply(xa, xb, kept);
+      ASSERT_EQ(kept.count, m0.count) << p.name;
+      EXPECT_LT((kept.normal - fresh.normal).norm(), 1e-9 + angle) << p.name;
+      // The deepest point decides the push-out; points with the same feature id must agree.
+      // (A fresh manifold of more than 4 candidates may keep other ones: its ids can differ.)
+      double kept_min = 1e9, fresh_min = 1e9;
+      for (int k = 0; k < kept.count; ++k) kept_min = std::min(kept_min, kept.points[k].separation);
+      for (int i = 0; i < fresh.count; ++i) {
+        fresh_min = std::min(fresh_min, fresh.points[i].separation);
+        for (int k = 0; k < kept.count; ++k) {
+          if (kept.points[k].id != fresh.points[i].id) continue;
+          ++matched;
+          const double err = std::abs(kept.points[k].separation - fresh.points[i].separation);
+          worst_same_id = std::max(worst_same_id, err);
+          EXPECT_LT(err, 2e-5) << p.name;
+        }
+      }
+      worst = std::max(worst, std::abs(kept_min - fresh_min));
+      EXPECT_NEAR(kept_min, fresh_min, 5e-4) << p.name;
+    }
+    EXPECT_GT(matched, 200) << p.name;  // most points keep their ids
+  }
+  std::printf("[ cache    ] carried vs fresh separation: worst %.1e m (same id %.1e m)\n", worst,
+              worst_same_id);
+}
+
+TEST(ManifoldCache, RefusedBeyondTheDistance) {
+  const Pair p = restingPairs()[0];  // box on plane: the box moves, lever = half diagonal
+  Manifold m;
+  collide(p.a, p.xa, p.b, p.xb, kSpec, m);
+  ManifoldCache cache;
+  cache.store(m, p.a, p.xa, p.b, p.xb);
+  EXPECT_TRUE(cache.holds(p.xa, p.xb, kDistance));
+  const auto moved = [&](const Vec3& d, double angle) {
+    return Transform(p.xb.p + d, turn(angle, Vec3::UnitZ()) * p.xb.q);
+  };
+  EXPECT_TRUE(cache.holds(p.xa, moved(Vec3(0.0009, 0, 0), 0.0), kDistance));
+  EXPECT_FALSE(cache.holds(p.xa, moved(Vec3(0.0011, 0, 0), 0.0), kDistance));
+  // a turn that swings the box's corners (0.229 m out) by more than 1 mm
+  const double lever = Vec3(0.2, 0.1, 0.05).norm();
+  EXPECT_TRUE(cache.holds(p.xa, moved(Vec3::Zero(), 0.95 * kDistance / lever), kDistance));
+  EXPECT_FALSE(cache.holds(p.xa, moved(Vec3::Zero(), 1.05 * kDistance / lever), kDistance));
+  // moving both shapes together keeps the relative pose: still valid
+  const Transform lift(Vec3(0.3, -0.2, 0.5), turn(0.7, Vec3(1, 2, 3)));
+  EXPECT_TRUE(cache.holds(lift * p.xa, lift * p.xb, kDistance));
+  // an empty manifold is never kept
+  Manifold none;
+  cache.store(none, p.a, p.xa, p.b, p.xb);
+  EXPECT_FALSE(cache.holds(p.xa, p.xb, kDistance));
+}
+
+namespace {
+// A pile of 3 boxes and a lying cylinder settling on the ground for 1.5 s.
+std::vector<Transform> settle(double cache_distance) {
+  WorldDef def;
+  def.manifold_cache_distance = cache_distance;
+  World w(def);
+  addGround(w);
+  std::vector<BodyId> bodies;
+  const Vec3 half(0.2, 0.15, 0.1);
+  for (int i = 0; i < 3; ++i)
+    bodies.push_back(addBox(w, half, 2.0, Vec3(0.02 * i, 0.01 * i, 0.1 + 0.21 * i)));
+  const double r = 0.06, hh = 0.2, mass = 1.5;
+  const Mat3 inertia = Vec3(mass * (3 * r * r + 4 * hh * hh) / 12, mass * (3 * r * r + 4 * hh * hh) / 12,
+                            0.5 * mass * r * r).asDiagonal();
+  bodies.push_back(addBody(w, Geometry::cylinder(r, hh), mass, inertia,
+                           Transform(Vec3(0.8, 0, 0.07), turn(M_PI / 2, Vec3::UnitX()))));
+  for (int i = 0; i < 1500; ++i) w.step(1e-3);
+  std::vector<Transform> poses;
+  for (const BodyId b : bodies) poses.push_back(w.bodyPose(b));
+  return poses;
+}
+}  // namespace
+
+TEST(ManifoldCache, RestingPileMovesAsWithoutIt) {
+  const std::vector<Transform> with = settle(kDistance), without = settle(0.0);
+  double worst = 0.0;
+  for (size_t i = 0; i < with.size(); ++i)
+    worst = std::max(worst, (with[i].p - without[i].p).norm());
+  EXPECT_LT(worst, 1e-4);
+  std::printf("[ cache    ] resting pile, cache on vs off: poses %.1e m apart\n", worst);
+}
+
+TEST(ManifoldCache, BoxSlidingOffALedgeFalls) {
+  // A frictionless box slides at 0.4 m/s along a static platform whose edge it passes after
+  // 0.3 s. The kept manifold moves with the box, so only its refresh (the box moves 0.4 mm per
+  // step, past the 1 mm cache distance every 3 steps) lets the support go: kept forever, the
+  // box would glide on past the edge without falling.
+  World w;
+  addGround(w);
+  Material ice;
+  ice.static_friction = ice.kinetic_friction = 0.0;
+  BodyDef ledge;
+  ledge.type = BodyType::Static;
+  ledge.pose.p = Vec3(0, 0, 0.5);
+  w.addShape(w.createBody(ledge), {Geometry::box(Vec3(0.5, 0.5, 0.5)), Transform(), ice});
+  const Vec3 half(0.1, 0.1, 0.05);
+  const BodyId box = addBox(w, half, 1.0, Vec3(0.28, 0, 1.05), ice);
+  for (int i = 0; i < 100; ++i) w.step(1e-3);  // settle on the platform
+  w.setBodyState(box, w.bodyPose(box), Vec3(0.4, 0, 0), Vec3::Zero());
+  for (int i = 0; i < 1200; ++i) w.step(1e-3);
+  const Vec3 p = w.bodyPose(box).p;
+  EXPECT_GT(p.x(), 0.6);   // went past the edge (x = 0.5)
+  EXPECT_LT(p.z(), 0.5);   // and fell below the platform's top
+  std::printf("[ cache    ] box off the ledge: x %.3f z %.3f m\n", p.x(), p.z());
+}
