@@ -32,6 +32,10 @@
 #                            the cost per body-step of the algorithm alone, the same thread
 #                            count at every N (N = 1 is one island, which runs on one core)
 #   FLOPS=1                  0 skips the flop count (scripts/flops.sh, valgrind, ~5 min)
+#   ENSEMBLE="b c"           chaotic scenes that our bench also runs as ENSEMBLE_COPIES (32)
+#                            yaw-perturbed copies after the timed rounds (scripts/bench_ensemble.sh):
+#                            at rest at 3 s and within each quality bar, counted over the copies
+#                            ("" skips it; the peers have no yaw option)
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
 PEERS_DIR="$(cd "${PEERS_DIR:-$ROOT/../shared/peers}" && pwd)"
@@ -162,6 +166,18 @@ for r in $(seq "$ROUNDS"); do
   fi
 done
 echo "# meta loadavg_end=$(cut -d' ' -f1-3 /proc/loadavg)" >>"$RAW_TMP"
+# ---- chaotic scenes as perturbed copies (after the timed rounds; ours only)
+if [[ " ${engines[*]} " == *" ragdoll_sim "* ]]; then
+  for s in ${ENSEMBLE-b c}; do
+    echo "bench: scene $s as ${ENSEMBLE_COPIES:-32} yaw-perturbed copies"
+    if line="$(COPIES="${ENSEMBLE_COPIES:-32}" BIN="$BUILD/bench_ragdoll" OWN_THREADS="$OWN_THREADS" \
+                 "$ROOT/scripts/bench_ensemble.sh" "$s" 2>>"$LOG" | grep '^ensemble ')"; then
+      echo "# $line" >>"$RAW_TMP"
+    else
+      echo "bench: ensemble of scene $s failed (see $LOG)" >&2
+    fi
+  done
+fi
 # ---- flop count (after the timed runs, so that it disturbs none of them)
 if [[ " ${engines[*]} " == *" ragdoll_sim "* && "${FLOPS:-1}" != 0 ]] && command -v valgrind >/dev/null; then
   echo "bench: counting flops per body-step (valgrind lackey, a few minutes)"

@@ -58,6 +58,8 @@ def parse(path):
                 meta[k.strip()] = v.strip()
             elif line.startswith("# FAILED"):
                 failures.append(parse_kv(line[len("# FAILED"):]))
+            elif line.startswith("# ensemble "):
+                meta.setdefault("ensembles", []).append(parse_kv(line[len("# ensemble "):]))
             elif line.startswith("engine="):
                 runs.append(parse_kv(line))
     return meta, runs, failures
@@ -354,6 +356,30 @@ def report(meta, runs, failures, png_name):
                  "on the ground; scenes with more contacts per body cost more. Scenes a and s "
                  "are left out: they sleep for most of their steps, and sleeping bodies cost no "
                  "flops.")
+        L.append("")
+
+    # ---- chaotic scenes as perturbed copies (scripts/bench_ensemble.sh)
+    if meta.get("ensembles"):
+        L.append("## Scenes b and c as yaw-perturbed copies (ours)")
+        L.append("")
+        L.append("Scenes b and c are chaotic: round-off alone gives another trajectory, so the "
+                 "single run above is one sample. `scripts/bench_ensemble.sh` runs the scene as "
+                 "copies whose ragdolls are all turned by a tiny yaw (copy 1 is the scene "
+                 "itself) and counts the copies that meet each bar of the joints issue. The "
+                 "peer benches have no yaw option.")
+        L.append("")
+        rows = []
+        for e in meta["ensembles"]:
+            n = int(e.get("copies", "0"))
+            rows.append([e.get("scene", "?"), str(n),
+                         "%s of %d (%s)" % (e.get("at_rest_3s", "?"), n, e.get("vmax_3s", "?")),
+                         "%s of %d (max %s)" % (e.get("anchor_ok", "?"), n, e.get("max_anchor_err_m", "?")),
+                         "%s of %d (max %s)" % (e.get("pen_ok", "?"), n, e.get("max_ground_pen_m", "?")),
+                         "%s of %d (max %s)" % (e.get("limit_ok", "?"), n, e.get("max_limit_viol_rad", "?")),
+                         e.get("nan_copies", "?"), e.get("steps_per_s_median", "?")])
+        L.append(md_table(["scene", "copies", "at rest at 3 s (vmax_3s range, m/s)",
+                           "anchor <= 1 mm", "penetration <= 5 mm", "limit <= 0.05 rad",
+                           "copies with NaN", "steps/s median"], rows))
         L.append("")
 
     # ---- failures
