@@ -22,8 +22,8 @@
 //   (world.cpp checks it).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
-#include <utility>
 
 #include "narrowphase.hpp"
 
