@@ -9,8 +9,10 @@
 // When: the reference is the relative pose R = xm^-1 xo at the last narrowphase call (m: the
 // bounded shape whose frame is kept, o the other; not last step's pose, so the error cannot
 // accumulate). Since then every point of the moving shape o has moved in m's frame by at most
-//   |dp| + theta r_o,   theta = 2 asin(|v|) ~ 2 |v| for dq = (w, v) = R^-1 R_now,
-// r_o the farthest point of o from its origin. While that bound is within `distance`:
+//   |dp| + 2 |v| r_o      (dq = (w, v) = R^-1 R_now turns a point at radius r by the chord
+//                          2 r sin(theta / 2) = 2 r |v|; r_o: the farthest point of o from
+//                          its origin).
+// While that bound is within `distance`:
 // - a vertex or rim point keeps its exact separation (plane contacts are all such points);
 // - a curved surface errs by O(distance^2 / radius) (1 mm on a 5 cm cylinder: 0.01 mm);
 // - a point where a tilted face was clipped by the other face's side rides along with its body
@@ -20,6 +22,10 @@
 // - a feature that was outside the speculative band is still at least (band - distance) away,
 //   so it cannot touch within the step while the bodies move less than that per step
 //   (world.cpp checks it).
+// A separated pair (no manifold, both shapes bounded) is kept the same way with its clearance
+// gap - band, gap the lower bound on the distance that the narrowphase found: the distance
+// shrinks by at most the motion bound, so while that stays within the clearance the pair is
+// still beyond the band, exactly (no approximation: the narrowphase would find nothing).
 #pragma once
 
 #include <algorithm>
@@ -35,18 +41,23 @@ struct ManifoldCache {
   Vec3 point_a[Manifold::kMaxPoints];  // surface point on A, A's frame
   Vec3 point_b[Manifold::kMaxPoints];  // surface point on B, B's frame
   double lever = 0.0;                  // r_o: farthest point of o from its origin
+  double clearance = 0.0;              // > 0: a separated pair, this far beyond the band
   bool b_moves = true;                 // o = B (m = A), else o = A (B is the unbounded one)
   bool valid = false;
 
-  // Keeps `m` (computed at xa, xb) for reuse; an empty manifold is not kept. a, b: the
-  // shapes' geometries (a plane's frame is kept, the other shape moves in it).
+  // Keeps `m` (computed at xa, xb with speculative distance `band`) for reuse: a manifold when
+  // `touching` is allowed (the cache distance is on), a separation whenever the narrowphase
+  // gave a gap beyond the band between bounded shapes. a, b: the shapes' geometries (a plane's
+  // frame is kept, the other shape moves in it).
   void store(const Manifold& m, const Geometry& a, const Transform& xa, const Geometry& b,
-             const Transform& xb) {
-    valid = m.count > 0;
+             const Transform& xb, double band, bool touching) {
+    clearance = m.count == 0 && !isUnbounded(a) && !isUnbounded(b) ? m.gap - band : 0.0;
+    valid = m.count > 0 ? touching : clearance > 0.0;
     if (!valid) return;
     b_moves = !isUnbounded(b);
     lever = maxExtent(b_moves ? b : a, Transform(), Vec3::Zero());
     reference = relative(xa, xb);
+    if (m.count == 0) return;
     normal_a = xa.q.conjugate() * m.normal;
     for (int i = 0; i < m.count; ++i) {
       const Vec3 half = (0.5 * m.points[i].separation) * m.normal;
@@ -55,15 +66,18 @@ struct ManifoldCache {
     }
   }
 
-  // True when no point of the moving shape has moved more than `distance` (to first order in
-  // the turn) relative to the other since the manifold was computed.
+  // True when no point of the moving shape has moved more than `distance` relative to the
+  // other since the manifold was computed; a separated pair is tested against its clearance
+  // instead (distance is ignored).
   bool holds(const Transform& xa, const Transform& xb, double distance) const {
     if (!valid) return false;
     const Transform now = relative(xa, xb);
     const Quat dq = reference.q.conjugate() * now.q;
-    const double turn = 2.0 * std::sqrt(std::max(0.0, 1.0 - dq.w() * dq.w()));
-    return (now.p - reference.p).norm() + turn * lever <= distance;
+    const double chord = 2.0 * dq.vec().norm() * lever;
+    return (now.p - reference.p).norm() + chord <= (separated() ? clearance : distance);
   }
+
+  bool separated() const { return clearance > 0.0; }
 
   // Rebuilds `m` (same count and feature ids as when stored) at the poses xa, xb.
   void apply(const Transform& xa, const Transform& xb, Manifold& m) const {

@@ -89,6 +89,7 @@ void segmentPair(const Vec3& pa, const Vec3& da, double ra, const Vec3& pb, cons
   const double sep = dist - ra - rb;
   out.count = 0;
   out.normal = n;
+  out.gap = sep;
   if (sep >= spec) return;
 
   Candidates cs;
@@ -128,6 +129,7 @@ void sphereVsClosest(const Geometry& a, const Transform& xb, const Vec3& c, cons
   const double sep = dist - a.radius;
   out.count = 0;
   out.normal = n;
+  out.gap = sep;
   if (sep >= spec) return;
   Candidates cs;
   cs.add(xb.apply(q), n, sep, 0);
@@ -211,6 +213,7 @@ void collideOrdered(const Geometry& a, const Transform& xa, const Geometry& b,
 void collide(const Geometry& a, const Transform& xa, const Geometry& b, const Transform& xb,
              double speculative_distance, Manifold& out, const Vec3* normal_guess) {
   out.count = 0;
+  out.gap = 0.0;
   if ((a.type == ShapeType::ConvexHull && !a.hull) || (b.type == ShapeType::ConvexHull && !b.hull))
     return;
   if (rank(a.type) <= rank(b.type)) {

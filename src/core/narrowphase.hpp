@@ -17,6 +17,10 @@ struct Manifold {
   static constexpr int kMaxPoints = 4;
   Vec3 normal = Vec3::UnitZ();  // world, pointing from shape A to shape B
   int count = 0;
+  // count == 0: a lower bound on the shapes' distance that proved them beyond the speculative
+  // distance (the separating-axis, bounding-sphere or GJK bound that stopped the search); 0
+  // where none was computed (planes, a hull without vertices).
+  double gap = 0.0;
   ManifoldPoint points[kMaxPoints];
 };
 

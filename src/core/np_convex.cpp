@@ -121,7 +121,8 @@ double boundingRadius(const Geometry& g) {
 void collideConvex(const Geometry& a, const Transform& xa, const Geometry& b,
                    const Transform& xb, double spec, Manifold& out, const Vec3* guess) {
   out.count = 0;
-  if ((xb.p - xa.p).norm() - boundingRadius(a) - boundingRadius(b) > spec) return;
+  out.gap = (xb.p - xa.p).norm() - boundingRadius(a) - boundingRadius(b);
+  if (out.gap > spec) return;
   const ConvexCore ca{&a, xa}, cb{&b, xb};
   const double ra = ca.radius(), rb = cb.radius();
   // Farther apart than the speculative distance: GJK may stop at its first lower bound beyond.
@@ -129,6 +130,7 @@ void collideConvex(const Geometry& a, const Transform& xa, const Geometry& b,
   const double sep = cd.distance - ra - rb;
   const Vec3 n = cd.normal;
   out.normal = n;
+  out.gap = sep;
   if (sep >= spec) return;
 
   Feature fa, fb;

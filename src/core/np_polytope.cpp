@@ -125,7 +125,8 @@ void collideBoxBox(const Geometry& a, const Transform& xa, const Geometry& b,
     const double sb = std::abs(tb) - abs_r.col(i).dot(ha) - hb[i];
     if (sb > fb.sep) fb.sep = sb, fb.ia = 2 * i + (tb > 0 ? 1 : 0);
   }
-  if (std::max(fa.sep, fb.sep) > spec) return;
+  out.gap = std::max(fa.sep, fb.sep);
+  if (out.gap > spec) return;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       Vec3 l = Vec3::Unit(i).cross(r.col(j));
@@ -135,7 +136,10 @@ void collideBoxBox(const Geometry& a, const Transform& xa, const Geometry& b,
       if (l.dot(t) < 0) l = -l;
       const Vec3 lb = r.transpose() * l;
       const double s = l.dot(t) - l.cwiseAbs().dot(ha) - lb.cwiseAbs().dot(hb);
-      if (s > spec) return;
+      if (s > spec) {
+        out.gap = s;
+        return;
+      }
       if (s > edge.sep) {
         const int ja = (i + 1) % 3, ka = (i + 2) % 3, jb = (j + 1) % 3, kb = (j + 2) % 3;
         edge.sep = s;
@@ -153,8 +157,10 @@ void collidePolytopes(const Geometry& a, const Transform& xa, const Geometry& b,
   const Poly pa(a), pb(b);
   const Transform rel = xa.inverse() * xb;
   const Query fa = faceQuery(pa, pb, rel);
+  out.gap = fa.sep;
   if (fa.sep > spec) return;
   const Query fb = faceQuery(pb, pa, rel.inverse());
+  out.gap = fb.sep;
   if (fb.sep > spec) return;
 
   Query edge;
@@ -177,7 +183,10 @@ void collidePolytopes(const Geometry& a, const Transform& xa, const Geometry& b,
       l /= len;
       if (l.dot(p1 - ca) < 0) l = -l;
       const double s = l.dot(p2 - p1);
-      if (s > spec) return;
+      if (s > spec) {
+        out.gap = s;
+        return;
+      }
       if (s > edge.sep) edge.sep = s, edge.ia = ea, edge.ib = eb, edge.axis = l;
     }
   }

@@ -326,9 +326,10 @@ void World::Impl::collide(double dt) {
     if (old < contacts.size() && contacts[old].key == pair_keys[i]) old_contact[i] = int(old);
   }
   const int count = int(next_contacts.size());
-  // Manifold cache (manifold_cache.hpp): a feature the kept manifold lacks is at least
+  // Manifold cache (manifold_cache.hpp): a feature a kept manifold lacks is at least
   // (speculative - cache distance) away, so both bodies must move less than that in the step,
-  // (|v| + extent |w|) dt, for it not to be reached unseen.
+  // (|v| + extent |w|) dt, for it not to be reached unseen. (Separated pairs need no such
+  // check: the collision at the step start decides the step's contacts.)
   const double cache_distance = def.manifold_cache_distance;
   const bool cache_on = cache_distance > 0.0 && cache_distance < spec;
   const double cache_speed = (spec - cache_distance) / dt;
@@ -350,12 +351,17 @@ void World::Impl::collide(double dt) {
       continue;
     }
     const Transform xa = shapePose(sa), xb = shapePose(sb);
-    if (o >= 0 && cache_on && manifold_caches[o].holds(xa, xb, cache_distance) && slow(ba) &&
-        slow(bb)) {  // the manifold moves along with the shapes; ids and impulses stay
+    // Kept (manifold_cache.hpp): a separated pair still beyond the band, or a touching pair
+    // whose manifold moves along with the shapes (ids and impulses stay).
+    if (o >= 0 && manifold_caches[o].valid &&
+        (manifold_caches[o].separated() || (slow(ba) && slow(bb))) &&
+        manifold_caches[o].holds(xa, xb, cache_distance)) {
       c = contacts[o];
       cache = manifold_caches[o];
-      cache.apply(xa, xb, c.manifold);
-      c.sep_axis = c.manifold.normal;
+      if (!cache.separated()) {
+        cache.apply(xa, xb, c.manifold);
+        c.sep_axis = c.manifold.normal;
+      }
       continue;
     }
     c = Contact();
@@ -381,7 +387,7 @@ void World::Impl::collide(double dt) {
     // Last step's normal of the pair (kept as sep_axis) starts GJK near its answer.
     const Vec3* guess = o >= 0 ? &contacts[o].sep_axis : nullptr;
     ragdoll_sim::collide(da.geometry, xa, db.geometry, xb, spec, c.manifold, guess);
-    if (cache_on) cache.store(c.manifold, da.geometry, xa, db.geometry, xb);
+    cache.store(c.manifold, da.geometry, xa, db.geometry, xb, spec, cache_on);
     // Cache the normal of a separated pair as its axis (not for planes: they are cheap).
     c.sep_valid = c.manifold.count == 0 && !unbounded[sa] && !unbounded[sb];
     c.sep_axis = c.manifold.normal;
