@@ -55,7 +55,7 @@ struct ManifoldCache {
     valid = m.count > 0 ? touching : clearance > 0.0;
     if (!valid) return;
     b_moves = !isUnbounded(b);
-    lever = maxExtent(b_moves ? b : a, Transform(), Vec3::Zero());
+    lever = boundingRadius(b_moves ? b : a);
     reference = relative(xa, xb);
     if (m.count == 0) return;
     normal_a = xa.q.conjugate() * m.normal;

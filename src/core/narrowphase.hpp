@@ -42,6 +42,9 @@ Aabb computeAabb(const Geometry& g, const Transform& x);
 inline bool isUnbounded(const Geometry& g) { return g.type == ShapeType::Plane; }
 // Distance from `point` to the farthest point of the shape at pose x (0 for a plane).
 double maxExtent(const Geometry& g, const Transform& x, const Vec3& point);
+// Distance from the shape's origin to its farthest point (0 for a plane): maxExtent at the
+// identity pose about the origin, in closed form (the narrowphase and its cache use it per pair).
+double boundingRadius(const Geometry& g);
 // Radius a shape rolls on (sphere, capsule, cylinder); 0 for shapes that tip over edges.
 inline double rollingRadius(const Geometry& g) {
   return g.type == ShapeType::Sphere || g.type == ShapeType::Capsule || g.type == ShapeType::Cylinder

@@ -100,22 +100,6 @@ void supportFeature(const Geometry& g, const Transform& x, const Vec3& d, Featur
   }
 }
 
-double boundingRadius(const Geometry& g) {
-  switch (g.type) {
-    case ShapeType::Sphere: return g.radius;
-    case ShapeType::Capsule: return g.radius + g.half_height;
-    case ShapeType::Box: return g.half_extents.norm();
-    case ShapeType::Cylinder: return std::hypot(g.radius, g.half_height);
-    case ShapeType::ConvexHull: {
-      double r = 0;
-      for (const Vec3& v : g.hull->vertices) r = std::max(r, v.norm());
-      return r;
-    }
-    case ShapeType::Plane: break;
-  }
-  return 0;
-}
-
 }  // namespace
 
 void collideConvex(const Geometry& a, const Transform& xa, const Geometry& b,

@@ -178,6 +178,22 @@ Aabb computeAabb(const Geometry& g, const Transform& x) {
   return {x.p - ext, x.p + ext};
 }
 
+double boundingRadius(const Geometry& g) {
+  switch (g.type) {
+    case ShapeType::Sphere: return g.radius;
+    case ShapeType::Capsule: return g.radius + g.half_height;
+    case ShapeType::Box: return g.half_extents.norm();
+    case ShapeType::Cylinder: return std::hypot(g.radius, g.half_height);
+    case ShapeType::ConvexHull: {
+      double r = 0;
+      for (const Vec3& v : g.hull->vertices) r = std::max(r, v.norm());
+      return r;
+    }
+    case ShapeType::Plane: break;
+  }
+  return 0;
+}
+
 double maxExtent(const Geometry& g, const Transform& x, const Vec3& point) {
   const Vec3 c = x.p - point;
   const Vec3 axis = x.q * Vec3::UnitZ();
