@@ -49,7 +49,8 @@ struct WorldDef {
   // m: a touching pair keeps its manifold (carried along with the shapes) instead of running
   // the narrowphase while no point of one shape has moved more than this relative to the
   // other since the manifold was computed, and both bodies move less than
-  // (speculative_distance - this) per step (src/core/manifold_cache.hpp). 0 turns it off.
+  // (speculative_distance - this) per step (src/core/manifold_cache.hpp). 0 (or a value not
+  // below speculative_distance) turns it off; separated pairs are kept regardless (exact).
   double manifold_cache_distance = 0.001;
   double linear_slop = 0.0005;          // m, penetration allowed to keep contacts warm
   // Clamps against blow-ups, applied to every body before the step (a huge impulse never

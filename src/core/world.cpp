@@ -228,6 +228,12 @@ struct World::Impl {
   void collide(double dt);
   void partitionIslands();
   void attachToSplitHalves();
+  // f(half k of split island r), then f(each island attached to that half).
+  template <class F>
+  void withAttached(const IslandRange& r, const IslandRange& half, int k, F&& f) {
+    f(half);
+    for (int a = r.attach[k]; a < r.attach[k + 1]; ++a) f(island_ranges[attached_islands[a]]);
+  }
   void solveIsland(const IslandRange& r, const StepContext& ctx, int substeps);
   void integrateVelocities(double h, int begin, int end);
   void integratePositions(double h, int begin, int end);
@@ -718,10 +724,7 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int 
   const auto parts = [&](auto&& part) {
     if (!r.split) return part(r);
     const auto [t, nt] = teamSlot();
-    for (int k = t; k < 2; k += nt) {
-      part(halves[k]);
-      for (int a = r.attach[k]; a < r.attach[k + 1]; ++a) part(island_ranges[attached_islands[a]]);
-    }
+    for (int k = t; k < 2; k += nt) withAttached(r, halves[k], k, part);
   };
   const auto boundary = [&](auto&& contacts) {
     if (!r.split) return;
@@ -991,11 +994,7 @@ void World::step(double dt) {
     {
       const auto [t, nt] = teamSlot();
       // half k and the islands attached to it (attachToSplitHalves)
-      const auto withAttached = [&](int k, auto&& f) {
-        f(r.half(k));
-        for (int a = r.attach[k]; a < r.attach[k + 1]; ++a)
-          f(w.island_ranges[w.attached_islands[a]]);
-      };
+      const auto withAttached = [&](int k, auto&& f) { w.withAttached(r, r.half(k), k, f); };
       for (int k = t; k < 2; k += nt) withAttached(k, prepare);
 #pragma omp barrier
       for (int k = t; k < 2; k += nt)
