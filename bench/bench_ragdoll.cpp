@@ -180,6 +180,10 @@ int main(int argc, char** argv) {
   double rolling = 0.0;
   double yaw = 0.0;  // --opt yaw=R: every root turned R rad about z (round-off variants of a scene)
   int trace = 0;  // --opt trace=N: every N steps, awake bodies and mean step time on stderr
+  // --opt joint_damping=D,joint_friction=F: every joint axis gets viscous damping D (N m s/rad)
+  // and Coulomb friction F (N m), as a URDF <dynamics> on every joint would give (ragdoll15 has
+  // none; a what-if for the rest speed, not part of the peers' scenes)
+  double joint_damping = 0.0, joint_friction = 0.0;
   std::string urdf = "../shared/peers/ragdoll15.urdf";
   for (int i = 1; i < argc; ++i) {
     const std::string s = argv[i];
@@ -216,6 +220,8 @@ int main(int argc, char** argv) {
         else if (k == "rolling") rolling = v;
         else if (k == "yaw") yaw = v;
         else if (k == "trace") trace = int(v);
+        else if (k == "joint_damping") joint_damping = v;
+        else if (k == "joint_friction") joint_friction = v;
         else {
           std::fprintf(stderr, "unknown option %s\n", k.c_str());
           return 2;
@@ -244,7 +250,12 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "bench_ragdoll: %s\n", loaded.error.c_str());
     return 1;
   }
-  const RagdollDef& def = loaded.def;
+  RagdollDef def = loaded.def;
+  if (joint_damping > 0.0 || joint_friction > 0.0)
+    for (RagdollJointDef& j : def.joints) {
+      j.damping.assign(j.axes.size(), joint_damping);
+      j.friction.assign(j.axes.size(), joint_friction);
+    }
   const Scene sc = makeScene(scenario, n_ragdolls);
   if (steps < 0) steps = sc.steps;
   const int n = int(sc.roots.size());
@@ -332,6 +343,12 @@ int main(int argc, char** argv) {
     char buf[96];
     std::snprintf(buf, sizeof buf, " pit_outside_end=%d pelvis_z_end_max=%.3f", outside, top);
     pit = buf;
+  }
+  if (joint_damping > 0.0 || joint_friction > 0.0) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, " joint_damping=%g joint_friction=%g", joint_damping,
+                  joint_friction);
+    pit += buf;
   }
   const double sps = steps / wall;
   std::printf(
