@@ -95,8 +95,8 @@ double lowestZ(const Geometry& g, const Transform& x) {
 
 struct Metrics {
   double max_anchor = 0, max_pen = 0, max_limit = 0;
-  std::string worst_joint = "-", pen_link = "-";
-  int worst_step = -1, pen_step = -1;
+  std::string worst_joint = "-", pen_link = "-", anchor_joint = "-";
+  int worst_step = -1, pen_step = -1, anchor_step = -1;
   bool nan = false;
   double pel_mean = NAN, pel_min = NAN, pel_max = NAN, pen3 = NAN, anchor3 = NAN, vmax3 = NAN;
   std::vector<Vec3> prev;
@@ -106,6 +106,7 @@ struct Metrics {
     const size_t L = def.links.size();
     double pen = 0, anchor = 0, lim = 0;
     const RagdollJointDef* wj = nullptr;
+    const RagdollJointDef* aj = nullptr;
     const std::string* pen_name = nullptr;
     for (const Transform& p : poses)
       if (!p.p.allFinite() || !p.q.coeffs().allFinite()) nan = true;
@@ -118,7 +119,8 @@ struct Metrics {
         }
       for (const RagdollJointDef& j : def.joints) {
         const Transform fa = W[j.parent] * j.frame_parent, fb = W[j.child] * j.frame_child;
-        anchor = std::max(anchor, (fb.p - fa.p).norm());
+        const double a = (fb.p - fa.p).norm();
+        if (a > anchor) anchor = a, aj = &j;
         double v = 0;
         if (j.kind == RagdollJointKind::Hinge) {
           const double q = hingeAngle(fa.q, fb.q, j.axes[0]);
@@ -138,7 +140,11 @@ struct Metrics {
       pen_link = *pen_name;
       pen_step = step;
     }
-    max_anchor = std::max(max_anchor, anchor);
+    if (anchor > max_anchor) {
+      max_anchor = anchor;
+      anchor_joint = aj->name;
+      anchor_step = step;
+    }
     if (lim > max_limit) {
       max_limit = lim;
       worst_joint = wj->name;
@@ -208,6 +214,7 @@ int main(int argc, char** argv) {
         else if (k == "sleep") wd.enable_sleep = v != 0.0;
         else if (k == "threads") wd.threads = int(v);
         else if (k == "position_iterations") wd.position_iterations = int(v);
+        else if (k == "anchor_iterations") wd.anchor_iterations = int(v);
         else if (k == "relax") wd.contact_relax_iterations = int(v);
         else if (k == "joint_relax") wd.joint_relax_iterations = int(v);
         else if (k == "sleep_speed") wd.sleep_speed = v;
@@ -357,12 +364,13 @@ int main(int argc, char** argv) {
       "max_limit_viol_rad=%.3g pelvis_z_3s_mean=%.4f pelvis_z_3s_min=%.4f pelvis_z_3s_max=%.4f "
       "ground_pen_3s_m=%.4f anchor_err_3s_m=%.3g vmax_3s=%.3g worst_limit=%s@%d nan=%d "
       "loop_wall_s=%.3f substeps=%d joint_hertz=%g contact_hertz=%g sleep=%d threads=%d rolling=%g yaw=%g max_contacts=%zu "
-      "us_per_step_first_1s=%.1f us_per_step_last_1s=%.1f awake_bodies_end=%d worst_pen=%s@%d%s\n",
+      "us_per_step_first_1s=%.1f us_per_step_last_1s=%.1f awake_bodies_end=%d worst_pen=%s@%d "
+      "worst_anchor=%s@%d%s\n",
       sc.id, n, bodies, steps, wall, sps, sps * bodies, 1e6 * wall / (steps * double(bodies)),
       m.max_anchor, m.max_pen, m.max_limit, m.pel_mean, m.pel_min, m.pel_max, m.pen3, m.anchor3,
       m.vmax3, m.worst_joint.c_str(), m.worst_step, m.nan ? 1 : 0, loop_wall, wd.substeps,
       wd.joint_hertz, wd.contact_hertz, wd.enable_sleep ? 1 : 0, wd.threads, rolling, yaw, world.contacts().size(),
       1e6 * wall_first / window, 1e6 * wall_last / window, world.awakeBodyCount(),
-      m.pen_link.c_str(), m.pen_step, pit.c_str());
+      m.pen_link.c_str(), m.pen_step, m.anchor_joint.c_str(), m.anchor_step, pit.c_str());
   return 0;
 }

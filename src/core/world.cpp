@@ -20,8 +20,9 @@
 //      velocity and to carry a landing's load up the chain, see contact_solver.cpp); then
 //      position_iterations sweeps of position projection (contacts, joint limits and angular
 //      rows, joint anchors), which remove the error beyond the slops (linear_slop, angular_slop,
-//      joint_slop) without touching velocities. Static bodies are shared by all islands and
-//      are never written (movable(), solver_context.hpp);
+//      joint_slop) without touching velocities, and anchor_iterations sweeps over the joint
+//      anchors alone. Static bodies are shared by all islands and are never written
+//      (movable(), solver_context.hpp);
 //   4. per island, on the thread that solved it: restitution, store impulses, write the
 //      deltas back to the bodies, clear forces (a body left non-finite is reset after);
 //   5. islands that stayed slow long enough go to sleep. Sleeping bodies are identity solver
@@ -778,6 +779,11 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int 
       for (int k = p.joint_begin; k < p.joint_end; ++k) projectJointAnchor(*js[k], ctx);
     });
   }
+  // The joints of a half touch only its bodies (halves are whole limbs): no boundary.
+  for (int it = 0; it < def.anchor_iterations; ++it)
+    parts([&](const IslandRange& p) {
+      for (int k = p.joint_begin; k < p.joint_end; ++k) projectJointAnchor(*js[k], ctx);
+    });
 }
 
 void World::Impl::buildIslands() {
