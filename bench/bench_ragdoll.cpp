@@ -338,7 +338,7 @@ int main(int argc, char** argv) {
   const long bodies = long(n) * long(def.links.size()) + long(sc.boxes.size());
   // Scene p: did every ragdoll end up inside the pit (pelvis within the walls' inner faces),
   // and how high is the pile at the end?
-  std::string pit;
+  std::string extra;  // scene p's fields and the what-if options, at the end of the line
   if (!sc.walls.empty()) {
     int outside = 0;
     double top = 0.0;
@@ -349,13 +349,13 @@ int main(int argc, char** argv) {
     }
     char buf[96];
     std::snprintf(buf, sizeof buf, " pit_outside_end=%d pelvis_z_end_max=%.3f", outside, top);
-    pit = buf;
+    extra = buf;
   }
   if (joint_damping > 0.0 || joint_friction > 0.0) {
     char buf[96];
     std::snprintf(buf, sizeof buf, " joint_damping=%g joint_friction=%g", joint_damping,
                   joint_friction);
-    pit += buf;
+    extra += buf;
   }
   const double sps = steps / wall;
   std::printf(
@@ -371,6 +371,6 @@ int main(int argc, char** argv) {
       m.vmax3, m.worst_joint.c_str(), m.worst_step, m.nan ? 1 : 0, loop_wall, wd.substeps,
       wd.joint_hertz, wd.contact_hertz, wd.enable_sleep ? 1 : 0, wd.threads, rolling, yaw, world.contacts().size(),
       1e6 * wall_first / window, 1e6 * wall_last / window, world.awakeBodyCount(),
-      m.pen_link.c_str(), m.pen_step, m.anchor_joint.c_str(), m.anchor_step, pit.c_str());
+      m.pen_link.c_str(), m.pen_step, m.anchor_joint.c_str(), m.anchor_step, extra.c_str());
   return 0;
 }

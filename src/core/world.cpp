@@ -771,19 +771,19 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int 
         if (breaksAfterSubstep(*js[k], ctx)) js[k]->broken = true;
     });
   }
+  const auto anchors = [&](const IslandRange& p) {
+    for (int k = p.joint_begin; k < p.joint_end; ++k) projectJointAnchor(*js[k], ctx);
+  };
   for (int it = 0; it < def.position_iterations; ++it) {
     boundary([&](int b, int e) { contact_solver.project(ctx, b, e); });
     parts([&](const IslandRange& p) {
       contact_solver.project(ctx, p.contact_begin, p.contact_end);
       for (int k = p.joint_begin; k < p.joint_end; ++k) projectJointLimits(*js[k], ctx);
-      for (int k = p.joint_begin; k < p.joint_end; ++k) projectJointAnchor(*js[k], ctx);
+      anchors(p);
     });
   }
   // The joints of a half touch only its bodies (halves are whole limbs): no boundary.
-  for (int it = 0; it < def.anchor_iterations; ++it)
-    parts([&](const IslandRange& p) {
-      for (int k = p.joint_begin; k < p.joint_end; ++k) projectJointAnchor(*js[k], ctx);
-    });
+  for (int it = 0; it < def.anchor_iterations; ++it) parts(anchors);
 }
 
 void World::Impl::buildIslands() {
