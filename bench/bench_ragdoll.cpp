@@ -185,7 +185,7 @@ int main(int argc, char** argv) {
   bool metrics = true;
   double rolling = 0.0;
   double yaw = 0.0;  // --opt yaw=R: every root turned R rad about z (round-off variants of a scene)
-  int trace = 0;  // --opt trace=N: every N steps, awake bodies and mean step time on stderr
+  int trace = 0;  // --opt trace=N: every N steps, awake bodies, islands, mean step time (stderr)
   // --opt joint_damping=D,joint_friction=F: every joint axis gets viscous damping D (N m s/rad)
   // and Coulomb friction F (N m), as a URDF <dynamics> on every joint would give (ragdoll15 has
   // none; a what-if for the rest speed, not part of the peers' scenes)
@@ -319,12 +319,14 @@ int main(int argc, char** argv) {
           if (v > vmax) vmax = v, vr = r, vi = i;
           if (w > wmax) wmax = w, wr = r, wi = i;
         }
+      const IslandCounters isl = world.islandCounters();
       std::fprintf(stderr,
                    "trace step=%d awake=%d us_per_step=%.1f vmax=%.4g (%zu#%s) wmax=%.4g (%zu#%s) "
-                   "energy_j=%.2f\n",
+                   "energy_j=%.2f islands=%d split=%d largest=%d contacts=%d\n",
                    step, world.awakeBodyCount(), 1e6 * wall_trace / trace, vmax, vr,
                    def.links[vi].name.c_str(), wmax, wr, def.links[wi].name.c_str(),
-                   world.kineticEnergy() + pe);
+                   world.kineticEnergy() + pe, isl.islands, isl.split_islands, isl.largest_island,
+                   isl.contacts);
       wall_trace = 0.0;
     }
     if (metrics || step == 2999 || step == 3000) {

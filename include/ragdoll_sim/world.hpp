@@ -84,6 +84,16 @@ struct ContactInfo {
   double normal_impulse;
 };
 
+// What the last step solved (Box2D v3's b2World_GetCounters): for profiling and tests.
+struct IslandCounters {
+  int islands = 0;        // awake islands
+  int split_islands = 0;  // of which solved in two halves (the biggest, when it is most of the work)
+  int largest_island = 0; // bodies in the biggest awake island
+  int bodies = 0;         // awake bodies in the islands
+  int joints = 0;         // joints solved
+  int contacts = 0;       // contact manifolds solved
+};
+
 // A body whose state was not finite (NaN / inf), found and undone by World::step: the body is
 // back at its last finite pose with zero velocity, its forces dropped, and the warm-start
 // impulses of its joints and contacts cleared. The rest of the world goes on.
@@ -150,6 +160,7 @@ class World {
   bool isAwake(BodyId body) const;
   void wake(BodyId body);
   int awakeBodyCount() const;
+  IslandCounters islandCounters() const;  // of the last step
 
   JointType jointType(JointId joint) const;
   double hingeAngle(JointId joint) const;

@@ -152,6 +152,11 @@ struct Raft {
     def.enable_sleep = false;
     def.threads = threads;
     world = std::make_unique<World>(def);
+    add(Vec3::Zero());
+  }
+
+  // Another raft like it, moved by offset (its own island when far enough).
+  void add(const Vec3& offset) {
     const Vec3 half(kHalf, kHalf, kHalf);
     // Chains 1-2, 3-4 and 5-6 meet at 1.6 m/s, above the restitution threshold; 3-4 is the
     // cut (the first half grows from chain 0 to 32 bodies), whose bounce must reach both
@@ -160,7 +165,7 @@ struct Raft {
     bouncy.restitution = 0.5;
     for (int c = 0; c < kChains; ++c)
       for (int k = 0; k < kLinks; ++k) {
-        const Vec3 pos(2 * kHalf * k, 2 * kHalf * c, 0);
+        const Vec3 pos = offset + Vec3(2 * kHalf * k, 2 * kHalf * c, 0);
         const Vec3 v(0, c % 2 ? 0.8 : -0.8, 0.05 * c);
         const BodyId b = addBody(*world, Geometry::box(half), 1.0 + 0.1 * k, boxInertia(half, 1.0 + 0.1 * k),
                                  Transform(pos, Quat::Identity()), bouncy, v);
@@ -188,6 +193,10 @@ TEST(SplitIsland, MomentumConservedChainsStayApartSameForOneAndTwoThreads) {
     two.world->step(1e-3);
     deepest = std::max(deepest, one.deepest());
     if (i > 0) continue;
+    const IslandCounters n = one.world->islandCounters();
+    EXPECT_EQ(n.islands, 1);
+    EXPECT_EQ(n.split_islands, 1);
+    EXPECT_EQ(n.largest_island, 64);
     // After the first step chains 3 and 4 (across the cut) bounce apart at 0.5 x 1.6 m/s.
     const auto chainVy = [&](int c) {
       double vy = 0;
@@ -271,5 +280,35 @@ TEST(SplitIsland, OtherIslandsGoAlongWithTheHalvesUnchanged) {
     for (size_t k = 0; k < with.boxes.size(); ++k)
       ASSERT_TRUE(samePose(*with.world, with.boxes[k], *raft_alone.world, raft_alone.boxes[k]))
           << "raft box " << k << ", threads " << threads;
+  }
+}
+
+// An island is split only when it holds more than half the awake work: otherwise the threads
+// balance on whole islands, and a split island would take all the others through its sweeps in
+// lockstep. Three or four rafts far apart hold about a third or a quarter each: none is split,
+// and the result is the same for 1 and 2 threads. Alone, a raft is split (the test above).
+// (Two equal rafts are the edge: as their contact counts drift apart, one holds more.)
+TEST(SplitIsland, OnlyAnIslandWithMostOfTheWorkIsSplit) {
+  for (const int rafts : {3, 4}) {
+    Raft one(1), two(2);
+    for (int k = 1; k < rafts; ++k) {
+      one.add(Vec3(0, 0, 10.0 * k));
+      two.add(Vec3(0, 0, 10.0 * k));
+    }
+    const Vec3 p0 = one.world->linearMomentum();
+    double deepest = 0;
+    for (int i = 0; i < 300; ++i) {
+      one.world->step(1e-3);
+      two.world->step(1e-3);
+      deepest = std::max(deepest, one.deepest());
+      const IslandCounters n = two.world->islandCounters();
+      ASSERT_GE(n.islands, rafts) << "step " << i;  // a raft may come apart in two
+      ASSERT_EQ(n.split_islands, 0) << "step " << i;
+      if (i == 0) ASSERT_EQ(n.largest_island, 64);
+    }
+    EXPECT_LT((one.world->linearMomentum() - p0).norm(), 1e-9 * p0.norm());
+    EXPECT_LT(deepest, 0.005);
+    for (const BodyId& b : one.boxes)
+      ASSERT_TRUE(samePose(*one.world, b, *two.world, b)) << "body " << b.index;
   }
 }
