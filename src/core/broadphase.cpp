@@ -7,14 +7,16 @@ namespace ragdoll_sim {
 
 void Broadphase::addPair(std::vector<std::pair<int, int>>& pairs, int i, int j) const {
   const int a = std::min(i, j), b = std::max(i, j);
+  if (bothFrozen(a, b)) return;
   if (!accept_ || !*accept_ || (*accept_)(a, b)) pairs.emplace_back(a, b);
 }
 
 void Broadphase::findPairs(const std::vector<Aabb>& aabbs, const std::vector<char>& unbounded,
                            const std::vector<PlaneProxy>& planes, double margin,
                            std::vector<std::pair<int, int>>& pairs, const Filter& accept,
-                           int threads) {
+                           int threads, const std::vector<char>* frozen) {
   accept_ = &accept;
+  frozen_ = frozen;
   pairs.clear();
   bounded_.clear();
   for (int i = 0; i < int(aabbs.size()); ++i)
@@ -31,6 +33,7 @@ void Broadphase::findPairs(const std::vector<Aabb>& aabbs, const std::vector<cha
     }
   }
   accept_ = nullptr;
+  frozen_ = nullptr;
 }
 
 void Broadphase::sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs,
@@ -190,6 +193,7 @@ void Broadphase::grid(const std::vector<Aabb>& aabbs, std::vector<std::pair<int,
       const CellRange& ri = range_[i];
       for (size_t y = x + 1; y < m; ++y) {
         const int j = cell_ids_[y];
+        if (bothFrozen(i, j)) continue;
         const CellRange& rj = range_[j];
         // Only in the cell of the overlap's low corner (floor is monotonic: that cell is the
         // per-axis max of the two boxes' low cells).

@@ -41,10 +41,13 @@ class Broadphase {
   // sweep's pair loop runs on up to `threads` threads (from kParallelMin bounded shapes), each
   // over a slice of the sweep order; the slices' pairs are joined in order, so the list is the
   // same for any thread count.
+  // frozen (optional, one flag per shape, planes included): pairs of two frozen shapes are
+  // left out, unfiltered (the world carries them over from the last step: their boxes and
+  // planes have not changed since).
   void findPairs(const std::vector<Aabb>& aabbs, const std::vector<char>& unbounded,
                  const std::vector<PlaneProxy>& planes, double margin,
                  std::vector<std::pair<int, int>>& pairs, const Filter& accept = nullptr,
-                 int threads = 1);
+                 int threads = 1, const std::vector<char>* frozen = nullptr);
 
   static constexpr int kGridMin = 768;  // bounded shapes from which the grid is used
   static constexpr int kParallelMin = 128;  // bounded shapes from which the sweep is split
@@ -60,6 +63,8 @@ class Broadphase {
   // scratch, kept between steps to avoid a per-step allocation
   std::vector<int> bounded_;  // ids of the bounded shapes, ascending
   const Filter* accept_ = nullptr;  // this call's filter (null: keep all)
+  const std::vector<char>* frozen_ = nullptr;  // this call's frozen shapes (null: none)
+  bool bothFrozen(int i, int j) const { return frozen_ && (*frozen_)[i] && (*frozen_)[j]; }
   std::vector<std::vector<std::pair<int, int>>> slice_pairs_;  // per thread of the sweep
 
   // sweep and prune

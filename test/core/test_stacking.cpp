@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <memory>
 #include <random>
 
 #include "ragdoll_sim/world.hpp"
@@ -186,6 +188,69 @@ TEST(Sleeping, StaticBodyMovedBesideSleepersIsCollidedAgain) {
   w.wake(box);
   w.step(kDt);
   EXPECT_TRUE(hasContact(w, box, plate));
+}
+
+// Pairs of sleeping shapes are carried over from the last step (WorldDef::carry_sleeping_pairs)
+// instead of found again: the world must step exactly as one that finds every pair. Four stacks
+// of three boxes go to sleep while a box far away is kicked every 0.3 s (so the world never
+// settles and collides every step). Then, while the stacks sleep: a pair inside stack 3 is
+// disabled (its middle box then sinks through the bottom one once woken), the ground plane
+// drops 5 cm under the sleepers (their plane pairs end) before stack 1 is woken, and stack 0 is
+// knocked into stack 1. Every step both worlds have the same poses, bit for bit, the same
+// awake bodies and the same contacts.
+TEST(Sleeping, CarriedSleepingPairsStepAsIfFoundAgain) {
+  struct Scene {
+    std::unique_ptr<World> w;
+    BodyId ground, kicked;
+    std::vector<BodyId> boxes;  // stack k, level l: boxes[3 k + l]
+    explicit Scene(bool carry) {
+      WorldDef def;
+      def.carry_sleeping_pairs = carry;
+      w = std::make_unique<World>(def);
+      ground = addGround(*w);
+      const Vec3 half(0.2, 0.2, 0.2);
+      for (int k = 0; k < 4; ++k)
+        for (int l = 0; l < 3; ++l)
+          boxes.push_back(addBox(*w, half, 1.0, Vec3(0.7 * k, 0.02 * l, 0.2 + 0.41 * l)));
+      kicked = addBox(*w, half, 1.0, Vec3(10, 0, 0.2));
+    }
+    void step(int i) {
+      if (i % 300 == 0) w->applyLinearImpulseToCenter(kicked, Vec3(0, 0, 3.0));
+      if (i == 800) w->disableCollision(boxes[9], boxes[10]);
+      if (i == 900) w->wake(boxes[11]);
+      if (i == 1000)
+        w->setBodyState(ground, Transform(Vec3(0, 0, -0.05), Quat::Identity()), Vec3::Zero(),
+                        Vec3::Zero());
+      if (i == 1100) w->wake(boxes[3]);
+      if (i == 1500) w->applyLinearImpulseToCenter(boxes[2], Vec3(3.0, 0, 0));
+      w->step(kDt);
+    }
+  };
+  Scene carry(true), find(false);
+  const int n = int(carry.boxes.size()) + 1;
+  int mixed = 0;  // steps with sleeping and awake bodies (pairs carried over)
+  bool ground_left = false;  // a sleeping stack lost its ground contact when the plane dropped
+  for (int i = 0; i < 3000; ++i) {
+    carry.step(i);
+    find.step(i);
+    const int awake = carry.w->awakeBodyCount();
+    ASSERT_EQ(awake, find.w->awakeBodyCount()) << "step " << i;
+    ASSERT_EQ(carry.w->contacts().size(), find.w->contacts().size()) << "step " << i;
+    for (int k = 0; k < n; ++k) {
+      const BodyId b{k + 1};  // after the ground
+      const Transform x = carry.w->bodyPose(b), y = find.w->bodyPose(b);
+      ASSERT_EQ(std::memcmp(x.p.data(), y.p.data(), sizeof(double) * 3), 0) << "step " << i;
+      ASSERT_EQ(std::memcmp(x.q.coeffs().data(), y.q.coeffs().data(), sizeof(double) * 4), 0);
+    }
+    mixed += awake > 0 && awake < n;
+    if (i == 1050)
+      ground_left = !carry.w->isAwake(carry.boxes[0]) && !hasContact(*carry.w, carry.ground, carry.boxes[0]);
+  }
+  EXPECT_GT(mixed, 1000);
+  EXPECT_TRUE(ground_left);
+  EXPECT_FALSE(hasContact(*carry.w, carry.boxes[9], carry.boxes[10]));
+  std::printf("[ sleep    ] sleeping pairs carried over: %d steps with sleepers beside awake "
+              "bodies, same poses as finding every pair\n", mixed);
 }
 
 // Overlapping bodies are separated by impulses, so the correction splits by inverse mass
