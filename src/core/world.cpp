@@ -124,7 +124,7 @@ struct World::Impl {
   std::vector<SolverBody> solver;
   std::vector<ShapeRef> shapes;
   std::vector<Joint> joints;
-  std::unordered_set<uint64_t> disabled;
+  std::unordered_set<uint64_t> disabled;  // body pairs that never collide (setCollides)
   Broadphase broadphase;
   std::vector<Contact> contacts, next_contacts;
   std::vector<uint64_t> contact_keys;  // contacts[k].key, sorted
@@ -235,6 +235,14 @@ struct World::Impl {
     motions[b].sleep_time = 0.0;
   }
 
+  // The one way to change `disabled`: the broadphase filter changes with it, so the next collide
+  // finds every pair again instead of carrying sleeping ones over (pairs_dirty).
+  void setCollides(int a, int b, bool collides) {
+    if (collides) disabled.erase(bodyPairKey(a, b));
+    else disabled.insert(bodyPairKey(a, b));
+    pairs_dirty = true;
+  }
+
   void forgetBoxes(int b) {
     for (int s : bodies[b].shape_ids)
       if (s < int(aabb_kept.size())) aabb_kept[s] = 0;
@@ -339,8 +347,8 @@ void World::Impl::collide(double dt) {
   // (256 ragdolls of which one is awake: finding and filtering them was ~45 % of a step.)
   // With few frozen shapes (every ragdoll awake, static walls) the broadphase's frozen test
   // costs more than it saves (scene p: +0.6 % instructions): then nothing is carried.
-  const bool carry_now = 4 * std::count(frozen.begin(), frozen.end(), char(1)) >= n;
-  if (!carry_now) std::fill(frozen.begin(), frozen.end(), char(0));
+  const bool carry_now = carry && 4 * std::count(frozen.begin(), frozen.end(), char(1)) >= n;
+  if (carry && !carry_now) std::fill(frozen.begin(), frozen.end(), char(0));
   const Broadphase::Filter accept = [this](int sa, int sb) {
     const int ba = shapes[sa].body, bb = shapes[sb].body;
     return ba != bb && (isDynamic(ba) || isDynamic(bb)) && !disabled.count(bodyPairKey(ba, bb));
@@ -352,8 +360,9 @@ void World::Impl::collide(double dt) {
   for (const auto& [sa, sb] : pairs) pair_keys.push_back(pairKey(sa, sb));
   std::sort(pair_keys.begin(), pair_keys.end());
   carried_keys.clear();
-  for (const uint64_t key : contact_keys)
-    if (frozen[int(key >> 32)] && frozen[int(uint32_t(key))]) carried_keys.push_back(key);
+  if (carry_now)
+    for (const uint64_t key : contact_keys)
+      if (frozen[int(key >> 32)] && frozen[int(uint32_t(key))]) carried_keys.push_back(key);
   if (!carried_keys.empty()) {
     merged_keys.resize(pair_keys.size() + carried_keys.size());
     std::merge(pair_keys.begin(), pair_keys.end(), carried_keys.begin(), carried_keys.end(),
@@ -602,8 +611,7 @@ void World::Impl::breakJoints() {
   for (Joint* j : active_joints) {
     if (!j->broken) continue;
     any = true;
-    disabled.erase(bodyPairKey(j->a, j->b));
-    pairs_dirty = true;
+    setCollides(j->a, j->b, true);
     broken_events.push_back(JointId{int32_t(j - joints.data())});
   }
   if (any)
@@ -882,8 +890,7 @@ Joint& World::Impl::addJoint(JointType type, BodyId a, BodyId b, const Transform
   j.b = b.index;
   j.frame_a = fa;
   j.frame_b = fb;
-  if (!collide_connected) disabled.insert(bodyPairKey(a.index, b.index));
-  pairs_dirty = true;
+  if (!collide_connected) setCollides(a.index, b.index, false);
   joints.push_back(j);
   return joints.back();
 }
@@ -979,8 +986,7 @@ JointId World::createPrismaticJoint(const PrismaticJointDef& def) {
 void World::disableCollision(BodyId a, BodyId b) {
   impl_->checkBody(a);
   impl_->checkBody(b);
-  impl_->disabled.insert(bodyPairKey(a.index, b.index));
-  impl_->pairs_dirty = true;
+  impl_->setCollides(a.index, b.index, false);
   impl_->settled = false;
 }
 
@@ -1285,8 +1291,7 @@ void World::breakJoint(JointId id) {
   Joint& j = impl_->joints.at(id.index);
   if (j.broken) return;
   j.broken = true;
-  impl_->disabled.erase(bodyPairKey(j.a, j.b));
-  impl_->pairs_dirty = true;
+  impl_->setCollides(j.a, j.b, true);
   impl_->wake(j.a);
   impl_->wake(j.b);
 }
