@@ -7,6 +7,7 @@
 // (zero inverse mass, zero velocity), so constraint code needs no branch on body type.
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 #include "ragdoll_sim/body.hpp"
@@ -20,8 +21,26 @@ struct Body {
   std::vector<int> shape_ids;  // world shape indices
 };
 
+// Translation invariance: centres of mass sit on a grid of 2^-32 m (0.23 nm) within 2^20 m
+// (1048 km) of the origin, where the grid's points are doubles and sums and differences of
+// them are exact. Every step moves a body by its displacement rounded to the grid (the
+// remainder is carried into the next step's, so a steady motion does not drift), hence
+// x_B - x_A, and x - o for any other centre o, do not depend on where the pair is: the
+// solver and the narrowphase work from such differences (joint centres, contact origins),
+// and a scene moved by any grid vector (1.5 m, say) gives the same motion bit for bit. With
+// positions rounded each at its own magnitude, 32 copies of one ragdoll on a 1.5 m grid (the
+// peers' scene b) went apart within 1 s: round-off decided how each one landed.
+inline double snapPosition(double x) {
+  constexpr double kGrid = 4294967296.0;  // 2^32 steps per metre
+  return std::abs(x) < 1048576.0 ? std::nearbyint(x * kGrid) / kGrid : x;
+}
+inline Vec3 snapPosition(const Vec3& x) {
+  return {snapPosition(x.x()), snapPosition(x.y()), snapPosition(x.z())};
+}
+
 struct BodyMotion {
-  Vec3 x = Vec3::Zero();   // centre of mass, world
+  Vec3 x = Vec3::Zero();   // centre of mass, world, on the grid (snapPosition)
+  Vec3 x_carry = Vec3::Zero();  // displacement not yet on the grid (|.| <= 2^-33 m)
   Quat q = Quat::Identity();
   Vec3 v = Vec3::Zero();
   Vec3 w = Vec3::Zero();

@@ -13,7 +13,8 @@ struct Contact {
   uint64_t key = 0;          // (shape_a << 32) | shape_b, shape_a < shape_b
   int shape_a = -1, shape_b = -1;
   int body_a = -1, body_b = -1;
-  Manifold manifold;
+  Manifold manifold;      // points relative to `origin`, normal in world axes
+  Vec3 origin = Vec3::Zero();  // world: the centre of the pair's first dynamic body (on the grid)
   double normal_impulse[Manifold::kMaxPoints] = {};
   Vec3 friction_impulse[Manifold::kMaxPoints] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};  // world, re-projected on new tangents
   double static_friction = 0.0, kinetic_friction = 0.0, restitution = 0.0;

@@ -131,11 +131,13 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
     cc.count = c.manifold.count;
     cc.restitution = c.restitution;
     const SolverBody &A = bodies[cc.a], &B = bodies[cc.b];
-    const Vec3 xA = motions[cc.a].x, xB = motions[cc.b].x;
+    // The points are relative to c.origin, a centre on the grid: the lever arms come from
+    // exact differences of centres, the same wherever the pair is (body.hpp).
+    const Vec3 oA = c.origin - motions[cc.a].x, oB = c.origin - motions[cc.b].x;
 
     // Tangent basis along the sliding direction of the first point when it slides.
-    const Vec3 v0 = relativeVelocity(A, B, c.manifold.points[0].point - xA,
-                                     c.manifold.points[0].point - xB);
+    const Vec3 v0 = relativeVelocity(A, B, c.manifold.points[0].point + oA,
+                                     c.manifold.points[0].point + oB);
     Vec3 vt = v0 - v0.dot(cc.normal) * cc.normal;
     double max_slip = 0.0;
     cc.tangent[0] = vt.norm() > 1e-9 ? Vec3(vt.normalized()) : anyPerpendicular(cc.normal);
@@ -144,8 +146,8 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
     for (int i = 0; i < cc.count; ++i) {
       const ManifoldPoint& mp = c.manifold.points[i];
       ContactConstraintPoint& p = cc.points[i];
-      p.rA = mp.point - xA;
-      p.rB = mp.point - xB;
+      p.rA = mp.point + oA;
+      p.rB = mp.point + oB;
       p.base_separation = mp.separation - (p.rB - p.rA).dot(cc.normal);
       p.normal_row = makeRow(A, B, p.rA, p.rB, cc.normal);
       const Vec3 dv = relativeVelocity(A, B, p.rA, p.rB);

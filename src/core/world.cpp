@@ -1,7 +1,8 @@
 // World: storage and the step pipeline.
 //
 // step(dt) (Box2D v3 soft step, in 3D):
-//   1. collide: broadphase pairs -> narrowphase manifolds at the poses of the step start
+//   1. collide: broadphase pairs -> narrowphase manifolds at the poses of the step start,
+//      each pair in a frame at its dynamic body's centre (translation invariance, body.hpp)
 //      (boxes, the sweep's pair loop with the pair filter, and the pairs in parallel;
 //      separated pairs skipped by their cached axis, touching pairs that barely moved keep
 //      their manifold, manifold_cache.hpp); impulses carried over by feature id (warm
@@ -223,6 +224,20 @@ struct World::Impl {
   Transform shapePose(int s) const {
     return motions[shapes[s].body].linkPose() * shapeDef(s).local;
   }
+  // The shape's pose in a frame at world point o (a centre of mass, on the grid): from the
+  // exact difference x - o, so it does not depend on where the pair is (body.hpp). A plane is
+  // kept at its distance along the normal from o: moving it within itself changes nothing, and
+  // its x and y would carry o's magnitude into the manifold cache's points.
+  Transform shapePoseFrom(int s, const Vec3& o) const {
+    const BodyMotion& m = motions[shapes[s].body];
+    const ShapeDef& d = shapeDef(s);
+    if (isUnbounded(d.geometry)) {
+      const Transform x = m.linkPose() * d.local;
+      const Vec3 n = x.q * d.geometry.normal;
+      return {n * n.dot(x.p - o), x.q};
+    }
+    return Transform{(m.x - o) - m.q * m.local_com, m.q} * d.local;
+  }
   void checkBody(BodyId id) const {
     if (id.index < 0 || id.index >= int(bodies.size()))
       throw std::out_of_range("ragdoll_sim: invalid body id");
@@ -408,7 +423,10 @@ void World::Impl::collide(double dt) {
       cache = manifold_caches[o];
       continue;
     }
-    const Transform xa = shapePose(sa), xb = shapePose(sb);
+    // The pair is collided in a frame at the centre of its (first) dynamic body: the
+    // manifold's points are relative to it (Contact::origin).
+    const Vec3 origin = motions[isDynamic(ba) ? ba : bb].x;
+    const Transform xa = shapePoseFrom(sa, origin), xb = shapePoseFrom(sb, origin);
     // Kept (manifold_cache.hpp): a separated pair still beyond the band, or a touching pair
     // whose manifold moves along with the shapes (ids and impulses stay).
     if (o >= 0 && manifold_caches[o].valid &&
@@ -417,6 +435,7 @@ void World::Impl::collide(double dt) {
       c = contacts[o];
       cache = manifold_caches[o];
       if (!cache.separated()) {
+        c.origin = origin;
         cache.apply(xa, xb, c.manifold);
         c.sep_axis = c.manifold.normal;
       }
@@ -428,6 +447,7 @@ void World::Impl::collide(double dt) {
     c.shape_b = sb;
     c.body_a = ba;
     c.body_b = bb;
+    c.origin = origin;
     cache.valid = false;
     if (asleep) continue;
     const ShapeDef &da = shapeDef(sa), &db = shapeDef(sb);
@@ -506,7 +526,10 @@ void World::Impl::finishBody(int i) {
   BodyMotion& m = motions[i];
   const SolverBody& s = solver[i];
   if (m.awake) {
-    m.x += s.dp;
+    const Vec3 d = s.dp + m.x_carry;
+    const Vec3 on_grid = snapPosition(d);
+    m.x_carry = d - on_grid;  // exact
+    m.x += on_grid;           // exact: both on the grid
     m.q = (s.dq * m.q).normalized();
     m.v = s.v;
     m.w = s.w;
@@ -557,6 +580,7 @@ void World::Impl::resetBody(int b, BodyFaultCause cause) {
   forgetBoxes(b);
   BodyMotion& m = motions[b];
   m.x = last_finite[b].x;
+  m.x_carry.setZero();
   m.q = last_finite[b].q;
   m.v.setZero();
   m.w.setZero();
@@ -909,7 +933,7 @@ BodyId World::createBody(const BodyDef& def) {
   BodyMotion m;
   m.local_com = def.com;
   m.q = def.pose.q.normalized();
-  m.x = def.pose.p + m.q * def.com;
+  m.x = snapPosition(def.pose.p + m.q * def.com);
   if (!m.x.allFinite() || !def.com.allFinite())
     throw std::invalid_argument("ragdoll_sim: body '" + def.name +
                                 "' has a non-finite centre of mass position");
@@ -1162,7 +1186,8 @@ void World::setBodyState(BodyId id, const Transform& pose, const Vec3& v, const 
   impl_->forgetBoxes(id.index);
   BodyMotion& m = impl_->motions[id.index];
   m.q = pose.q.normalized();
-  m.x = pose.p + m.q * m.local_com;
+  m.x = snapPosition(pose.p + m.q * m.local_com);
+  m.x_carry.setZero();
   const bool dyn = impl_->isDynamic(id.index);
   m.v = dyn ? v : Vec3::Zero();
   m.w = dyn ? w : Vec3::Zero();
@@ -1336,7 +1361,7 @@ std::vector<ContactInfo> World::contacts() const {
   std::vector<ContactInfo> out;
   for (const Contact& c : impl_->contacts)
     for (int i = 0; i < c.manifold.count; ++i)
-      out.push_back({BodyId{c.body_a}, BodyId{c.body_b}, c.manifold.points[i].point,
+      out.push_back({BodyId{c.body_a}, BodyId{c.body_b}, c.origin + c.manifold.points[i].point,
                      c.manifold.normal, c.manifold.points[i].separation, c.normal_impulse[i]});
   return out;
 }

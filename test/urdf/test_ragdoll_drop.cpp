@@ -2,7 +2,9 @@
 // comes to rest on the ground, and its joints hold (anchors together, limits respected).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "ragdoll_sim/urdf_loader.hpp"
 
@@ -83,4 +85,48 @@ TEST(RagdollDrop, ImpulseInZeroGravityGivesMomentum) {
   for (int i = 0; i < 500; ++i) s.world.step(1e-3);
   EXPECT_LT((s.world.linearMomentum() - J).norm(), 1e-9 * J.norm());
   EXPECT_NEAR(s.def.totalMass(), 70.0, 2.0);
+}
+
+// Translation invariance (src/core/body.hpp): copies of the fall 1000 m away and 3.4 m away
+// (too far to touch) go through the same motion bit for bit: centres (less the offset),
+// rotations, velocities and the contact count at every step, through the landing and the
+// settling. With each position rounded at its own magnitude, copies went apart as they fell.
+TEST(RagdollDrop, SameFallWhereverItIs) {
+  Scene s(WorldDef(), Transform(Vec3(0, 0, 1.5), quatFromRpy(0.0, 0.3, 0.0)));
+  const Quat q0 = quatFromRpy(0.0, 0.3, 0.0);
+  const std::vector<Vec3> offsets = {Vec3(1000.5, -250.25, 0.0), Vec3(-1.5, 3.0, 0.0)};
+  std::vector<Ragdoll> copies;
+  for (const Vec3& o : offsets)
+    copies.push_back(spawnRagdoll(s.world, s.def, Transform(Vec3(0, 0, 1.5) + o, q0)));
+  const auto same = [&](int step) {
+    for (size_t c = 0; c < copies.size(); ++c)
+      for (size_t i = 0; i < s.ragdoll.bodies.size(); ++i) {
+        const BodyState a = s.world.bodyState(s.ragdoll.bodies[i]);
+        const BodyState b = s.world.bodyState(copies[c].bodies[i]);
+        if (b.com_position - offsets[c] != a.com_position || b.pose.q.coeffs() != a.pose.q.coeffs() ||
+            b.linear_velocity != a.linear_velocity || b.angular_velocity != a.angular_velocity) {
+          ADD_FAILURE() << "copy " << c << " link " << s.def.links[i].name << " differs at step "
+                        << step << " by " << (b.com_position - offsets[c] - a.com_position).norm()
+                        << " m";
+          return false;
+        }
+      }
+    return true;
+  };
+  ASSERT_TRUE(same(0));
+  int contacts = 0;
+  for (int step = 1; step <= 2500; ++step) {
+    s.world.step(1e-3);
+    ASSERT_TRUE(same(step));
+    std::vector<int> count(copies.size() + 1, 0);  // contact points per ragdoll
+    for (const ContactInfo& c : s.world.contacts()) {
+      for (size_t k = 0; k <= copies.size(); ++k) {
+        const Ragdoll& r = k == 0 ? s.ragdoll : copies[k - 1];
+        if (std::find(r.bodies.begin(), r.bodies.end(), c.body_b) != r.bodies.end()) ++count[k];
+      }
+    }
+    for (size_t k = 1; k < count.size(); ++k) ASSERT_EQ(count[k], count[0]) << "step " << step;
+    contacts = std::max(contacts, count[0]);
+  }
+  EXPECT_GT(contacts, 4);  // it landed
 }
