@@ -58,6 +58,13 @@ struct BodyMotion {
   Transform linkPose() const { return {x - q * local_com, q}; }
 };
 
+// x_B - x_A with the carried remainders: joints hold their anchors to this (a rigid row would
+// otherwise chase up to 2^-33 m between the grid points, ~1e-8 m/s for ever in zero gravity);
+// exact grid difference plus a tiny invariant one, so it is as position-free as x_B - x_A.
+inline Vec3 centerOffset(const BodyMotion& A, const BodyMotion& B) {
+  return (B.x - A.x) + (B.x_carry - A.x_carry);
+}
+
 // One cache line holds what every constraint row reads and writes (v, w, inverse mass): a
 // row touches one line per body, and a body at the cut of a split island moves one line
 // between the cores per sweep (scene c: +2 %).

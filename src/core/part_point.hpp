@@ -62,7 +62,7 @@ struct PointPart {
                const Vec3& local_anchor_b) {
     rA0 = A.q * (local_anchor_a - A.local_com);
     rB0 = B.q * (local_anchor_b - B.local_com);
-    delta_center = B.x - A.x;
+    delta_center = centerOffset(A, B);
   }
 
   void refresh(const SolverBody& A, const SolverBody& B) {

@@ -32,7 +32,7 @@ struct SliderFrame {
                const Vec3& anchor_b, const Vec3& axis_in_a) {
     rA0 = A.q * (anchor_a - A.local_com);
     rB0 = B.q * (anchor_b - B.local_com);
-    delta_center = B.x - A.x;
+    delta_center = centerOffset(A, B);
     axis0 = A.q * axis_in_a;
     n1_0 = anyPerpendicular(axis0);
     n2_0 = axis0.cross(n1_0);

