@@ -227,7 +227,9 @@ struct World::Impl {
   // The shape's pose in a frame at world point o (a centre of mass, on the grid): from the
   // exact difference x - o, so it does not depend on where the pair is (body.hpp). A plane is
   // kept at its distance along the normal from o: moving it within itself changes nothing, and
-  // its x and y would carry o's magnitude into the manifold cache's points.
+  // its x and y would carry o's magnitude into the manifold cache's points. (The cache thus
+  // sees a shape sliding on a plane as not moving, and keeps its manifold: right for a plane,
+  // whose features are the same everywhere; tilting or lifting it still counts.)
   Transform shapePoseFrom(int s, const Vec3& o) const {
     const BodyMotion& m = motions[shapes[s].body];
     const ShapeDef& d = shapeDef(s);
