@@ -234,7 +234,7 @@ struct World::Impl {
     const BodyMotion& m = motions[shapes[s].body];
     const ShapeDef& d = shapeDef(s);
     if (isUnbounded(d.geometry)) {
-      const Transform x = m.linkPose() * d.local;
+      const Transform x = shapePose(s);
       const Vec3 n = x.q * d.geometry.normal;
       return {n * n.dot(x.p - o), x.q};
     }
