@@ -148,10 +148,10 @@ struct World::Impl {
   // asleep (such a body has zero velocity and does not move, so the box is recomputed only
   // after the body woke, was set or was reset).
   std::vector<char> aabb_kept;
-  // Per shape: its pose relative to its body's centre of mass, in world axes (offset from the
-  // centre, rotation), formed with its box (and kept with it): each pair's narrowphase frame
-  // (shapePoseFrom) only adds the centre's offset from the pair's origin (scene c: composing
-  // the body and shape transforms per pair was 5 % of a step).
+  // Per shape, formed in collide and read by each pair's narrowphase frame (shapePoseFrom):
+  // a bounded shape's shapeFrame, kept with its box, so a pair only adds the centre's offset
+  // from its origin (scene c: composing the body and shape transforms per pair was 5 % of a
+  // step); a plane's world pose (shapePose), formed once per step instead of once per pair.
   std::vector<Transform> shape_frames;
   // The last step found no body awake and ran the whole pipeline, and nothing has been built,
   // woken, set or reset since: the next step would give the same contacts and move nothing,
@@ -229,8 +229,16 @@ struct World::Impl {
 #endif
   }
   const ShapeDef& shapeDef(int s) const { return bodies[shapes[s].body].shapes[shapes[s].index]; }
+  // The shape's pose relative to its body's centre of mass, in world axes: x + f.p, f.q is
+  // its world pose.
+  Transform shapeFrame(int s) const {
+    const BodyMotion& m = motions[shapes[s].body];
+    const Transform& local = shapeDef(s).local;
+    return {m.q * (local.p - m.local_com), m.q * local.q};
+  }
   Transform shapePose(int s) const {
-    return motions[shapes[s].body].linkPose() * shapeDef(s).local;
+    const Transform f = shapeFrame(s);
+    return {motions[shapes[s].body].x + f.p, f.q};
   }
   // The shape's pose in a frame at world point o (a centre of mass, on the grid): from the
   // exact difference x - o, so it does not depend on where the pair is (body.hpp). A plane is
@@ -242,7 +250,7 @@ struct World::Impl {
     const BodyMotion& m = motions[shapes[s].body];
     const ShapeDef& d = shapeDef(s);
     if (isUnbounded(d.geometry)) {
-      const Transform x = shapePose(s);
+      const Transform& x = shape_frames[s];  // its world pose (collide's plane loop)
       const Vec3 n = x.q * d.geometry.normal;
       return {n * n.dot(x.p - o), x.q};
     }
@@ -347,9 +355,7 @@ void World::Impl::collide(double dt) {
     frozen[s] = carry && !unbounded[s] && !m.awake && aabb_kept[s];
     if (unbounded[s] || (!m.awake && aabb_kept[s])) continue;
     aabb_kept[s] = !m.awake;
-    const Transform& local = shapeDef(s).local;
-    Transform& f = shape_frames[s];
-    f = {m.q * (local.p - m.local_com), m.q * local.q};
+    const Transform& f = shape_frames[s] = shapeFrame(s);
     Aabb box = computeAabb(g, {m.x + f.p, f.q});
     const Vec3 grow = Vec3::Constant(spec) + (m.v * dt).cwiseAbs();
     box.lo -= grow;
@@ -360,7 +366,7 @@ void World::Impl::collide(double dt) {
   planes.clear();
   for (int s = 0; s < n; ++s) {
     if (!unbounded[s]) continue;
-    const Transform x = shapePose(s);
+    const Transform& x = shape_frames[s] = shapePose(s);
     const Vec3 nw = x.q * shapeDef(s).geometry.normal;
     planes.push_back({s, nw, shapeDef(s).geometry.offset + nw.dot(x.p)});
     const size_t k = planes.size() - 1;  // frozen: the same plane as in the last step
