@@ -43,7 +43,6 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-#include <unordered_set>
 #include <utility>
 #ifdef _OPENMP
 #include <omp.h>
@@ -77,8 +76,6 @@ constexpr int kParallelMin = 32;
 // island among 48, 2 threads: 1.85 ms per step split, 1.52 ms not). The test depends only on
 // the islands, not on the thread count, so the result stays the same for every count.
 constexpr int kSplitMin = 60;
-
-uint64_t bodyPairKey(int a, int b) { return pairKey(std::min(a, b), std::max(a, b)); }
 
 // This thread's number and the team's size in the enclosing parallel region ({0, 1} outside).
 std::pair<int, int> teamSlot() {
@@ -128,7 +125,6 @@ struct World::Impl {
   std::vector<Mat3> rotations;
   std::vector<ShapeRef> shapes;
   std::vector<Joint> joints;
-  std::unordered_set<uint64_t> disabled;  // body pairs that never collide (setCollides)
   Broadphase broadphase;
   std::vector<Contact> contacts, next_contacts;
   std::vector<uint64_t> contact_keys;  // contacts[k].key, sorted
@@ -269,12 +265,20 @@ struct World::Impl {
     motions[b].sleep_time = 0.0;
   }
 
-  // The one way to change `disabled`: the broadphase filter changes with it, so the next collide
-  // finds every pair again instead of carrying sleeping ones over (pairs_dirty).
+  // The one way to change Body::no_collide: the broadphase filter changes with it, so the next
+  // collide finds every pair again instead of carrying sleeping ones over (pairs_dirty).
   void setCollides(int a, int b, bool collides) {
-    if (collides) disabled.erase(bodyPairKey(a, b));
-    else disabled.insert(bodyPairKey(a, b));
+    const int hi = std::max(a, b);
+    std::vector<int>& v = bodies[std::min(a, b)].no_collide;
+    const auto it = std::lower_bound(v.begin(), v.end(), hi);
+    const bool listed = it != v.end() && *it == hi;
+    if (collides && listed) v.erase(it);
+    else if (!collides && !listed) v.insert(it, hi);
     pairs_dirty = true;
+  }
+  bool neverCollide(int a, int b) const {
+    const std::vector<int>& v = bodies[std::min(a, b)].no_collide;
+    return std::find(v.begin(), v.end(), std::max(a, b)) != v.end();
   }
 
   void forgetBoxes(int b) {
@@ -387,7 +391,7 @@ void World::Impl::collide(double dt) {
   if (carry && !carry_now) std::fill(frozen.begin(), frozen.end(), char(0));
   const Broadphase::Filter accept = [this](int sa, int sb) {
     const int ba = shapes[sa].body, bb = shapes[sb].body;
-    return ba != bb && (isDynamic(ba) || isDynamic(bb)) && !disabled.count(bodyPairKey(ba, bb));
+    return ba != bb && (isDynamic(ba) || isDynamic(bb)) && !neverCollide(ba, bb);
   };
   broadphase.findPairs(aabbs, unbounded, planes, spec, pairs, accept, threadCount(),
                        carry_now ? &frozen : nullptr);
