@@ -147,10 +147,10 @@ struct World::Impl {
   // asleep (such a body has zero velocity and does not move, so the box is recomputed only
   // after the body woke, was set or was reset).
   std::vector<char> aabb_kept;
-  // Per shape, formed in collide and read by each pair's narrowphase frame (shapePoseFrom):
-  // a bounded shape's shapeFrame, kept with its box, so a pair only adds the centre's offset
-  // from its origin (scene c: composing the body and shape transforms per pair was 5 % of a
-  // step); a plane's world pose (shapePose), formed once per step instead of once per pair.
+  // Per shape: its shapeFrame, formed in collide (a bounded shape's with its box, and kept with
+  // it; a plane's every step) and read by each pair's narrowphase frame (shapePoseFrom), which
+  // only adds the centre's offset from the pair's origin (scene c: composing the body and shape
+  // transforms per pair was 5 % of a step).
   std::vector<Transform> shape_frames;
   // The last step found no body awake and ran the whole pipeline, and nothing has been built,
   // woken, set or reset since: the next step would give the same contacts and move nothing,
@@ -235,10 +235,6 @@ struct World::Impl {
     const Transform& local = shapeDef(s).local;
     return {m.q * (local.p - m.local_com), m.q * local.q};
   }
-  Transform shapePose(int s) const {
-    const Transform f = shapeFrame(s);
-    return {motions[shapes[s].body].x + f.p, f.q};
-  }
   // The shape's pose in a frame at world point o (a centre of mass, on the grid): from the
   // exact difference x - o, so it does not depend on where the pair is (body.hpp). A plane is
   // kept at its distance along the normal from o: moving it within itself changes nothing, and
@@ -246,15 +242,14 @@ struct World::Impl {
   // sees a shape sliding on a plane as not moving, and keeps its manifold: right for a plane,
   // whose features are the same everywhere; tilting or lifting it still counts.)
   Transform shapePoseFrom(int s, const Vec3& o) const {
-    const BodyMotion& m = motions[shapes[s].body];
-    const ShapeDef& d = shapeDef(s);
-    if (isUnbounded(d.geometry)) {
-      const Transform& x = shape_frames[s];  // its world pose (collide's plane loop)
-      const Vec3 n = x.q * d.geometry.normal;
-      return {n * n.dot(x.p - o), x.q};
-    }
     const Transform& f = shape_frames[s];
-    return {(m.x - o) + f.p, f.q};
+    const Vec3 p = (motions[shapes[s].body].x - o) + f.p;
+    const Geometry& g = shapeDef(s).geometry;
+    if (isUnbounded(g)) {
+      const Vec3 n = f.q * g.normal;
+      return {n * n.dot(p), f.q};
+    }
+    return {p, f.q};
   }
   void checkBody(BodyId id) const {
     if (id.index < 0 || id.index >= int(bodies.size()))
@@ -373,9 +368,10 @@ void World::Impl::collide(double dt) {
   planes.clear();
   for (int s = 0; s < n; ++s) {
     if (!unbounded[s]) continue;
-    const Transform& x = shape_frames[s] = shapePose(s);
-    const Vec3 nw = x.q * shapeDef(s).geometry.normal;
-    planes.push_back({s, nw, shapeDef(s).geometry.offset + nw.dot(x.p)});
+    const Transform& f = shape_frames[s] = shapeFrame(s);
+    const Vec3 nw = f.q * shapeDef(s).geometry.normal;
+    const Vec3 p = motions[shapes[s].body].x + f.p;  // world
+    planes.push_back({s, nw, shapeDef(s).geometry.offset + nw.dot(p)});
     const size_t k = planes.size() - 1;  // frozen: the same plane as in the last step
     const PlaneProxy* last = k < last_planes.size() ? &last_planes[k] : nullptr;
     frozen[s] = carry && last && last->shape == s && last->normal == nw &&
