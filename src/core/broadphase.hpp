@@ -50,7 +50,9 @@ class Broadphase {
                  int threads = 1, const std::vector<char>* frozen = nullptr);
 
   static constexpr int kGridMin = 768;  // bounded shapes from which the grid is used
-  static constexpr int kParallelMin = 128;  // bounded shapes from which the sweep is split
+  // Bounded shapes from which the sweep is split. Scene c's pile (120 shapes, 2 threads):
+  // the broadphase took 13.9 us of a ~255 us step serial, 9.9-10.7 us split (it was 128).
+  static constexpr int kParallelMin = 64;
 
  private:
   void sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs,
