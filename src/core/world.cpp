@@ -55,6 +55,7 @@
 #include "gjk.hpp"
 #include "island.hpp"
 #include "island_split.hpp"
+#include "team_barrier.hpp"
 #include "joint.hpp"
 #include "manifold_cache.hpp"
 
@@ -68,10 +69,10 @@ namespace {
 constexpr int kParallelMin = 32;
 // An island with at least this many awake bodies, and more than half the awake work (bodies,
 // joints, contacts), is split in two (island_split.hpp). Its ~22 boundary sweeps per step wait
-// at two barriers each, ~0.6 us per sweep here; the substeps of 60 bodies take ~120 us on one
-// thread. A smaller share needs no split: the runs of whole islands already balance the
-// threads, and a split island takes every other island along in lockstep with its halves
-// (attachToSplitHalves), sweep by sweep instead of one island at a time, so each sweep
+// at two barriers each, ~0.16 us per sweep here (TeamBarrier); the substeps of 60 bodies take
+// ~120 us on one thread. A smaller share needs no split: the runs of whole islands already
+// balance the threads, and a split island takes every other island along in lockstep with its
+// halves (attachToSplitHalves), sweep by sweep instead of one island at a time, so each sweep
 // streams all of their constraints through the cache (64 ragdolls on the ground, one 60-body
 // island among 48, 2 threads: 1.85 ms per step split, 1.52 ms not). The test depends only on
 // the islands, not on the thread count, so the result stays the same for every count.
@@ -195,6 +196,7 @@ struct World::Impl {
     }
   };
   IslandSplitter splitter;
+  TeamBarrier team_barrier;  // the two threads of a split island
   std::vector<IslandRange> island_ranges;
   std::vector<int> island_runs;  // thread t solves islands [island_runs[t], island_runs[t + 1])
   std::vector<int> attached_islands;  // grouped by split island and half (IslandRange::attach)
@@ -832,9 +834,9 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int 
   const auto boundary = [&](auto&& contacts) {
     if (!r.split) return;
     const auto [t, nt] = teamSlot();
-#pragma omp barrier
+    team_barrier.wait(t, nt);
     for (int k = t; k < 2; k += nt) contacts(r.boundaryBegin(k), r.boundaryEnd(k));
-#pragma omp barrier
+    team_barrier.wait(t, nt);
   };
   const auto joints = [&](const IslandRange& p, auto&& f) {
     for (int k = p.joint_begin; k < p.joint_end; ++k)
@@ -1105,10 +1107,10 @@ void World::step(double dt) {
       // half k and the islands attached to it (attachToSplitHalves)
       const auto withAttached = [&](int k, auto&& f) { w.withAttached(r, r.half(k), k, f); };
       for (int k = t; k < 2; k += nt) withAttached(k, prepare);
-#pragma omp barrier
+      w.team_barrier.wait(t, nt);
       for (int k = t; k < 2; k += nt)
         w.contact_solver.prepare(w.contacts, ctx, r.boundaryBegin(k), r.boundaryEnd(k));
-#pragma omp barrier
+      w.team_barrier.wait(t, nt);
       w.solveIsland(r, ctx, substeps);
       // Restitution reads the halves' bodies as the boundary's does: halves first, then the
       // boundary, then the bodies take their velocities.
@@ -1116,9 +1118,9 @@ void World::step(double dt) {
         withAttached(k, [&](const World::Impl::IslandRange& p) {
           restitute(p.contact_begin, p.contact_end);
         });
-#pragma omp barrier
+      w.team_barrier.wait(t, nt);
       for (int k = t; k < 2; k += nt) restitute(r.boundaryBegin(k), r.boundaryEnd(k));
-#pragma omp barrier
+      w.team_barrier.wait(t, nt);
       for (int k = t; k < 2; k += nt) withAttached(k, finishBodies);
     }
   }
