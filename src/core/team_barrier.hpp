@@ -11,6 +11,7 @@
 #pragma once
 
 #include <atomic>
+#include <cassert>
 #include <thread>
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -21,8 +22,11 @@ namespace ragdoll_sim {
 
 class TeamBarrier {
  public:
-  // Thread `slot` (0 .. team - 1) of a team of `team` threads waits for the others.
+  static constexpr int kMaxTeam = 2;  // a split island has two halves
+
+  // Thread `slot` (0 .. team - 1) of a team of `team` <= kMaxTeam threads waits for the others.
   void wait(int slot, int team) {
+    assert(team <= kMaxTeam && slot >= 0 && slot < team);
     if (team <= 1) return;
     const int sense = local_[slot].sense ^= 1;
     if (arrived_.fetch_add(1, std::memory_order_acq_rel) == team - 1) {
@@ -48,7 +52,7 @@ class TeamBarrier {
   };
   alignas(64) std::atomic<int> arrived_{0};
   alignas(64) std::atomic<int> sense_{0};
-  Local local_[2];
+  Local local_[kMaxTeam];  // each thread's sense, on its own line
 };
 
 }  // namespace ragdoll_sim

@@ -55,9 +55,9 @@
 #include "gjk.hpp"
 #include "island.hpp"
 #include "island_split.hpp"
-#include "team_barrier.hpp"
 #include "joint.hpp"
 #include "manifold_cache.hpp"
+#include "team_barrier.hpp"
 
 namespace ragdoll_sim {
 

@@ -307,7 +307,9 @@ TEST(SplitIsland, OnlyAnIslandWithMostOfTheWorkIsSplit) {
       const IslandCounters n = two.world->islandCounters();
       ASSERT_GE(n.islands, rafts) << "step " << i;  // a raft may come apart in two
       ASSERT_EQ(n.split_islands, 0) << "step " << i;
-      if (i == 0) ASSERT_EQ(n.largest_island, 64);
+      if (i == 0) {
+        ASSERT_EQ(n.largest_island, 64);
+      }
     }
     EXPECT_LT((one.world->linearMomentum() - p0).norm(), 1e-9 * p0.norm());
     EXPECT_LT(deepest, 0.005);
