@@ -76,8 +76,7 @@ struct WorldDef {
   // Islands are solved in parallel on this many threads (0: all cores). The result does not
   // depend on it: islands share no bodies and each is solved in the same order. Default 1:
   // on a machine whose cores are busy (tests, rviz), waiting for a preempted worker costs
-  // more than it gains. The benchmark raises it (`--opt threads=N`); the node has no parameter
-  // for it and runs on one thread.
+  // more than it gains. The node's `~threads` and the benchmark's `--opt threads=N` set it.
   int threads = 1;
 };
 

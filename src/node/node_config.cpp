@@ -19,6 +19,9 @@ Transform NodeConfig::spawnTransform() const {
 
 namespace {
 
+// ~threads beyond this is a typo, not a machine: OpenMP would start them all.
+constexpr int kMaxThreads = 256;
+
 // A parameter that is absent keeps its default; one that is present with the wrong type is an
 // error (ros::NodeHandle::param would silently fall back to the default).
 template <class T>
@@ -239,6 +242,7 @@ bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* c, std::string* erro
             read(pnh, "tf_prefix", "a string", &c->tf_prefix, error) &&
             read(pnh, "publish_rate", "a number (Hz)", &c->publish_rate, error) &&
             read(pnh, "substeps", "an integer", &c->substeps, error) &&
+            read(pnh, "threads", "an integer", &c->threads, error) &&
             read(pnh, "gravity", "a list of 3 numbers (m/s^2)", &gravity, error) &&
             read(pnh, "spawn/x", "a number (m)", &c->spawn.x, error) &&
             read(pnh, "spawn/y", "a number (m)", &c->spawn.y, error) &&
@@ -310,6 +314,9 @@ std::string validateNodeConfig(const NodeConfig& c) {
   if (c.physics_rate > 1e6) return "parameter ~physics_rate must be <= 1e6 Hz";
   if (!(e = positive("publish_rate", c.publish_rate)).empty()) return e;
   if (c.substeps < 1) return "parameter ~substeps must be >= 1, got " + std::to_string(c.substeps);
+  if (c.threads < 0 || c.threads > kMaxThreads)
+    return "parameter ~threads must be 0 (all cores) or 1.." + std::to_string(kMaxThreads) +
+           ", got " + std::to_string(c.threads);
   if (c.position_iterations < 0)
     return "parameter ~position_iterations must be >= 0, got " + std::to_string(c.position_iterations);
   if (*realTimeFactorError(c.real_time_factor)) {

@@ -114,12 +114,16 @@ bool SimNode::init(std::string* error) {
 
   const RagdollInstance& r = ragdolls_.front();
   const Transform& spawn = r.spawn_pose;
+  const auto threadsText = [](int n) {
+    return n == 0 ? std::string("all cores") : std::to_string(n) + (n == 1 ? " thread" : " threads");
+  };
   ROS_INFO("ragdoll_sim: '%s' (%zu links, %zu joints, %.2f kg%s%s) at (%.2f, %.2f, %.2f), "
-           "physics %.0f Hz x %d substeps, real-time factor %g%s, publish %.0f Hz, "
+           "physics %.0f Hz x %d substeps on %s, real-time factor %g%s, publish %.0f Hz, "
            "gravity (%.2f, %.2f, %.2f)%s%s%s%s",
            r.name.c_str(), r.def.links.size(), r.def.joints.size(), r.def.totalMass(),
            r.tf_prefix.empty() ? "" : ", TF prefix ", r.tf_prefix.c_str(), spawn.p.x(),
            spawn.p.y(), spawn.p.z(), config_.physics_rate, config_.substeps,
+           threadsText(config_.threads).c_str(),
            config_.real_time_factor, pacer_.asFastAsPossible() ? " (as fast as possible)" : "",
            config_.publish_rate, config_.gravity.x(), config_.gravity.y(), config_.gravity.z(),
            config_.ground ? ", ground plane z=0" : "", paused_ ? ", PAUSED" : "",

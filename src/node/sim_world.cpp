@@ -49,6 +49,7 @@ WorldDef SimNode::worldDef() const {
   WorldDef wd;
   wd.gravity = config_.gravity;
   wd.substeps = config_.substeps;
+  wd.threads = config_.threads;
   wd.position_iterations = config_.position_iterations;
   wd.materials = config_.materials;
   wd.max_linear_speed = config_.max_linear_speed;

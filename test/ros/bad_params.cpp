@@ -1,0 +1,60 @@
+// rostest: the node binary started with one invalid parameter (on the command line, `_name:=`)
+// exits with code 1 and a FATAL message naming the parameter; with a valid ~threads it runs
+// (until `timeout` stops it) and its start-up line gives the thread count.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "../urdf/malformed_cases.hpp"
+#include "node_log.hpp"
+
+namespace {
+
+int runNode(const std::string& name, const std::string& args, int seconds, std::string* out) {
+  // SIGINT: the node shuts down and exits, so its buffered stdout reaches the pipe.
+  const std::string cmd = "timeout -s INT " + std::to_string(seconds) + " " +
+                          std::string(RAGDOLL_SIM_NODE_BIN) + " __name:=" + name +
+                          " _urdf_file:=" + RAGDOLL_SIM_SOURCE_DIR + "/urdf/ragdoll.urdf " + args;
+  return malformed::run(cmd, out);
+}
+
+}  // namespace
+
+TEST(BadParams, NodeExitsNonZeroNamingTheParameter) {
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+      {"_threads:=-1", {"~threads", "got -1"}},
+      {"_threads:=100000", {"~threads", "got 100000"}},
+      {"_threads:=two", {"threads", "must be an integer"}},
+      {"_substeps:=0", {"~substeps", "got 0"}},
+      {"_physics_rate:=-5.0", {"~physics_rate", "got -5"}},
+      {"_gravity:=[0.0,-9.81]", {"gravity", "list of 3 numbers"}},
+  };
+  int k = 0;
+  for (const auto& [args, words] : cases) {
+    std::string out;
+    const int rc = runNode("bad_params_node_" + std::to_string(k++), args, 60, &out);
+    EXPECT_EQ(rc, 1) << args << ":\n" << out;
+    EXPECT_NE(out.find("FATAL"), std::string::npos) << args << ":\n" << out;
+    for (const std::string& w : words) EXPECT_NE(out.find(w), std::string::npos) << args << ": " << out;
+  }
+}
+
+TEST(BadParams, ThreadsRunTheNode) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"_threads:=2", "substeps on 2 threads"}, {"_threads:=0", "substeps on all cores"}};
+  int k = 0;
+  for (const auto& [args, words] : cases) {
+    std::string out;
+    // 124: still running when `timeout` stopped it after 8 s.
+    const int rc = runNode("threads_node_" + std::to_string(k++), args, 8, &out);
+    EXPECT_EQ(rc, 124) << args << ":\n" << out;
+    EXPECT_NE(out.find(words), std::string::npos) << args << ":\n" << out;
+    EXPECT_EQ(out.find("FATAL"), std::string::npos) << args << ":\n" << out;
+  }
+}
+
+int main(int argc, char** argv) {
+  return ragdoll_test::runRosTests(argc, argv, "bad_params_test", 1, [] {}, [] {});
+}
