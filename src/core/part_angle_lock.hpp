@@ -47,17 +47,12 @@ struct AngleLockPart {
   // when it was reached.
   bool solve(SolverBody& A, SolverBody& B, const Softness& soft, bool use_bias,
              double max_impulse = std::numeric_limits<double>::infinity()) {
-    Vec3 bias = Vec3::Zero();
-    double mass_scale = 1.0, impulse_scale = 0.0;
-    if (use_bias) {
-      bias = soft.bias_rate * error(A, B);
-      mass_scale = soft.mass_scale;
-      impulse_scale = soft.impulse_scale;
-    }
+    const Softness s = soft.orRigid(use_bias);
+    const Vec3 bias = use_bias ? Vec3(s.bias_rate * error(A, B)) : Vec3::Zero();
     const Mat3 K = A.inv_inertia + B.inv_inertia;
     if (!(K.trace() > 1e-300)) return false;  // both bodies static or asleep
     const Vec3 old = impulse;
-    impulse += -mass_scale * K.ldlt().solve(B.w - A.w + bias) - impulse_scale * impulse;
+    impulse += -s.mass_scale * K.ldlt().solve(B.w - A.w + bias) - s.impulse_scale * impulse;
     const double n = impulse.norm();
     const bool capped = n > max_impulse;
     if (capped) impulse *= max_impulse / n;

@@ -77,14 +77,11 @@ struct HingeAxisPart {
   void solve(SolverBody& A, SolverBody& B, const Softness& soft, bool use_bias) {
     const Vec3 dw = B.w - A.w;
     const Eigen::Vector2d cdot(u1.dot(dw), u2.dot(dw));
-    Eigen::Vector2d bias = Eigen::Vector2d::Zero();
-    double mass_scale = 1.0, impulse_scale = 0.0;
-    if (use_bias) {
-      bias = soft.bias_rate * C;
-      mass_scale = soft.mass_scale;
-      impulse_scale = soft.impulse_scale;
-    }
-    const Eigen::Vector2d lambda = -mass_scale * (k_inv * (cdot + bias)) - impulse_scale * impulse;
+    const Softness s = soft.orRigid(use_bias);
+    const Eigen::Vector2d bias =
+        use_bias ? Eigen::Vector2d(s.bias_rate * C) : Eigen::Vector2d::Zero();
+    const Eigen::Vector2d lambda =
+        -s.mass_scale * (k_inv * (cdot + bias)) - s.impulse_scale * impulse;
     impulse += lambda;
     applyPairAngularImpulse(A, B, lambda.x() * u1 + lambda.y() * u2);
   }

@@ -118,14 +118,9 @@ struct PointPart {
   bool solve(SolverBody& A, SolverBody& B, const Softness& soft, bool use_bias,
              double max_impulse = std::numeric_limits<double>::infinity()) {
     const Vec3 cdot = B.v + B.w.cross(rB) - A.v - A.w.cross(rA);
-    Vec3 bias = Vec3::Zero();
-    double mass_scale = 1.0, impulse_scale = 0.0;
-    if (use_bias) {
-      bias = soft.bias_rate * error(A, B);
-      mass_scale = soft.mass_scale;
-      impulse_scale = soft.impulse_scale;
-    }
-    Vec3 next = impulse - mass_scale * (k_inv * (cdot + bias)) - impulse_scale * impulse;
+    const Softness s = soft.orRigid(use_bias);
+    const Vec3 bias = use_bias ? Vec3(s.bias_rate * error(A, B)) : Vec3::Zero();
+    Vec3 next = impulse - s.mass_scale * (k_inv * (cdot + bias)) - s.impulse_scale * impulse;
     bool saturated = false;
     if (max_impulse < std::numeric_limits<double>::infinity()) {  // unbreakable: no square root
       const double n = next.norm();

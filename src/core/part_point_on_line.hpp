@@ -60,17 +60,14 @@ struct PointOnLinePart {
     const Vec3 dv = B.v - A.v;
     const Eigen::Vector2d cdot(p.n1.dot(dv) + b1.dot(B.w) - a1.dot(A.w),
                                p.n2.dot(dv) + b2.dot(B.w) - a2.dot(A.w));
-    Eigen::Vector2d bias = Eigen::Vector2d::Zero();
-    double mass_scale = 1.0, impulse_scale = 0.0;
-    if (use_bias) {
-      bias = soft.bias_rate * Eigen::Vector2d(p.n1.dot(p.d), p.n2.dot(p.d));
-      mass_scale = soft.mass_scale;
-      impulse_scale = soft.impulse_scale;
-    }
+    const Softness s = soft.orRigid(use_bias);
+    const Eigen::Vector2d bias =
+        use_bias ? Eigen::Vector2d(s.bias_rate * Eigen::Vector2d(p.n1.dot(p.d), p.n2.dot(p.d)))
+                 : Eigen::Vector2d::Zero();
     const Eigen::Matrix2d K = mass(A, B, a1, a2, b1, b2);
     if (!(K.determinant() > 1e-300)) return false;
     Eigen::Vector2d next =
-        impulse - mass_scale * K.inverse() * (cdot + bias) - impulse_scale * impulse;
+        impulse - s.mass_scale * K.inverse() * (cdot + bias) - s.impulse_scale * impulse;
     const double n = next.norm();
     const bool saturated = n > max_impulse;
     if (saturated) next *= max_impulse / n;

@@ -25,6 +25,8 @@ struct Softness {
     double a3 = 1.0 / (1.0 + a2);
     return {omega / a1, a2 * a3, a3};
   }
+  // What one sweep uses: these terms in the biased pass, a rigid constraint in the relax pass.
+  Softness orRigid(bool use_bias) const { return use_bias ? *this : Softness(); }
 };
 
 }  // namespace ragdoll_sim
