@@ -123,7 +123,7 @@ bool SimNode::init(std::string* error) {
            r.name.c_str(), r.def.links.size(), r.def.joints.size(), r.def.totalMass(),
            r.tf_prefix.empty() ? "" : ", TF prefix ", r.tf_prefix.c_str(), spawn.p.x(),
            spawn.p.y(), spawn.p.z(), config_.physics_rate, config_.substeps,
-           threadsText(config_.threads).c_str(),
+           threadsText(world_->def().threads).c_str(),  // as the World took it
            config_.real_time_factor, pacer_.asFastAsPossible() ? " (as fast as possible)" : "",
            config_.publish_rate, config_.gravity.x(), config_.gravity.y(), config_.gravity.z(),
            config_.ground ? ", ground plane z=0" : "", paused_ ? ", PAUSED" : "",

@@ -1,6 +1,6 @@
 // rostest: the node binary started with one invalid parameter (on the command line, `_name:=`)
 // exits with code 1 and a FATAL message naming the parameter; with a valid ~threads it runs
-// (until `timeout` stops it) and its start-up line gives the thread count.
+// (until `timeout` stops it) and its start-up line gives the World's thread count.
 #include <gtest/gtest.h>
 
 #include <string>
