@@ -69,9 +69,9 @@ namespace {
 constexpr int kParallelMin = 32;
 // An island with at least this many awake bodies, and more than half the awake work (bodies,
 // joints, contacts), is split in two (island_split.hpp). Its ~22 boundary sweeps per step wait
-// at two barriers each: TeamBarrier takes 0.08 us per wait in a loop of waits, but in scene c
-// (timed inside its 5,000 steps, the pile split from ~0.7 s) thread 0 waited 10 us per step and
-// thread 1 14.5 us, 0.24 and 0.35 us per wait: mostly the halves' imbalance. The substeps of
+// at two barriers each (TeamBarrier); timed inside scene c's 5,000 steps (the pile split from
+// ~0.7 s), thread 0 waited 10 us per step and thread 1 14.5 us, 0.24 and 0.35 us per wait:
+// mostly the halves' imbalance, not the barrier itself (its header). The substeps of
 // 60 bodies take ~120 us on one thread. A smaller share needs no split: the runs of whole
 // islands already balance the threads, and a split island takes every other island along in
 // lockstep with its halves (attachToSplitHalves), sweep by sweep instead of one island at a

@@ -7,17 +7,16 @@
 #include <utility>
 #include <vector>
 
-#include "../urdf/malformed_cases.hpp"
+#include "node_binary.hpp"
 #include "node_log.hpp"
 
 namespace {
 
+// The bundled ragdoll, and the parameter under test.
 int runNode(const std::string& name, const std::string& args, int seconds, std::string* out) {
-  // SIGINT: the node shuts down and exits, so its buffered stdout reaches the pipe.
-  const std::string cmd = "timeout -s INT " + std::to_string(seconds) + " " +
-                          std::string(RAGDOLL_SIM_NODE_BIN) + " __name:=" + name +
-                          " _urdf_file:=" + RAGDOLL_SIM_SOURCE_DIR + "/urdf/ragdoll.urdf " + args;
-  return malformed::run(cmd, out);
+  return ragdoll_test::runNodeBinary(
+      name, std::string("_urdf_file:=") + RAGDOLL_SIM_SOURCE_DIR + "/urdf/ragdoll.urdf " + args,
+      seconds, out);
 }
 
 }  // namespace

@@ -6,25 +6,16 @@
 #include <vector>
 
 #include "../urdf/malformed_cases.hpp"
+#include "node_binary.hpp"
 #include "node_log.hpp"
-
-namespace {
-
-// The node with ~urdf_file (`timeout` guards against a node that does not exit; rostest has
-// the master in the environment): its exit status and output.
-int runNode(const std::string& name, const std::string& urdf, std::string* out) {
-  const std::string cmd = "timeout 60 " + std::string(RAGDOLL_SIM_NODE_BIN) + " __name:=" + name +
-                          " _urdf_file:=" + urdf;
-  return malformed::run(cmd, out);
-}
-
-}  // namespace
 
 TEST(BadUrdf, NodeExitsNonZeroNamingTheElement) {
   int k = 0;
   for (const auto& [file, words] : malformed::badCases()) {
     std::string out;
-    const int rc = runNode("bad_urdf_node_" + std::to_string(k++), malformed::kFixtures + file, &out);
+    const std::string args = "_urdf_file:=" + malformed::kFixtures + file;
+    const std::string name = "bad_urdf_node_" + std::to_string(k++);
+    const int rc = ragdoll_test::runNodeBinary(name, args, 60, &out);
     EXPECT_EQ(rc, 1) << file << ":\n" << out;
     EXPECT_NE(out.find("FATAL"), std::string::npos) << file << ":\n" << out;
     EXPECT_NE(out.find(file), std::string::npos) << out;
