@@ -9,14 +9,14 @@ namespace ragdoll_sim {
 void Broadphase::addPair(std::vector<std::pair<int, int>>& pairs, int i, int j) const {
   const int a = std::min(i, j), b = std::max(i, j);
   if (bothFrozen(a, b)) return;
-  if (!accept_ || !*accept_ || (*accept_)(a, b)) pairs.emplace_back(a, b);
+  if (!accept_ || accept_(a, b)) pairs.emplace_back(a, b);
 }
 
 void Broadphase::findPairs(const std::vector<Aabb>& aabbs, const std::vector<char>& unbounded,
                            const std::vector<PlaneProxy>& planes, double margin,
-                           std::vector<std::pair<int, int>>& pairs, const Filter& accept,
+                           std::vector<std::pair<int, int>>& pairs, Filter accept,
                            int threads, const std::vector<char>* frozen) {
-  accept_ = &accept;
+  accept_ = accept;
   frozen_ = frozen;
   pairs.clear();
   bounded_.clear();

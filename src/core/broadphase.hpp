@@ -16,8 +16,9 @@
 //     box instead.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
-#include <functional>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -35,7 +36,22 @@ class Broadphase {
  public:
   // accept(i, j), i < j: whether an overlapping pair is kept (the world drops the pairs it
   // never collides before they are stored); it may be called from several threads at once.
-  using Filter = std::function<bool(int, int)>;
+  // A reference to the caller's callable, valid for the one findPairs call: one indirect call
+  // per overlapping pair (std::function tested for emptiness and went through its invoker).
+  class Filter {
+   public:
+    Filter(std::nullptr_t = nullptr) {}
+    template <class F, class = std::enable_if_t<!std::is_same_v<std::decay_t<F>, Filter>>>
+    Filter(const F& f)
+        : f_(&f),
+          call_([](const void* g, int i, int j) { return (*static_cast<const F*>(g))(i, j); }) {}
+    explicit operator bool() const { return call_ != nullptr; }
+    bool operator()(int i, int j) const { return call_(f_, i, j); }
+
+   private:
+    const void* f_ = nullptr;
+    bool (*call_)(const void*, int, int) = nullptr;
+  };
 
   // aabbs[i] is shape i's box (ignored when unbounded[i]); pairs get (i, j) with i < j. The
   // sweep's pair loop runs on up to `threads` threads (from kParallelMin bounded shapes), each
@@ -46,7 +62,7 @@ class Broadphase {
   // planes have not changed since).
   void findPairs(const std::vector<Aabb>& aabbs, const std::vector<char>& unbounded,
                  const std::vector<PlaneProxy>& planes, double margin,
-                 std::vector<std::pair<int, int>>& pairs, const Filter& accept = nullptr,
+                 std::vector<std::pair<int, int>>& pairs, Filter accept = nullptr,
                  int threads = 1, const std::vector<char>* frozen = nullptr);
 
   static constexpr int kGridMin = 768;  // bounded shapes from which the grid is used
@@ -64,7 +80,7 @@ class Broadphase {
 
   // scratch, kept between steps to avoid a per-step allocation
   std::vector<int> bounded_;  // ids of the bounded shapes, ascending
-  const Filter* accept_ = nullptr;  // this call's filter (null: keep all)
+  Filter accept_;  // this call's filter (empty: keep all)
   const std::vector<char>* frozen_ = nullptr;  // this call's frozen shapes (null: none)
   bool bothFrozen(int i, int j) const { return frozen_ && (*frozen_)[i] && (*frozen_)[j]; }
   std::vector<std::vector<std::pair<int, int>>> slice_pairs_;  // per thread of the sweep

@@ -393,7 +393,7 @@ void World::Impl::collide(double dt) {
   // costs more than it saves (scene p: +0.6 % instructions): then nothing is carried.
   const bool carry_now = carry && 4 * std::count(frozen.begin(), frozen.end(), char(1)) >= n;
   if (carry && !carry_now) std::fill(frozen.begin(), frozen.end(), char(0));
-  const Broadphase::Filter accept = [this](int sa, int sb) {
+  const auto accept = [this](int sa, int sb) {
     const int ba = shapes[sa].body, bb = shapes[sb].body;
     return ba != bb && (isDynamic(ba) || isDynamic(bb)) && !neverCollide(ba, bb);
   };
@@ -829,14 +829,14 @@ void World::Impl::attachToSplitHalves() {
 void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int substeps) {
   Joint* const* js = active_joints.data();
   const IslandRange halves[2] = {r.half(0), r.half(1)};
+  const std::pair<int, int> slot = r.split ? teamSlot() : std::pair<int, int>{0, 1};
+  const int t = slot.first, nt = slot.second;
   const auto parts = [&](auto&& part) {
     if (!r.split) return part(r);
-    const auto [t, nt] = teamSlot();
     for (int k = t; k < 2; k += nt) withAttached(r, halves[k], k, part);
   };
   const auto boundary = [&](auto&& contacts) {
     if (!r.split) return;
-    const auto [t, nt] = teamSlot();
     team_barrier.wait(t, nt);
     for (int k = t; k < 2; k += nt) contacts(r.boundaryBegin(k), r.boundaryEnd(k));
     team_barrier.wait(t, nt);

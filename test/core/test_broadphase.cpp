@@ -72,7 +72,7 @@ TEST_P(BroadphaseExact, PairsEqualBruteForceWhileBoxesMove) {
   // bp on one thread; sliced on three (the same list, in the same order); filtered on two,
   // with a filter that drops a third of the pairs.
   Broadphase bp, sliced, filtered;
-  const Broadphase::Filter keep = [](int i, int j) { return (i + j) % 3 != 0; };
+  const auto keep = [](int i, int j) { return (i + j) % 3 != 0; };
   Pairs pairs, sliced_pairs, filtered_pairs;
   size_t total = 0;
   int grid_calls = 0;
