@@ -45,6 +45,10 @@ class Broadphase {
     Filter(const F& f)
         : f_(&f),
           call_([](const void* g, int i, int j) { return (*static_cast<const F*>(g))(i, j); }) {}
+    // Not from a temporary (`Filter f = [](int, int) {...};` would dangle): name the callable.
+    template <class F, class = std::enable_if_t<!std::is_same_v<std::decay_t<F>, Filter> &&
+                                                !std::is_lvalue_reference_v<F>>>
+    Filter(F&&) = delete;
     explicit operator bool() const { return call_ != nullptr; }
     bool operator()(int i, int j) const { return call_(f_, i, j); }
 
