@@ -47,8 +47,10 @@ bool trimToSlop(V& C, double slop, double max_correction) {
 }
 
 // Applies a world impulse P at world offset r (from the COM) to A (negative) and B (positive).
-inline void applyPairImpulse(SolverBody& A, SolverBody& B, const Vec3& P, const Vec3& rA,
-                             const Vec3& rB) {
+// This and applyPairAngularImpulse are forced inline: GCC left them as calls in the joint parts,
+// and inlining them took 2.4 % of scene b's instructions and 2 % of c's (callgrind, one thread).
+[[gnu::always_inline]] inline void applyPairImpulse(SolverBody& A, SolverBody& B, const Vec3& P,
+                                                    const Vec3& rA, const Vec3& rB) {
   if (movable(A)) {
     A.v -= A.inv_mass * P;
     A.w -= A.inv_inertia * rA.cross(P);
@@ -85,7 +87,8 @@ inline void applyPairAngularPositionImpulse(SolverBody& A, SolverBody& B, const 
 }
 
 // Applies an angular impulse L to A (negative) and B (positive).
-inline void applyPairAngularImpulse(SolverBody& A, SolverBody& B, const Vec3& L) {
+[[gnu::always_inline]] inline void applyPairAngularImpulse(SolverBody& A, SolverBody& B,
+                                                           const Vec3& L) {
   if (movable(A)) A.w -= A.inv_inertia * L;
   if (movable(B)) B.w += B.inv_inertia * L;
 }
