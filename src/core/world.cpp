@@ -71,14 +71,13 @@ constexpr int kParallelMin = 32;
 // joints, contacts), is split in two (island_split.hpp). Its ~22 boundary sweeps per step wait
 // at two barriers each (TeamBarrier); timed inside scene c's 5,000 steps (the pile split from
 // ~0.7 s), thread 0 waited 10 us per step and thread 1 14.5 us, 0.24 and 0.35 us per wait:
-// mostly the halves' imbalance, not the barrier itself (its header). The substeps of
-// 60 bodies take ~120 us on one thread. A smaller share needs no split: the runs of whole
-// islands already balance the threads, and a split island takes every other island along in
-// lockstep with its halves (attachToSplitHalves), sweep by sweep instead of one island at a
-// time, so each sweep streams all of their constraints through the cache (64 ragdolls on the
-// ground, one 60-body island among 48, 2 threads: 1.85 ms per step split, 1.52 ms not). The
-// test depends only on the islands, not on the thread count, so the result stays the same for
-// every count.
+// mostly the halves' imbalance, not the barrier itself (its header). The substeps of 60 bodies
+// take ~120 us on one thread. A smaller share needs no split: the runs of whole islands already
+// balance the threads, and a split island takes every other island along in lockstep with its
+// halves (attachToSplitHalves), sweep by sweep instead of one island at a time, so each sweep
+// streams all of their constraints through the cache (64 ragdolls on the ground, one 60-body
+// island among 48, 2 threads: 1.85 ms per step split, 1.52 ms not). The test depends only on
+// the islands, not on the thread count, so the result stays the same for every count.
 constexpr int kSplitMin = 60;
 
 // This thread's number and the team's size in the enclosing parallel region ({0, 1} outside).
@@ -829,7 +828,7 @@ void World::Impl::attachToSplitHalves() {
 void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int substeps) {
   Joint* const* js = active_joints.data();
   const IslandRange halves[2] = {r.half(0), r.half(1)};
-  const std::pair<int, int> slot = r.split ? teamSlot() : std::pair<int, int>{0, 1};
+  const std::pair<int, int> slot = teamSlot();  // read by a split island's sweeps only
   const int t = slot.first, nt = slot.second;
   const auto parts = [&](auto&& part) {
     if (!r.split) return part(r);

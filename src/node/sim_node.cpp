@@ -115,7 +115,8 @@ bool SimNode::init(std::string* error) {
   const RagdollInstance& r = ragdolls_.front();
   const Transform& spawn = r.spawn_pose;
   const auto threadsText = [](int n) {
-    return n == 0 ? std::string("all cores") : std::to_string(n) + (n == 1 ? " thread" : " threads");
+    if (n == 0) return std::string("all cores");
+    return std::to_string(n) + (n == 1 ? " thread" : " threads");
   };
   ROS_INFO("ragdoll_sim: '%s' (%zu links, %zu joints, %.2f kg%s%s) at (%.2f, %.2f, %.2f), "
            "physics %.0f Hz x %d substeps on %s, real-time factor %g%s, publish %.0f Hz, "

@@ -36,7 +36,8 @@ TEST(BadParams, NodeExitsNonZeroNamingTheParameter) {
     const int rc = runNode("bad_params_node_" + std::to_string(k++), args, 60, &out);
     EXPECT_EQ(rc, 1) << args << ":\n" << out;
     EXPECT_NE(out.find("FATAL"), std::string::npos) << args << ":\n" << out;
-    for (const std::string& w : words) EXPECT_NE(out.find(w), std::string::npos) << args << ": " << out;
+    for (const std::string& w : words)
+      EXPECT_NE(out.find(w), std::string::npos) << args << ": " << out;
   }
 }
 
