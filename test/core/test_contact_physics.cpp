@@ -258,9 +258,10 @@ TEST(Speculative, SlowApproachStopsAtTheSurface) {
       w.step(kDt);
       deepest = std::max(deepest, r - w.bodyPose(ball).p.z());
     }
-    // Without relax sweeps the biased row's soft push leaves a few micrometres (2.9 and 5.9);
-    // separations left at their step-start values let it sink 0.15-0.5 mm.
-    EXPECT_LT(deepest, relax > 0 ? 1e-6 : 1e-5)
+    // Without relax sweeps the biased row's soft push leaves a few micrometres (10.9 at 1.3
+    // m/s with 3 substeps; 5.9 with 4); separations left at their step-start values let it
+    // sink 0.15-0.5 mm.
+    EXPECT_LT(deepest, relax > 0 ? 1e-6 : 2e-5)
         << "approach at " << speed << " m/s, relax " << relax;
     EXPECT_NEAR(w.bodyState(ball).linear_velocity.z(), 0.0, 1e-6) << speed << ", relax " << relax;
   }

@@ -67,7 +67,7 @@ TEST(Reconfigure, A_StartsFromTheNodesParameters) {
   ASSERT_TRUE(reconfigure({}, {}, &now));
   EXPECT_EQ(now["gravity_z"], 0.0) << "the launch file's gravity, not the .cfg default";
   EXPECT_DOUBLE_EQ(now["time_step"], 0.001);
-  EXPECT_EQ(now["substeps"], 4);
+  EXPECT_EQ(now["substeps"], 3);  // the node's default
   EXPECT_DOUBLE_EQ(now["real_time_factor"], 1.0);
 }
 
@@ -99,9 +99,9 @@ TEST(Reconfigure, D_SolverSettingsKeepTheState) {
   sim.step(20);
   const auto before = sim.link("", "head");
   std::map<std::string, double> now;
-  ASSERT_TRUE(reconfigure({}, {{"substeps", 8}, {"position_iterations", 3}}, &now));
+  ASSERT_TRUE(reconfigure({}, {{"substeps", 8}, {"position_iterations", 4}}, &now));
   EXPECT_EQ(now["substeps"], 8);
-  EXPECT_EQ(now["position_iterations"], 3);
+  EXPECT_EQ(now["position_iterations"], 4);
   const auto after = sim.link("", "head");
   EXPECT_LT((position(after) - position(before)).norm(), 1e-12);
   EXPECT_LT((linear(after) - linear(before)).norm(), 1e-12);
