@@ -9,6 +9,7 @@
 #include "ragdoll_sim/material.hpp"
 #include "ragdoll_sim/math.hpp"
 #include "ragdoll_sim/shape.hpp"
+#include "ragdoll_sim/world.hpp"
 #include "rviz_settings.hpp"
 
 namespace ros {
@@ -36,9 +37,9 @@ struct NodeConfig {
   double physics_rate = 1000.0;        // Hz, fixed physics step = 1 / physics_rate
   double real_time_factor = 1.0;       // sim s per wall s; 0 or inf = as fast as possible
   double clock_rate = 0.0;             // Hz of sim time for /clock (on /use_sim_time); 0 = every step
-  int position_iterations = 3;         // WorldDef::position_iterations
+  int position_iterations = WorldDef().position_iterations;
   double publish_rate = 60.0;          // Hz, TF / markers / joint_states
-  int substeps = 3;                    // solver substeps per physics step
+  int substeps = WorldDef().substeps;  // solver substeps per physics step
   int threads = 1;                     // WorldDef::threads (0 = all cores)
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);
   SpawnPose spawn;

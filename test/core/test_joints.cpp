@@ -104,7 +104,7 @@ TEST(JointSpring, RigidJointBreaksUnderImpulse) {
   w.applyLinearImpulse(b, Vec3(30.0, 0, 0), w.comPosition(b));
   for (int i = 0; i < 10; ++i) w.step(kDt);
   EXPECT_TRUE(w.isJointBroken(id));
-  // it transmitted at most 2000 N for one substep (0.5 N s) before breaking
+  // it transmitted at most 2000 N for one substep (0.67 N s) before breaking
   EXPECT_GT(w.bodyState(b).linear_velocity.x(), 29.0);
   EXPECT_NEAR(w.linearMomentum().x(), 30.3, 1e-9);
 }
