@@ -20,7 +20,7 @@ struct WorldDef {
   // Solver substeps per step (soft step). 3, with contact_hertz 360 and 3 position sweeps,
   // keep the joints issue's bars on perturbed copies of the peers' scenes for ~15 % fewer
   // instructions than 4 with 240 Hz and 2 sweeps; with 240 Hz or 2 sweeps they do not (the
-  // numbers: README, "Physics").
+  // numbers: README, "How the physics works").
   int substeps = 3;
   int contact_relax_iterations = 4;     // relax sweeps over the contacts per substep
   int joint_relax_iterations = 2;       // of which the first this many also relax the joints
