@@ -40,7 +40,7 @@ struct NodeConfig {
   int position_iterations = WorldDef().position_iterations;
   double publish_rate = 60.0;          // Hz, TF / markers / joint_states
   int substeps = WorldDef().substeps;  // solver substeps per physics step
-  int threads = 1;                     // WorldDef::threads (0 = all cores)
+  int threads = WorldDef().threads;    // islands in parallel (0 = all cores)
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);
   SpawnPose spawn;
   Material material{0.8, 0.6, 0.0, 0.05};  // static/kinetic friction, restitution, rolling
