@@ -53,6 +53,7 @@
 #include "contact.hpp"
 #include "contact_solver.hpp"
 #include "gjk.hpp"
+#include "group_by.hpp"
 #include "island.hpp"
 #include "island_split.hpp"
 #include "joint.hpp"
@@ -401,7 +402,7 @@ void World::Impl::collide(double dt) {
   pairs_dirty = false;
   pair_keys.clear();
   for (const auto& [sa, sb] : pairs) pair_keys.push_back(pairKey(sa, sb));
-  std::sort(pair_keys.begin(), pair_keys.end());
+  sortPairKeys(pair_keys, n, merged_keys, group_offsets, group_cursor);  // scratch: merged_keys
   carried_keys.clear();
   if (carry_now)
     for (const uint64_t key : contact_keys)
@@ -671,22 +672,6 @@ void World::Impl::breakJoints() {
                                        [](const Joint* j) { return j->broken; }),
                         active_joints.end());
 }
-
-namespace {
-// Stable counting sort of items into groups (key(item) in [0, groups)); offsets gets the
-// group boundaries (size groups + 1).
-template <class T, class Key>
-void groupBy(std::vector<T>& items, int groups, Key key, std::vector<T>& scratch,
-             std::vector<int>& offsets, std::vector<int>& cursor) {
-  offsets.assign(groups + 1, 0);
-  for (const T& t : items) ++offsets[key(t) + 1];
-  for (int g = 0; g < groups; ++g) offsets[g + 1] += offsets[g];
-  scratch.resize(items.size());
-  cursor.assign(offsets.begin(), offsets.end() - 1);
-  for (T& t : items) scratch[cursor[key(t)]++] = std::move(t);
-  items.swap(scratch);
-}
-}  // namespace
 
 // Numbers the awake islands by their first body and groups bodies, joints and contact
 // constraints by island, so each island is a contiguous range of each.

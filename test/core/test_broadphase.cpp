@@ -2,6 +2,7 @@
 // and prune below Broadphase::kGridMin bounded shapes, hash grid from it), over steps in which
 // the boxes move (the sweep keeps its order between calls) and shapes come and go; the sweep
 // split over threads gives the same list, and a filter drops exactly the pairs it rejects.
+// The world's sort of the pairs' keys (group_by.hpp) gives std::sort's order.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,6 +11,8 @@
 #include <random>
 
 #include "broadphase.hpp"
+#include "contact.hpp"
+#include "group_by.hpp"
 
 using namespace ragdoll_sim;
 
@@ -127,4 +130,39 @@ TEST(Broadphase, NonFiniteBoxesPairWithNothing) {
     EXPECT_EQ(pairs, bruteForce(boxes, unbounded, {}, 0.0)) << n << " boxes";
     for (const auto& [i, j] : pairs) EXPECT_TRUE(i != 10 && j != 10 && i != 20 && j != 20);
   }
+}
+
+// Groups of every kind: empty, one key, a few in random order, a large one in random order (a
+// static box under many bodies: std::sort), a large ascending one (a plane's), and the last
+// shape index as first shape.
+TEST(PairKeys, SortGivesStdSortOrder) {
+  std::mt19937 rng(7);
+  for (int round = 0; round < 20; ++round) {
+    const int shapes = 300;
+    std::vector<uint64_t> keys;
+    for (int b = 1; b < shapes; ++b) keys.push_back(pairKey(0, b));  // ascending, as a plane's
+    std::vector<int> partners;
+    for (int b = 3; b < shapes; ++b) partners.push_back(b);
+    std::shuffle(partners.begin(), partners.end(), rng);
+    for (int k = 0; k < 100; ++k) keys.push_back(pairKey(2, partners[k]));  // large, unsorted
+    for (int a = 5; a < shapes - 1; a += 1 + int(rng() % 4)) {
+      const int n = int(rng() % 6);  // 0 .. 5 partners above a
+      for (int k = 0; k < n; ++k) {
+        const int b = a + 1 + int(rng() % (shapes - 1 - a));
+        const uint64_t key = pairKey(a, b);
+        if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
+      }
+    }
+    keys.push_back(pairKey(shapes - 1, shapes));  // first shape = shape_count - 1
+    std::shuffle(keys.begin() + (shapes - 1), keys.end(), rng);  // the plane's stay ascending
+    std::vector<uint64_t> expected = keys, scratch;
+    std::sort(expected.begin(), expected.end());
+    std::vector<int> offsets, cursor;
+    sortPairKeys(keys, shapes, scratch, offsets, cursor);
+    ASSERT_EQ(keys, expected) << "round " << round;
+  }
+  std::vector<uint64_t> none, scratch;
+  std::vector<int> offsets, cursor;
+  sortPairKeys(none, 4, scratch, offsets, cursor);
+  EXPECT_TRUE(none.empty());
 }
