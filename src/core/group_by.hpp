@@ -32,9 +32,11 @@ inline void sortPairKeys(std::vector<uint64_t>& keys, int shape_count,
                          std::vector<uint64_t>& scratch, std::vector<int>& offsets,
                          std::vector<int>& cursor) {
   constexpr std::ptrdiff_t kInsertionMax = 32;
+  if (keys.empty()) return;  // (data() may be null: no pointer arithmetic on it)
   groupBy(keys, shape_count, [](uint64_t k) { return int(k >> 32); }, scratch, offsets, cursor);
   for (int g = 0; g < shape_count; ++g) {
     uint64_t *begin = keys.data() + offsets[g], *end = keys.data() + offsets[g + 1];
+    if (end - begin < 2) continue;
     if (end - begin > kInsertionMax && !std::is_sorted(begin, end)) {
       std::sort(begin, end);
       continue;
