@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "body.hpp"
@@ -22,8 +23,15 @@ struct StepContext {
 };
 
 // False for an identity solver body (static or asleep): nothing can move it, and the ground,
-// shared by all islands, must not be written by two threads at once.
-inline bool movable(const SolverBody& b) { return b.inv_mass > 0.0 || !b.inv_inertia.isZero(); }
+// shared by all islands, must not be written by two threads at once. The inverse inertia is
+// positive semidefinite (R I^-1 R^T), so its largest entry is on the diagonal: the diagonal
+// alone tells whether it is zero (Eigen's isZero, to 1e-12), with 3 tests instead of 9 for
+// the ground of every contact row (1.3 % of scene c's instructions went to this test).
+inline bool movable(const SolverBody& b) {
+  constexpr double kZero = 1e-12;  // Eigen's dummy_precision<double>, as isZero() used
+  return b.inv_mass > 0.0 || std::abs(b.inv_inertia(0, 0)) > kZero ||
+         std::abs(b.inv_inertia(1, 1)) > kZero || std::abs(b.inv_inertia(2, 2)) > kZero;
+}
 
 // K^-1 of an effective mass matrix (2x2, 3x3), or zero where K is singular (det <= 1e-300).
 // One cofactor pass gives both: a separate determinant() cost as much as the inverse.
