@@ -27,7 +27,8 @@ void groupBy(std::vector<T>& items, int groups, Key key, std::vector<T>& scratch
 // the first shape, then each group by insertion sort (a shape has few partners, and a plane's
 // come from the broadphase in ascending order), or std::sort for a large unsorted group (a
 // static box under many bodies). std::sort of all of scene c's ~250 keys per step was 1.5 % of
-// its instructions. Unique keys (pairs) come out in the same order as with std::sort.
+// its instructions, and this sort leaves c 0.61 % fewer in all (callgrind, one thread). Unique
+// keys (pairs) come out in the same order as with std::sort.
 inline void sortPairKeys(std::vector<uint64_t>& keys, int shape_count,
                          std::vector<uint64_t>& scratch, std::vector<int>& offsets,
                          std::vector<int>& cursor) {

@@ -26,7 +26,8 @@ struct StepContext {
 // shared by all islands, must not be written by two threads at once. The inverse inertia is
 // positive semidefinite (R I^-1 R^T), so its largest entry is on the diagonal: the diagonal
 // alone tells whether it is zero (Eigen's isZero, to 1e-12), with 3 tests instead of 9 for
-// the ground of every contact row (1.3 % of scene c's instructions went to this test).
+// the ground of every contact row (callgrind, one thread: -0.44 % of scene c's instructions,
+// -0.58 % of b's).
 inline bool movable(const SolverBody& b) {
   constexpr double kZero = 1e-12;  // Eigen's dummy_precision<double>, as isZero() used
   return b.inv_mass > 0.0 || std::abs(b.inv_inertia(0, 0)) > kZero ||
