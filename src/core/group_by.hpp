@@ -28,12 +28,15 @@ void groupBy(std::vector<T>& items, int groups, Key key, std::vector<T>& scratch
 // come from the broadphase in ascending order), or std::sort for a large unsorted group (a
 // static box under many bodies). std::sort of all of scene c's ~250 keys per step was 1.5 % of
 // its instructions, and this sort leaves c 0.61 % fewer in all (callgrind, one thread). Unique
-// keys (pairs) come out in the same order as with std::sort.
+// keys (pairs) come out in the same order as with std::sort. The grouping costs a pass over
+// all shapes, so few keys among many shapes (a world of sleeping ragdolls with one awake: its
+// pairs are found, the sleeping ones carried over) take std::sort instead.
 inline void sortPairKeys(std::vector<uint64_t>& keys, int shape_count,
                          std::vector<uint64_t>& scratch, std::vector<int>& offsets,
                          std::vector<int>& cursor) {
   constexpr std::ptrdiff_t kInsertionMax = 32;
   if (keys.empty()) return;  // (data() may be null: no pointer arithmetic on it)
+  if (8 * keys.size() < size_t(shape_count)) return std::sort(keys.begin(), keys.end());
   groupBy(keys, shape_count, [](uint64_t k) { return int(k >> 32); }, scratch, offsets, cursor);
   for (int g = 0; g < shape_count; ++g) {
     uint64_t *begin = keys.data() + offsets[g], *end = keys.data() + offsets[g + 1];

@@ -165,4 +165,10 @@ TEST(PairKeys, SortGivesStdSortOrder) {
   std::vector<int> offsets, cursor;
   sortPairKeys(none, 4, scratch, offsets, cursor);
   EXPECT_TRUE(none.empty());
+  // Few keys among many shapes (the std::sort path).
+  std::vector<uint64_t> few = {pairKey(900, 950), pairKey(3, 7), pairKey(900, 901), pairKey(0, 5)};
+  std::vector<uint64_t> expected = few;
+  std::sort(expected.begin(), expected.end());
+  sortPairKeys(few, 1000, scratch, offsets, cursor);
+  EXPECT_EQ(few, expected);
 }
