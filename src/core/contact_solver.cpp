@@ -305,9 +305,10 @@ void ContactSolver::solve(const StepContext& ctx, bool use_bias, int begin, int 
   }
 }
 
-void ContactSolver::project(const StepContext& ctx, int begin, int end) {
+bool ContactSolver::project(const StepContext& ctx, int begin, int end) {
   auto& bodies = *ctx.bodies;
   const WorldDef& def = *ctx.def;
+  bool moved = false;
   for (int k = begin; k < end; ++k) {
     ContactConstraint& cc = constraints_[k];
     SolverBody &A = bodies[cc.a], &B = bodies[cc.b];
@@ -317,9 +318,13 @@ void ContactSolver::project(const StepContext& ctx, int begin, int end) {
       const double s = (B.dp - A.dp + rB - rA).dot(cc.normal) + p.base_separation;
       const double C = std::max(def.position_factor * std::min(s + def.linear_slop, 0.0),
                                 -def.max_position_correction);
-      if (C < 0.0) applyPairPositionImpulse(A, B, (-p.normal_row.mass * C) * cc.normal, rA, rB);
+      if (C < 0.0) {
+        applyPairPositionImpulse(A, B, (-p.normal_row.mass * C) * cc.normal, rA, rB);
+        moved = true;
+      }
     }
   }
+  return moved;
 }
 
 void ContactSolver::applyRestitution(const StepContext& ctx, int begin, int end) {

@@ -60,8 +60,9 @@ class ContactSolver {
   // positions_moved: the deltas changed since the last warm start or sweep, so the
   // separations are recomputed (they stay fixed through the sweeps of one position state).
   void solve(const StepContext& ctx, bool use_bias, int begin, int end, bool positions_moved);
-  // Position projection of penetrations deeper than the slop (after the substeps).
-  void project(const StepContext& ctx, int begin, int end);
+  // Position projection of penetrations deeper than the slop (after the substeps); true when
+  // it moved a body.
+  bool project(const StepContext& ctx, int begin, int end);
   // Restitution, then the impulses kept for the next step's warm start, of constraints
   // [begin, end) (after the island's substeps).
   void applyRestitution(const StepContext& ctx, int begin, int end);

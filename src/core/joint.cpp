@@ -165,42 +165,45 @@ bool limitsClear(const Joint& j, double margin) {
 }
 }  // namespace
 
-void projectJointLimits(Joint& j, const StepContext& ctx) {
-  if (j.broken) return;
+bool projectJointLimits(Joint& j, const StepContext& ctx) {
+  if (j.broken) return false;
   const double slop = ctx.def->angular_slop, max_turn = ctx.def->max_angular_correction;
   auto& s = *ctx.bodies;
   SolverBody &A = s[j.a], &B = s[j.b];
+  bool moved = false;
   if (j.type == JointType::Fixed || j.type == JointType::Prismatic)
-    j.angle_lock.project(A, B, slop, max_turn);
+    moved = j.angle_lock.project(A, B, slop, max_turn);
   if (j.type == JointType::Prismatic) {
     if (j.limits_enabled)
-      LinearLimitPart::project(A, B, j.slider.at(A, B), j.lower[0], j.upper[0],
-                               ctx.def->joint_slop, ctx.def->max_position_correction);
-    return;
+      moved |= LinearLimitPart::project(A, B, j.slider.at(A, B), j.lower[0], j.upper[0],
+                                        ctx.def->joint_slop, ctx.def->max_position_correction);
+    return moved;
   }
   // The axis error refreshed after the last position update (as for limitsClear) screens out
   // the hinges that cannot be beyond the slop.
   if (j.type == JointType::Hinge && j.hinge_axis.C.norm() > 0.5 * slop)
-    j.hinge_axis.project(A, B, slop, max_turn);
-  if (!(j.limits_enabled || j.swing_twist_limits) || limitsClear(j, 0.5 * slop)) return;
+    moved |= j.hinge_axis.project(A, B, slop, max_turn);
+  if (!(j.limits_enabled || j.swing_twist_limits) || limitsClear(j, 0.5 * slop)) return moved;
   updateAngles(j, ctx);
   if (j.limits_enabled)
     for (int i = 0; i < j.angle_count; ++i)
-      AngleLimitPart::project(A, B, j.angle_rows[i], j.angle_k[i], j.angles[i], j.lower[i],
-                              j.upper[i], slop, max_turn);
+      moved |= AngleLimitPart::project(A, B, j.angle_rows[i], j.angle_k[i], j.angles[i],
+                                       j.lower[i], j.upper[i], slop, max_turn);
   if (j.swing_twist_limits)
-    j.swing_twist.project(A, B, j.swing_cone, j.twist_lower, j.twist_upper, slop, max_turn);
+    moved |= j.swing_twist.project(A, B, j.swing_cone, j.twist_lower, j.twist_upper, slop,
+                                   max_turn);
+  return moved;
 }
 
-void projectJointAnchor(Joint& j, const StepContext& ctx) {
-  if (j.broken) return;
+bool projectJointAnchor(Joint& j, const StepContext& ctx) {
+  if (j.broken) return false;
   auto& s = *ctx.bodies;
   SolverBody &A = s[j.a], &B = s[j.b];
   const double slop = ctx.def->joint_slop, max_move = ctx.def->max_position_correction;
   if (j.type == JointType::Prismatic)
     return j.line.project(A, B, j.slider.at(A, B), slop, max_move);
-  if (j.spring.stiffness > 0.0) return;  // a spring anchor is meant to stretch
-  j.point.project(A, B, max_move, slop);
+  if (j.spring.stiffness > 0.0) return false;  // a spring anchor is meant to stretch
+  return j.point.project(A, B, max_move, slop);
 }
 
 }  // namespace ragdoll_sim

@@ -96,9 +96,9 @@ void advanceJoint(Joint& j, const StepContext& ctx);
 // angle limits, swing-twist) and moves a prismatic joint back into its slide range;
 // projectJointAnchor moves the rigid anchor (part_point.hpp) or a slider back onto its line. A
 // sweep projects every joint's limits before any anchor: a limit turns its bodies about their
-// centres, which moves the neighbours' anchors.
-void projectJointLimits(Joint& j, const StepContext& ctx);
-void projectJointAnchor(Joint& j, const StepContext& ctx);
+// centres, which moves the neighbours' anchors. Both return true when they moved a body.
+bool projectJointLimits(Joint& j, const StepContext& ctx);
+bool projectJointAnchor(Joint& j, const StepContext& ctx);
 
 void prepareBallJoint(Joint& j, const StepContext& ctx);
 void prepareHingeJoint(Joint& j, const StepContext& ctx);

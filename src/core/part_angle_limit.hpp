@@ -44,12 +44,15 @@ struct AngleLimitPart {
     solveInequalityRow(A, B, row.negated(), upper - theta, upper_impulse, ctx, use_bias);
   }
 
-  static void project(SolverBody& A, SolverBody& B, const Vec3& j, double k, double theta,
+  // True when it turned the bodies (as every project() of the parts).
+  static bool project(SolverBody& A, SolverBody& B, const Vec3& j, double k, double theta,
                       double lower, double upper, double slop, double max_correction) {
-    if (!(k > 1e-300)) return;
+    if (!(k > 1e-300)) return false;
     const double e =
         std::clamp(rangeExcess(theta, lower, upper, slop), -max_correction, max_correction);
-    if (e != 0.0) applyPairAngularPositionImpulse(A, B, (-e / k) * j);
+    if (e == 0.0) return false;
+    applyPairAngularPositionImpulse(A, B, (-e / k) * j);
+    return true;
   }
 };
 

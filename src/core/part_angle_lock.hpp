@@ -36,11 +36,12 @@ struct AngleLockPart {
 
   void warmStart(SolverBody& A, SolverBody& B) const { applyPairAngularImpulse(A, B, impulse); }
 
-  void project(SolverBody& A, SolverBody& B, double slop, double max_correction) const {
+  bool project(SolverBody& A, SolverBody& B, double slop, double max_correction) const {
     Vec3 C = error(A, B);
-    if (!trimToSlop(C, slop, max_correction)) return;
+    if (!trimToSlop(C, slop, max_correction)) return false;
     const Mat3 K = A.inv_inertia + B.inv_inertia;
     applyPairAngularPositionImpulse(A, B, -(inverseOrZero(K) * C));
+    return true;
   }
 
   // max_impulse caps the accumulated impulse's norm (a breakable weld's break_torque h); true

@@ -61,13 +61,14 @@ struct HingeAxisPart {
   }
 
   // At the current deltas (refresh's state is left to the velocity sweeps).
-  void project(SolverBody& A, SolverBody& B, double slop, double max_correction) const {
+  bool project(SolverBody& A, SolverBody& B, double slop, double max_correction) const {
     Vec3 v1, v2;
     Eigen::Vector2d c;
     at(A, B, v1, v2, c);
-    if (!trimToSlop(c, slop, max_correction)) return;
+    if (!trimToSlop(c, slop, max_correction)) return false;
     const Eigen::Vector2d l = -(inverseOrZero(mass(A, B, v1, v2)) * c);
     applyPairAngularPositionImpulse(A, B, l.x() * v1 + l.y() * v2);
+    return true;
   }
 
   void warmStart(SolverBody& A, SolverBody& B) const {

@@ -28,13 +28,15 @@ struct LinearLimitPart {
     solveInequalityRow(A, B, row.negated(), upper - s, upper_impulse, ctx, use_bias);
   }
 
-  static void project(SolverBody& A, SolverBody& B, const SliderPose& p, double lower,
+  static bool project(SolverBody& A, SolverBody& B, const SliderPose& p, double lower,
                       double upper, double slop, double max_correction) {
     const double e =
         std::clamp(rangeExcess(p.position(), lower, upper, slop), -max_correction, max_correction);
-    if (e == 0.0) return;
+    if (e == 0.0) return false;
     const LinearRow row(p.axis, p.leverA(), p.rB, A, B);
-    if (row.k > 1e-300) applyPairPositionImpulse(A, B, (-e / row.k) * p.axis, p.leverA(), p.rB);
+    if (!(row.k > 1e-300)) return false;
+    applyPairPositionImpulse(A, B, (-e / row.k) * p.axis, p.leverA(), p.rB);
+    return true;
   }
 };
 

@@ -102,13 +102,14 @@ struct PointPart {
   // K from the current anchors (a fast spin turns them far within one step, and a stale K
   // overshoots). Only the error beyond `slop` is removed (WorldDef::joint_slop), and at most
   // max_correction of it per sweep.
-  void project(SolverBody& A, SolverBody& B, double max_correction, double slop) const {
+  bool project(SolverBody& A, SolverBody& B, double max_correction, double slop) const {
     const Vec3 rA = A.dq * rA0, rB = B.dq * rB0;
     Vec3 C = errorAt(A, B, rA, rB);
-    if (!trimToSlop(C, slop, max_correction)) return;
+    if (!trimToSlop(C, slop, max_correction)) return false;
     const Mat3 k_inv = inverseOrZero(pointMass(A, B, rA, rB, 0.0));
-    if (k_inv.isZero(0.0)) return;
+    if (k_inv.isZero(0.0)) return false;
     applyPairPositionImpulse(A, B, -(k_inv * C), rA, rB);
+    return true;
   }
 
   static double springGamma(double k, double c, double h) { return 1.0 / (h * (c + h * k)); }

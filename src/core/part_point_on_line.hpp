@@ -40,15 +40,16 @@ struct PointOnLinePart {
     return K;
   }
 
-  void project(SolverBody& A, SolverBody& B, const SliderPose& p, double slop,
+  bool project(SolverBody& A, SolverBody& B, const SliderPose& p, double slop,
                double max_correction) const {
     Eigen::Vector2d C(p.n1.dot(p.d), p.n2.dot(p.d));
-    if (!trimToSlop(C, slop, max_correction)) return;
+    if (!trimToSlop(C, slop, max_correction)) return false;
     const Vec3 lA = p.leverA();
     const Eigen::Matrix2d K =
         mass(A, B, lA.cross(p.n1), lA.cross(p.n2), p.rB.cross(p.n1), p.rB.cross(p.n2));
     const Eigen::Vector2d l = -(inverseOrZero(K) * C);
     applyPairPositionImpulse(A, B, l.x() * p.n1 + l.y() * p.n2, lA, p.rB);
+    return true;
   }
 
   // Returns true when the cap was reached.

@@ -44,15 +44,17 @@ struct SwingTwistPart {
   }
 
   // After update() at the current poses.
-  void project(SolverBody& A, SolverBody& B, double cone, double twist_lower, double twist_upper,
+  bool project(SolverBody& A, SolverBody& B, double cone, double twist_lower, double twist_upper,
                double slop, double max_correction) const {
+    bool moved = false;
     if (angles.twist_valid)
-      AngleLimitPart::project(A, B, angles.twist_row, AngularRow(angles.twist_row, A, B).k,
-                              angles.twist, twist_lower, twist_upper, slop, max_correction);
+      moved = AngleLimitPart::project(A, B, angles.twist_row, AngularRow(angles.twist_row, A, B).k,
+                                      angles.twist, twist_lower, twist_upper, slop, max_correction);
     if (angles.swing_valid)
-      AngleLimitPart::project(A, B, angles.swing_row, AngularRow(angles.swing_row, A, B).k,
-                              angles.swing, -std::numeric_limits<double>::infinity(), cone, slop,
-                              max_correction);
+      moved |= AngleLimitPart::project(A, B, angles.swing_row, AngularRow(angles.swing_row, A, B).k,
+                                       angles.swing, -std::numeric_limits<double>::infinity(), cone,
+                                       slop, max_correction);
+    return moved;
   }
 };
 

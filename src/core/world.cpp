@@ -200,6 +200,9 @@ struct World::Impl {
   };
   IslandSplitter splitter;
   TeamBarrier team_barrier;  // the two threads of a split island
+  // Whether each thread of a split island moved a body in a position sweep, by the sweep's
+  // parity (solveIsland).
+  char position_moved[2][2] = {};
   std::vector<IslandRange> island_ranges;
   std::vector<int> island_runs;  // thread t solves islands [island_runs[t], island_runs[t + 1])
   std::vector<int> attached_islands;  // grouped by split island and half (IslandRange::attach)
@@ -862,19 +865,53 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int 
         if (breaksAfterSubstep(*js[k], ctx)) js[k]->broken = true;
     });
   }
+  // Position sweeps. A sweep that moved no body leaves the next ones nothing to do: they see
+  // the same poses and recompute the same angles, so the projection stops there, the anchor
+  // sweeps too (the result is the same bit for bit). Most sweeps are such (scene b: 65 % of
+  // them, c: 60 %; b -2.75 % instructions, c -0.36 %). A split island's threads decide
+  // together: each notes whether it moved anything (by the sweep's parity, so that the next
+  // sweep's note does not overwrite one still being read) and reads both notes after the
+  // barrier that starts the next sweep's boundary.
+  bool mine = false;  // this thread moved a body in the current sweep
   const auto anchors = [&](const IslandRange& p) {
-    for (int k = p.joint_begin; k < p.joint_end; ++k) projectJointAnchor(*js[k], ctx);
+    for (int k = p.joint_begin; k < p.joint_end; ++k) mine |= projectJointAnchor(*js[k], ctx);
   };
-  for (int it = 0; it < def.position_iterations; ++it) {
-    boundary([&](int b, int e) { contact_solver.project(ctx, b, e); });
+  const auto teamMoved = [&](int sweep) {
+    const char* note = position_moved[sweep & 1];
+    return std::any_of(note, note + nt, [](char c) { return c != 0; });
+  };
+  bool moved = true;  // by the last sweep, on any thread
+  for (int it = 0; it < def.position_iterations && moved; ++it) {
+    mine = false;
+    if (r.split) {
+      team_barrier.wait(t, nt);
+      if (it > 0 && !teamMoved(it - 1)) {
+        moved = false;
+        break;
+      }
+      for (int k = t; k < 2; k += nt)
+        mine |= contact_solver.project(ctx, r.boundaryBegin(k), r.boundaryEnd(k));
+      team_barrier.wait(t, nt);
+    }
     parts([&](const IslandRange& p) {
-      contact_solver.project(ctx, p.contact_begin, p.contact_end);
-      for (int k = p.joint_begin; k < p.joint_end; ++k) projectJointLimits(*js[k], ctx);
+      mine |= contact_solver.project(ctx, p.contact_begin, p.contact_end);
+      for (int k = p.joint_begin; k < p.joint_end; ++k) mine |= projectJointLimits(*js[k], ctx);
       anchors(p);
     });
+    if (r.split) position_moved[it & 1][t] = mine;
+    else moved = mine;
   }
-  // The joints of a half touch only its bodies (halves are whole limbs): no boundary.
-  for (int it = 0; it < def.anchor_iterations; ++it) parts(anchors);
+  if (r.split && moved && def.position_iterations > 0) {
+    team_barrier.wait(t, nt);
+    moved = teamMoved(def.position_iterations - 1);
+  }
+  // The joints of a half touch only its bodies (halves are whole limbs): no boundary, and
+  // each thread stops when its own halves' anchors did not move.
+  for (int it = 0; it < def.anchor_iterations && moved; ++it) {
+    mine = false;
+    parts(anchors);
+    moved = mine;
+  }
 }
 
 void World::Impl::buildIslands() {
