@@ -682,6 +682,26 @@ TEST(JointProjection, SliderWeldAndHingeAxisComeBackWithoutVelocity) {
   }
 }
 
+namespace {
+// A ball joint limited to Euler angles in [-1, 1] x [-1, 0] x [-1, 1] about x, y, z (euler),
+// or to a swing cone of 0.3 rad and a twist range [-1, twist_upper] (the projection tests).
+BallJointDef limitedBall(BodyId a, BodyId b, bool euler, double twist_upper) {
+  BallJointDef bj;
+  bj.body_a = a, bj.body_b = b;
+  bj.enable_limits = true;
+  if (euler) {
+    bj.axes = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
+    bj.lower = {-1, -1, -1};
+    bj.upper = {1, 0, 1};
+  } else {
+    bj.limit_mode = BallLimitMode::SwingTwist;
+    bj.swing_cone_angle = 0.3;
+    bj.twist_lower = -1.0, bj.twist_upper = twist_upper;
+  }
+  return bj;
+}
+}  // namespace
+
 // The position sweeps stop at the first one that moves no body (world.cpp, solveIsland): that
 // is exact only if every projection says when it moved one. Each case starts at 2.5 times the
 // most one sweep corrects (max_position_correction 0.05 m, max_angular_correction 0.2 rad), so
@@ -736,17 +756,8 @@ TEST(PositionSweeps, EachProjectionThatMovesABodyLetsTheNextSweepRun) {
         h.lower = -1.0, h.upper = 0.0;
         j = w.createHingeJoint(h);
       } else if (kind <= 8) {
-        BallJointDef bj;
-        bj.body_a = a, bj.body_b = b;
+        BallJointDef bj = limitedBall(a, b, kind == 5, kind == 6 ? 1.0 : 0.0);
         bj.enable_limits = kind != 8;
-        if (kind == 5) {
-          bj.lower = {-1, -1, -1};
-          bj.upper = {1, 0, 1};
-        } else {
-          bj.limit_mode = BallLimitMode::SwingTwist;
-          bj.swing_cone_angle = 0.3;
-          bj.twist_lower = -1.0, bj.twist_upper = kind == 6 ? 1.0 : 0.0;
-        }
         j = w.createBallJoint(bj);
       }
       const auto error = [&]() {
@@ -833,19 +844,7 @@ TEST(LimitProjection, TurnsAViolatedLimitBackWithoutAddingVelocity) {
         h.lower = -1.0, h.upper = 0.0;
         j = w.createHingeJoint(h);
       } else {
-        BallJointDef bj;
-        bj.body_a = a, bj.body_b = b;
-        bj.enable_limits = true;
-        if (kind == 1) {
-          bj.axes = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
-          bj.lower = {-1, -1, -1};
-          bj.upper = {1, 0, 1};
-        } else {
-          bj.limit_mode = BallLimitMode::SwingTwist;
-          bj.swing_cone_angle = 0.3;
-          bj.twist_lower = -1.0, bj.twist_upper = kind == 2 ? 1.0 : 0.0;
-        }
-        j = w.createBallJoint(bj);
+        j = w.createBallJoint(limitedBall(a, b, kind == 1, kind == 2 ? 1.0 : 0.0));
       }
       const auto violation = [&]() {
         if (kind == 0) return w.hingeAngle(j) - 0.0;
