@@ -80,6 +80,10 @@ struct alignas(64) SolverBody {
   Quat dq = Quat::Identity();    // rotation since the start of the step (world, left-multiplied)
   Vec3 dp = Vec3::Zero();        // COM displacement since the start of the step
   Mat3 inv_inertia = Mat3::Zero();  // world, frozen at the start of the step
+  // The last position sweep of the step (numbered from 1) that moved it: a projection whose
+  // bodies have not moved since its last look, and which moved nothing then, is skipped
+  // (World's solveIsland). Sits in the line's padding.
+  int moved_sweep = 0;
 };
 
 }  // namespace ragdoll_sim

@@ -129,6 +129,7 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
     cc.contact = ci;
     cc.normal = c.manifold.normal;
     cc.count = c.manifold.count;
+    cc.moved_sweep = 0;
     cc.restitution = c.restitution;
     const SolverBody &A = bodies[cc.a], &B = bodies[cc.b];
     // The points are relative to c.origin, a centre on the grid: the lever arms come from
@@ -305,13 +306,14 @@ void ContactSolver::solve(const StepContext& ctx, bool use_bias, int begin, int 
   }
 }
 
-bool ContactSolver::project(const StepContext& ctx, int begin, int end) {
+bool ContactSolver::project(const StepContext& ctx, int begin, int end, int sweep) {
   auto& bodies = *ctx.bodies;
   const WorldDef& def = *ctx.def;
   bool moved = false;
   for (int k = begin; k < end; ++k) {
     ContactConstraint& cc = constraints_[k];
     SolverBody &A = bodies[cc.a], &B = bodies[cc.b];
+    if (unchangedSince(sweep, cc.moved_sweep, A, B)) continue;
     for (int i = 0; i < cc.count; ++i) {
       const ContactConstraintPoint& p = cc.points[i];
       const Vec3 rA = A.dq * p.rA, rB = B.dq * p.rB;
@@ -320,6 +322,7 @@ bool ContactSolver::project(const StepContext& ctx, int begin, int end) {
                                 -def.max_position_correction);
       if (C < 0.0) {
         applyPairPositionImpulse(A, B, (-p.normal_row.mass * C) * cc.normal, rA, rB);
+        markMoved(sweep, cc.moved_sweep, A, B);
         moved = true;
       }
     }

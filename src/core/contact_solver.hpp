@@ -38,6 +38,7 @@ struct ContactConstraint {
   Eigen::Matrix2d roll_mass;
   double rolling_impulse[2];
   int count;
+  int moved_sweep;  // the last position sweep of the step in which it moved a body
   ContactConstraintPoint points[Manifold::kMaxPoints];
 };
 
@@ -60,9 +61,9 @@ class ContactSolver {
   // positions_moved: the deltas changed since the last warm start or sweep, so the
   // separations are recomputed (they stay fixed through the sweeps of one position state).
   void solve(const StepContext& ctx, bool use_bias, int begin, int end, bool positions_moved);
-  // Position projection of penetrations deeper than the slop (after the substeps); true when
-  // it moved a body.
-  bool project(const StepContext& ctx, int begin, int end);
+  // Position projection of penetrations deeper than the slop (after the substeps), sweep
+  // number `sweep` of the step (from 1); true when it moved a body.
+  bool project(const StepContext& ctx, int begin, int end, int sweep);
   // Restitution, then the impulses kept for the next step's warm start, of constraints
   // [begin, end) (after the island's substeps).
   void applyRestitution(const StepContext& ctx, int begin, int end);

@@ -72,6 +72,7 @@ void solveAnchor(Joint& j, SolverBody& A, SolverBody& B, const StepContext& ctx,
 }  // namespace
 
 void prepareJoint(Joint& j, const StepContext& ctx) {
+  j.moved_sweep = 0;
   switch (j.type) {
     case JointType::Ball: prepareBallJoint(j, ctx); break;
     case JointType::Hinge: prepareHingeJoint(j, ctx); break;

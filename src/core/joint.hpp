@@ -29,6 +29,7 @@ struct Joint {
   JointSpring spring;
   bool broken = false;
   bool overloaded = false;  // the anchor reached break_force in this substep
+  int moved_sweep = 0;  // the last position sweep of the step in which it moved a body
   double force = 0.0;  // N in the anchor during the last substep
   double torque = 0.0;  // N m in a fixed joint's rotation lock during the last substep
   std::array<JointMotor, 3> motors;       // hinge, prismatic: [0]; ball: per Euler axis

@@ -89,6 +89,21 @@ inline void applyPairPositionImpulse(SolverBody& A, SolverBody& B, const Vec3& P
   }
 }
 
+// Position sweeps (numbered from 1 in a step): a projection that moved nothing when it last
+// looked (its own mark is older than the last sweep) and whose bodies nothing has moved since
+// (theirs too) would see the same poses again and move nothing: it is skipped. A move marks
+// the projection and its movable bodies (never a static or sleeping one: those are shared by
+// the islands). Marks from an earlier step only make a look happen.
+inline bool unchangedSince(int sweep, int own_mark, const SolverBody& A, const SolverBody& B) {
+  const int last = sweep - 1;
+  return sweep > 1 && own_mark < last && A.moved_sweep < last && B.moved_sweep < last;
+}
+inline void markMoved(int sweep, int& own_mark, SolverBody& A, SolverBody& B) {
+  own_mark = sweep;
+  if (movable(A)) A.moved_sweep = sweep;
+  if (movable(B)) B.moved_sweep = sweep;
+}
+
 // Angular position "impulse" L: turns A by -IA^-1 L and B by +IB^-1 L (no velocity change).
 inline void applyPairAngularPositionImpulse(SolverBody& A, SolverBody& B, const Vec3& L) {
   if (movable(A)) rotateDelta(A, -(A.inv_inertia * L));

@@ -787,6 +787,40 @@ TEST(PositionSweeps, EachProjectionThatMovesABodyLetsTheNextSweepRun) {
   }
 }
 
+// Within a sweep, a projection is skipped when it moved nothing at its last look and none of its
+// bodies has moved since (unchangedSince, solver_context.hpp): a move must mark the bodies.
+// A chain static A - B - C, all anchors at the bodies' centres: B starts 0.12 m from A's anchor,
+// C on B's. The B-C joint is projected first and finds nothing; then A-B pulls B 0.05 m (the
+// most one sweep moves), which opens B-C. Only the next sweeps' look at B-C moves C: with
+// three sweeps C comes 0.05 m off its start and B-C ends 0.05 m open; were B left unmarked, B-C
+// would be skipped, C would stay and B-C would end 0.1 m open.
+TEST(PositionSweeps, AMovedBodyMakesItsOtherJointsLookAgain) {
+  WorldDef d = zeroG();
+  d.enable_sleep = false;
+  d.joint_hertz = 1.0;
+  d.anchor_iterations = 0;
+  World w(d);
+  const BodyId a = addStatic(w);
+  const Vec3 start(0.12, 0, 0);
+  const BodyId b = addDynamic(w, 1.0, diag(0.02, 0.02, 0.02), Transform(start, Quat::Identity()));
+  const BodyId c = addDynamic(w, 1.0, diag(0.02, 0.02, 0.02), Transform(start, Quat::Identity()));
+  BallJointDef bc;
+  bc.body_a = b, bc.body_b = c;
+  const JointId j_bc = w.createBallJoint(bc);  // created (and swept) first
+  BallJointDef ab;
+  ab.body_a = a, ab.body_b = b;
+  const JointId j_ab = w.createBallJoint(ab);
+  ASSERT_NEAR(w.jointAnchorError(j_ab).norm(), 0.12, 1e-9);  // positions sit on a grid
+  ASSERT_LT(w.jointAnchorError(j_bc).norm(), 1e-9);
+  w.step(kDt);
+  const double moved_c = (start - w.bodyPose(c).p).norm();
+  const double bc_error = w.jointAnchorError(j_bc).norm();
+  std::printf("[ sweeps   ] chain: C moved %.4g m, anchor errors A-B %.4g, B-C %.4g m\n", moved_c,
+              w.jointAnchorError(j_ab).norm(), bc_error);
+  EXPECT_GT(moved_c, 0.04);
+  EXPECT_LT(bc_error, 0.07);
+}
+
 // The point part's effective mass, formed entry by entry (part_point.hpp), equals the textbook
 // J M^-1 J^T = (1/mA + 1/mB) I - skew(rA) IA^-1 skew(rA) - skew(rB) IB^-1 skew(rB), and a
 // singular K (two immovable bodies) gives a zero inverse rather than inf.
