@@ -77,13 +77,14 @@ struct alignas(64) SolverBody {
   Vec3 v = Vec3::Zero();
   Vec3 w = Vec3::Zero();
   double inv_mass = 0.0;
+  // The last position sweep of the step (numbered from 1) that moved it: a projection whose
+  // bodies have not moved since its last look, and which moved nothing then, is skipped
+  // (unchangedSince, solver_context.hpp). In the padding before dq: the struct stays 192 bytes.
+  int moved_sweep = 0;
   Quat dq = Quat::Identity();    // rotation since the start of the step (world, left-multiplied)
   Vec3 dp = Vec3::Zero();        // COM displacement since the start of the step
   Mat3 inv_inertia = Mat3::Zero();  // world, frozen at the start of the step
-  // The last position sweep of the step (numbered from 1) that moved it: a projection whose
-  // bodies have not moved since its last look, and which moved nothing then, is skipped
-  // (World's solveIsland). Sits in the line's padding.
-  int moved_sweep = 0;
 };
+static_assert(sizeof(SolverBody) == 3 * 64, "SolverBody grew past its three cache lines");
 
 }  // namespace ragdoll_sim
