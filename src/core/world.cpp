@@ -875,18 +875,22 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int 
   // barrier that starts the next sweep's boundary.
   // Within a sweep, a projection whose bodies have not moved since its last look, when it
   // moved nothing, is skipped too (unchangedSince, solver_context.hpp; b -1.03 % and c -1.85 %
-  // instructions, the same result).
+  // instructions, the same result). Those marks alone would skip every projection after an
+  // idle sweep; the stop also saves the pass over the constraints and, on a split island, the
+  // sweep's two barriers.
   bool mine = false;  // this thread moved a body in the current sweep
-  auto& sb = solver;
-  const auto project = [&](Joint& j, int sweep, bool (*f)(Joint&, const StepContext&)) {
-    SolverBody &A = sb[j.a], &B = sb[j.b];
-    if (unchangedSince(sweep, j.moved_sweep, A, B) || !f(j, ctx)) return;
+  // f(j): projectJointLimits or projectJointAnchor, as a lambda so that each is called directly
+  const auto project = [&](Joint& j, int sweep, auto&& f) {
+    SolverBody &A = solver[j.a], &B = solver[j.b];
+    if (unchangedSince(sweep, j.moved_sweep, A, B) || !f(j)) return;
     markMoved(sweep, j.moved_sweep, A, B);
     mine = true;
   };
+  const auto limitsOf = [&](Joint& j) { return projectJointLimits(j, ctx); };
+  const auto anchorOf = [&](Joint& j) { return projectJointAnchor(j, ctx); };
   int sweep = 0;  // numbered from 1 in the step
   const auto anchors = [&](const IslandRange& p) {
-    for (int k = p.joint_begin; k < p.joint_end; ++k) project(*js[k], sweep, projectJointAnchor);
+    for (int k = p.joint_begin; k < p.joint_end; ++k) project(*js[k], sweep, anchorOf);
   };
   const auto teamMoved = [&](int sweep) {
     const char* note = position_moved[sweep & 1];
@@ -908,13 +912,13 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int 
     }
     parts([&](const IslandRange& p) {
       mine |= contact_solver.project(ctx, p.contact_begin, p.contact_end, sweep);
-      for (int k = p.joint_begin; k < p.joint_end; ++k) project(*js[k], sweep, projectJointLimits);
+      for (int k = p.joint_begin; k < p.joint_end; ++k) project(*js[k], sweep, limitsOf);
       anchors(p);
     });
     if (r.split) position_moved[it & 1][t] = mine;
     else moved = mine;
   }
-  if (r.split && moved && def.position_iterations > 0) {
+  if (r.split && moved && def.position_iterations > 0 && def.anchor_iterations > 0) {
     team_barrier.wait(t, nt);
     moved = teamMoved(def.position_iterations - 1);
   }
