@@ -1,6 +1,8 @@
 // Manifold cache (src/core/manifold_cache.hpp): a kept manifold carried along with the shapes
 // matches a fresh narrowphase within the cache distance, is refused beyond it, and a world with
-// the cache moves like one without it; a box sliding off a ledge loses its kept support.
+// the cache moves like one without it; a box sliding off a ledge loses its kept support; the
+// points of a rolling sphere, capsule or cylinder stay below their cores, and a ball or capsule
+// rolling on the flat keeps its speed.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -257,4 +259,118 @@ TEST(ManifoldCache, BoxSlidingOffALedgeFalls) {
   EXPECT_GT(p.x(), 0.6);   // went past the edge (x = 0.5)
   EXPECT_LT(p.z(), 0.5);   // and fell below the platform's top
   std::printf("[ cache    ] box off the ledge: x %.3f z %.3f m\n", p.x(), p.z());
+}
+
+namespace {
+struct RollingPair {
+  const char* name;
+  Geometry a, b;
+  Transform xa, xb;
+  bool a_rolls;      // A turns (B is the plane), else B turns
+  bool shift;        // also slide the rolling shape: its partner's points are on a face
+};
+std::vector<RollingPair> rollingPairs() {
+  const Geometry plane = Geometry::plane(Vec3::UnitZ(), 0.0);
+  const Geometry box = Geometry::box(Vec3(0.2, 0.1, 0.05));
+  const Geometry ball = Geometry::sphere(0.095), cap = Geometry::capsule(0.05, 0.15);
+  const Geometry cyl = Geometry::cylinder(0.05, 0.2);
+  const Quat lying = turn(M_PI / 2, Vec3::UnitX()) * turn(0.3, Vec3::UnitZ());
+  const Quat tilted = turn(0.4, Vec3::UnitX());  // on its rim: the deepest rim point rolls
+  return {
+      {"sphere on plane", plane, ball, Transform(), Transform(Vec3(0, 0, 0.0945), Quat::Identity()), false, true},
+      {"sphere as A on plane B", ball, plane, Transform(Vec3(0, 0, 0.0945), Quat::Identity()), Transform(), true, true},
+      {"capsule on plane", plane, cap, Transform(), Transform(Vec3(0, 0, 0.0495), lying), false, true},
+      {"cylinder on plane", plane, cyl, Transform(), Transform(Vec3(0, 0, 0.0495), lying), false, true},
+      {"cylinder on its rim", plane, cyl, Transform(),
+       Transform(Vec3(0, 0, 0.05 * std::sin(0.4) + 0.2 * std::cos(0.4) - 0.0005), tilted), false, true},
+      {"sphere on box", box, ball, Transform(Vec3(0, 0, 0.05), Quat::Identity()),
+       Transform(Vec3(0.03, 0.02, 0.1945), Quat::Identity()), false, true},
+      {"capsule across capsule", cap, cap, Transform(Vec3(0, 0, 0.05), lying),
+       Transform(Vec3(0, 0, 0.1495), turn(M_PI / 2, Vec3::UnitY())), false, false},
+  };
+}
+}  // namespace
+
+TEST(ManifoldCache, RollingPointsStayBelowTheirCores) {
+  // A round shape turned about its core (a sphere about any axis, a capsule or cylinder about
+  // its own), within the cache distance, and slid along the face it lies on: its contact points
+  // are below its core whatever the turn, and the kept ones must be where a fresh narrowphase
+  // puts them. Carried along with the body they trailed by up to the chord (~0.45 mm here), and
+  // the normal force there drove the roll (RollingOnTheFlatKeepsItsSpeed).
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  double worst = 0.0;
+  for (const RollingPair& p : rollingPairs()) {
+    Manifold m0;
+    collide(p.a, p.xa, p.b, p.xb, kSpec, m0);
+    ASSERT_GT(m0.count, 0) << p.name;
+    ManifoldCache cache;
+    cache.store(m0, p.a, p.xa, p.b, p.xb, kSpec, true);
+    const Geometry& g = p.a_rolls ? p.a : p.b;
+    const Transform& x0 = p.a_rolls ? p.xa : p.xb;
+    const double lever = maxExtent(g, Transform(), Vec3::Zero());
+    int matched = 0;
+    for (int it = 0; it < 100; ++it) {
+      const Vec3 axis = g.type == ShapeType::Sphere ? Vec3(u(rng), u(rng), u(rng)).normalized()
+                                                    : Vec3(x0.q * Vec3::UnitZ());
+      const double angle = 0.4 * kDistance / lever * u(rng);
+      const Vec3 shift = p.shift ? Vec3(0.4 * kDistance * u(rng), 0.4 * kDistance * u(rng), 0)
+                                 : Vec3(Vec3::Zero());
+      const Transform x(x0.p + shift, (turn(angle, axis) * x0.q).normalized());
+      const Transform xa = p.a_rolls ? x : p.xa, xb = p.a_rolls ? p.xb : x;
+      ASSERT_TRUE(cache.holds(xa, xb, kDistance)) << p.name;
+      Manifold fresh, kept = m0;
+      collide(p.a, xa, p.b, xb, kSpec, fresh);
+      cache.apply(xa, xb, kept);
+      EXPECT_LT((kept.normal - fresh.normal).norm(), 1e-9) << p.name;
+      for (int i = 0; i < fresh.count; ++i)
+        for (int k = 0; k < kept.count; ++k) {
+          if (kept.points[k].id != fresh.points[i].id) continue;
+          ++matched;
+          const double err = (kept.points[k].point - fresh.points[i].point).norm() +
+                             std::abs(kept.points[k].separation - fresh.points[i].separation);
+          worst = std::max(worst, err);
+          EXPECT_LT(err, 1e-9) << p.name << " point " << k;
+        }
+    }
+    EXPECT_GE(matched, 100) << p.name;
+  }
+  std::printf("[ cache    ] rolling points, kept vs fresh: worst %.1e m\n", worst);
+}
+
+TEST(ManifoldCache, RollingOnTheFlatKeepsItsSpeed) {
+  // A ball and a capsule (about its axis) rolling without slipping on level ground, with no
+  // rolling resistance, keep their speed and kinetic energy: the contact force does no work.
+  // With the kept points carried along with the body, the ball went from 0.1 to 0.198 m/s in
+  // 3 s (0.3 to 0.376) and the capsule from 0.1 to 0.122 (at 0.3 m/s it turns too fast for
+  // the cache).
+  for (const double v0 : {0.1, 0.3}) {
+    for (const bool capsule : {false, true}) {
+      WorldDef def;
+      def.enable_sleep = false;
+      World w(def);
+      addGround(w);
+      const double r = 0.05, hh = 0.15, mass = 2.0;
+      BodyId id;
+      if (capsule) {
+        const Mat3 inertia = Vec3(mass * (3 * r * r + 4 * hh * hh) / 12, mass * (3 * r * r + 4 * hh * hh) / 12,
+                                  0.5 * mass * r * r).asDiagonal();
+        id = addBody(w, Geometry::capsule(r, hh), mass, inertia,
+                     Transform(Vec3(0, 0, r - 0.0004), turn(M_PI / 2, Vec3::UnitY())));
+      } else {
+        id = addSphere(w, r, mass, Vec3(0, 0, r - 0.0004));
+      }
+      // along +y: the contact point is at rest when w_x = -v / r
+      w.setBodyState(id, w.bodyPose(id), Vec3(0, v0, 0), Vec3(-v0 / r, 0, 0));
+      for (int i = 0; i < 100; ++i) w.step(1e-3);  // friction evens out the start
+      const double v1 = w.bodyState(id).linear_velocity.y(), e0 = w.kineticEnergy();
+      for (int i = 0; i < 3000; ++i) w.step(1e-3);
+      const double v = w.bodyState(id).linear_velocity.y(), e = w.kineticEnergy();
+      EXPECT_NEAR(v1, v0, 0.01 * v0) << (capsule ? "capsule" : "ball") << " at " << v0;
+      EXPECT_NEAR(v, v1, 1e-3 * v1) << (capsule ? "capsule" : "ball") << " at " << v0;
+      EXPECT_NEAR(e, e0, 1e-3 * e0) << (capsule ? "capsule" : "ball") << " at " << v0;
+      std::printf("[ cache    ] %s rolling at %.2f m/s: %.5f m/s after 3 s, energy %+.2e\n",
+                  capsule ? "capsule" : "ball", v0, v, e / e0 - 1.0);
+    }
+  }
 }
