@@ -52,6 +52,15 @@ std::vector<Pair> restingPairs() {
   };
 }
 
+// The narrowphase's manifold m of a pair, and a cache that keeps it.
+ManifoldCache keptManifold(const Geometry& a, const Transform& xa, const Geometry& b,
+                           const Transform& xb, Manifold& m) {
+  collide(a, xa, b, xb, kSpec, m);
+  ManifoldCache cache;
+  cache.store(m, a, xa, b, xb, kSpec, true);
+  return cache;
+}
+
 }  // namespace
 
 TEST(ManifoldCache, CarriedManifoldMatchesAFreshOne) {
@@ -66,10 +75,8 @@ TEST(ManifoldCache, CarriedManifoldMatchesAFreshOne) {
   double worst = 0.0, worst_same_id = 0.0;
   for (const Pair& p : restingPairs()) {
     Manifold m0;
-    collide(p.a, p.xa, p.b, p.xb, kSpec, m0);
+    const ManifoldCache cache = keptManifold(p.a, p.xa, p.b, p.xb, m0);
     ASSERT_GT(m0.count, 0) << p.name;
-    ManifoldCache cache;
-    cache.store(m0, p.a, p.xa, p.b, p.xb, kSpec, true);
     const bool b_moves = p.b.type != ShapeType::Plane;
     const double lever = maxExtent(b_moves ? p.b : p.a, Transform(), Vec3::Zero());
     int matched = 0;
@@ -302,10 +309,8 @@ TEST(ManifoldCache, RollingPointsStayBelowTheirCores) {
   double worst = 0.0;
   for (const RollingPair& p : rollingPairs()) {
     Manifold m0;
-    collide(p.a, p.xa, p.b, p.xb, kSpec, m0);
+    const ManifoldCache cache = keptManifold(p.a, p.xa, p.b, p.xb, m0);
     ASSERT_GT(m0.count, 0) << p.name;
-    ManifoldCache cache;
-    cache.store(m0, p.a, p.xa, p.b, p.xb, kSpec, true);
     const Geometry& g = p.a_rolls ? p.a : p.b;
     const Transform& x0 = p.a_rolls ? p.xa : p.xb;
     const double lever = maxExtent(g, Transform(), Vec3::Zero());
