@@ -53,13 +53,12 @@ namespace ragdoll_sim {
 
 struct ManifoldCache {
   Transform reference;                 // xm^-1 xo when the manifold was computed
-  Vec3 normal_a = Vec3::UnitZ();       // normal in A's frame
+  Vec3 normal_a = Vec3::UnitZ();       // normal in A's frame (B's when normalInB())
   Vec3 point_a[Manifold::kMaxPoints];  // surface point on A, A's frame
   Vec3 point_b[Manifold::kMaxPoints];  // surface point on B, B's frame
   // Rolling points: bit i set when point i of that side keeps its core point (shape frame) in
   // point_a / point_b instead of its surface point.
   uint8_t rolls_a = 0, rolls_b = 0;
-  bool normal_in_b = false;            // normal_a holds the normal in B's frame
   double lever = 0.0;                  // r_o: farthest point of o from its origin
   double clearance = 0.0;              // > 0: a separated pair, this far beyond the band
   bool b_moves = true;                 // o = B (m = A), else o = A (B is the unbounded one)
@@ -85,13 +84,7 @@ struct ManifoldCache {
     }
     rolls_a = toCores(a, xa, 1.0, m.normal, m.count, point_a);
     rolls_b = toCores(b, xb, -1.0, m.normal, m.count, point_b);
-    radius_a = a.radius;
-    radius_b = b.radius;
-    cylinder_a = a.type == ShapeType::Cylinder;
-    cylinder_b = b.type == ShapeType::Cylinder;
-    plane_a = isUnbounded(a);
-    normal_in_b = rolls_a != 0 && rolls_b == 0;
-    normal_a = (normal_in_b ? xb : xa).q.conjugate() * m.normal;
+    normal_a = (normalInB() ? xb : xa).q.conjugate() * m.normal;
   }
 
   // True when no point of the moving shape has moved more than `distance` relative to the
@@ -107,31 +100,35 @@ struct ManifoldCache {
 
   bool separated() const { return clearance > 0.0; }
 
-  // Rebuilds `m` (same count and feature ids as when stored) at the poses xa, xb.
-  void apply(const Transform& xa, const Transform& xb, Manifold& m) const {
-    m.normal = (normal_in_b ? xb : xa).q * normal_a;
-    if (m.count > 0 && (rolls_a & rolls_b & 1) && !cylinder_a && !cylinder_b) {
+  // Rebuilds `m` (same count and feature ids as when stored) for the shapes a, b (those given
+  // to store) at the poses xa, xb.
+  void apply(const Geometry& ga, const Transform& xa, const Geometry& gb, const Transform& xb,
+             Manifold& m) const {
+    const bool cyl_a = ga.type == ShapeType::Cylinder, cyl_b = gb.type == ShapeType::Cylinder;
+    m.normal = (normalInB() ? xb : xa).q * normal_a;
+    if (m.count > 0 && (rolls_a & rolls_b & 1) && !cyl_a && !cyl_b) {
       const Vec3 d = xb.apply(point_b[0]) - xa.apply(point_a[0]);
       if (d.norm() > 1e-9) m.normal = d.normalized();
     }
+    // Core-to-surface offsets, the same for every rolling point of a side.
+    const Vec3 off_a = rolls_a ? Vec3(ga.radius * outward(xa, cyl_a, 1.0, m.normal)) : Vec3::Zero();
+    const Vec3 off_b = rolls_b ? Vec3(gb.radius * outward(xb, cyl_b, -1.0, m.normal)) : Vec3::Zero();
+    const bool plane_a = isUnbounded(ga), plane_b = !b_moves;
     for (int i = 0; i < m.count; ++i) {
       const bool ra = rolls_a >> i & 1, rb = rolls_b >> i & 1;
-      const Vec3 a = ra ? surface(xa, point_a[i], radius_a, cylinder_a, 1.0, m.normal)
-                        : xa.apply(point_a[i]);
-      const Vec3 b = rb ? surface(xb, point_b[i], radius_b, cylinder_b, -1.0, m.normal)
-                        : xb.apply(point_b[i]);
+      const Vec3 a = ra ? Vec3(xa.apply(point_a[i]) + off_a) : xa.apply(point_a[i]);
+      const Vec3 b = rb ? Vec3(xb.apply(point_b[i]) + off_b) : xb.apply(point_b[i]);
       const double s = (b - a).dot(m.normal);
       m.points[i].separation = s;
-      m.points[i].point = plane_a || (rb && !ra)   ? Vec3(b - 0.5 * s * m.normal)
-                          : !b_moves || (ra && !rb) ? Vec3(a + 0.5 * s * m.normal)
-                                                    : Vec3(0.5 * (a + b));
+      m.points[i].point = plane_a || (rb && !ra)  ? Vec3(b - 0.5 * s * m.normal)
+                          : plane_b || (ra && !rb) ? Vec3(a + 0.5 * s * m.normal)
+                                                   : Vec3(0.5 * (a + b));
     }
   }
 
  private:
-  double radius_a = 0.0, radius_b = 0.0;
-  bool cylinder_a = false, cylinder_b = false;
-  bool plane_a = false;  // (B is the plane when !b_moves)
+  // Only A rolls: the normal is kept in B's frame (a plane's normal stays the plane's).
+  bool normalInB() const { return rolls_a != 0 && rolls_b == 0; }
 
   // Unit direction, world, from a rolling point's core to its surface point: sigma n, or for a
   // cylinder sigma times n's part across the axis (zero when n runs along the axis).
@@ -142,25 +139,20 @@ struct ManifoldCache {
     const double len = across.norm();
     return len > 1e-3 ? Vec3((sigma / len) * across) : Vec3(Vec3::Zero());
   }
-  static Vec3 surface(const Transform& x, const Vec3& core, double r, bool cylinder,
-                      double sigma, const Vec3& n) {
-    return x.apply(core) + r * outward(x, cylinder, sigma, n);
-  }
-
   // Replaces the rolling points of a shape g at x (sigma as above) by their core points and
   // returns their mask: a sphere's or capsule's points below a core point, a cylinder's below
   // an axis point, found by going back from each point and checking that it lands on the core.
   static uint8_t toCores(const Geometry& g, const Transform& x, double sigma, const Vec3& n,
                          int count, Vec3* points) {
-    const bool cylinder = g.type == ShapeType::Cylinder;
-    if (!(g.type == ShapeType::Sphere || g.type == ShapeType::Capsule || cylinder)) return 0;
-    const Vec3 out = x.q.conjugate() * outward(x, cylinder, sigma, n);
+    const double r = rollingRadius(g);
+    if (r == 0.0) return 0;
+    const Vec3 out = x.q.conjugate() * outward(x, g.type == ShapeType::Cylinder, sigma, n);
     if (out.isZero(0.0)) return 0;
     const double half = g.type == ShapeType::Sphere ? 0.0 : g.half_height;
-    const double tol = 1e-9 + 1e-6 * g.radius;
+    const double tol = 1e-9 + 1e-6 * r;
     uint8_t mask = 0;
     for (int i = 0; i < count; ++i) {
-      const Vec3 core = points[i] - g.radius * out;
+      const Vec3 core = points[i] - r * out;
       if (std::hypot(core.x(), core.y()) <= tol && std::abs(core.z()) <= half + tol) {
         points[i] = Vec3(0.0, 0.0, core.z());
         mask |= uint8_t(1u << i);

@@ -469,7 +469,7 @@ void World::Impl::collide(double dt) {
       cache = manifold_caches[o];
       if (!cache.separated()) {
         c.origin = origin;
-        cache.apply(xa, xb, c.manifold);
+        cache.apply(shapeDef(sa).geometry, xa, shapeDef(sb).geometry, xb, c.manifold);
         c.sep_axis = c.manifold.normal;
       }
       continue;

@@ -91,7 +91,7 @@ TEST(ManifoldCache, CarriedManifoldMatchesAFreshOne) {
       ASSERT_TRUE(cache.holds(xa, xb, kDistance)) << p.name;
       Manifold fresh, kept = m0;
       collide(p.a, xa, p.b, xb, kSpec, fresh);
-      cache.apply(xa, xb, kept);
+      cache.apply(p.a, xa, p.b, xb, kept);
       ASSERT_EQ(kept.count, m0.count) << p.name;
       EXPECT_LT((kept.normal - fresh.normal).norm(), 1e-9 + angle) << p.name;
       // The deepest point decides the push-out; points with the same feature id must agree.
@@ -326,7 +326,7 @@ TEST(ManifoldCache, RollingPointsStayBelowTheirCores) {
       ASSERT_TRUE(cache.holds(xa, xb, kDistance)) << p.name;
       Manifold fresh, kept = m0;
       collide(p.a, xa, p.b, xb, kSpec, fresh);
-      cache.apply(xa, xb, kept);
+      cache.apply(p.a, xa, p.b, xb, kept);
       EXPECT_LT((kept.normal - fresh.normal).norm(), 1e-9) << p.name;
       for (int i = 0; i < fresh.count; ++i)
         for (int k = 0; k < kept.count; ++k) {
