@@ -113,7 +113,7 @@ struct ManifoldCache {
     // Core-to-surface offsets, the same for every rolling point of a side.
     const Vec3 off_a = rolls_a ? Vec3(ga.radius * outward(xa, cyl_a, 1.0, m.normal)) : Vec3::Zero();
     const Vec3 off_b = rolls_b ? Vec3(gb.radius * outward(xb, cyl_b, -1.0, m.normal)) : Vec3::Zero();
-    const bool plane_a = isUnbounded(ga), plane_b = !b_moves;
+    const bool plane_a = isUnbounded(ga), plane_b = isUnbounded(gb);
     for (int i = 0; i < m.count; ++i) {
       const bool ra = rolls_a >> i & 1, rb = rolls_b >> i & 1;
       const Vec3 a = ra ? Vec3(xa.apply(point_a[i]) + off_a) : xa.apply(point_a[i]);
@@ -153,7 +153,9 @@ struct ManifoldCache {
     uint8_t mask = 0;
     for (int i = 0; i < count; ++i) {
       const Vec3 core = points[i] - r * out;
-      if (std::hypot(core.x(), core.y()) <= tol && std::abs(core.z()) <= half + tol) {
+      // squared, not hypot: its overflow care is a libm call on every stored round manifold
+      if (core.x() * core.x() + core.y() * core.y() <= tol * tol &&
+          std::abs(core.z()) <= half + tol) {
         points[i] = Vec3(0.0, 0.0, core.z());
         mask |= uint8_t(1u << i);
       }
