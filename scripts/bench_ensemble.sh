@@ -5,8 +5,12 @@
 # 0 to 3e-3 rad), prints each copy's metric line and sums them up: how many copies are at rest
 # at 3 s (vmax_3s <= 0.01 m/s, the joints issue's bar), the range of every quality metric, how
 # many copies pass each of the other bars (anchor <= 1 mm, penetration <= 5 mm, limit <= 0.05
-# rad: a rare hard hit shows in these counts, not in one run), and the median steps/s. Compare
-# two builds with BIN=.
+# rad: a rare hard hit shows in these counts, not in one run), the median steps/s, and the
+# awake body-steps (bodies awake after each step, summed: what sleeping left to solve; the
+# median, range and how many copies are all asleep at the end). The last are deterministic:
+# they tell a change that moves when the copies sleep (11 of 16 copies of b sleep after 3 s,
+# the scene as defined before) from one that changes the cost of a step. Compare two builds
+# with BIN=.
 #
 #   scripts/bench_ensemble.sh SCENE ["k=v,..." solver options, as bench_ragdoll --opt]
 #
@@ -52,8 +56,8 @@ for ((k = 0; k < COPIES; ++k)); do
   LINES+=("$line")
   echo "$line" | tr ' ' '\n' | awk -F= -v y="${YAWS[k]}" '
     { v[$1] = $2 }
-    END { printf "yaw=%-6s steps_per_s=%s max_anchor_err_m=%s max_ground_pen_m=%s max_limit_viol_rad=%s vmax_3s=%s nan=%s\n",
-          y, v["steps_per_s"], v["max_anchor_err_m"], v["max_ground_pen_m"], v["max_limit_viol_rad"], v["vmax_3s"], v["nan"] }'
+    END { printf "yaw=%-6s steps_per_s=%s max_anchor_err_m=%s max_ground_pen_m=%s max_limit_viol_rad=%s vmax_3s=%s nan=%s awake_body_steps=%s\n",
+          y, v["steps_per_s"], v["max_anchor_err_m"], v["max_ground_pen_m"], v["max_limit_viol_rad"], v["vmax_3s"], v["nan"], v["awake_body_steps"] }'
 done
 if ((${#LINES[@]} == 0)); then
   echo "bench_ensemble: every copy failed" >&2
@@ -67,6 +71,8 @@ printf '%s\n' "${LINES[@]}" | awk -v scene="$SCENE" -v opts="$OPTS" -v failed="$
     rest += (v["vmax_3s"] + 0 <= 0.01)
     nan += v["nan"]
     sps[n] = v["steps_per_s"] + 0
+    abs_[n] = v["awake_body_steps"] + 0
+    asleep += (v["awake_bodies_end"] + 0 == 0)
     if (n == 1 || v["vmax_3s"] + 0 < vlo) vlo = v["vmax_3s"] + 0
     if (n == 1 || v["vmax_3s"] + 0 > vhi) vhi = v["vmax_3s"] + 0
     if (v["max_anchor_err_m"] + 0 > anc) anc = v["max_anchor_err_m"] + 0
@@ -80,7 +86,9 @@ printf '%s\n' "${LINES[@]}" | awk -v scene="$SCENE" -v opts="$OPTS" -v failed="$
     # median steps/s (insertion sort: n <= 64)
     for (i = 2; i <= n; ++i) { x = sps[i]; for (j = i - 1; j >= 1 && sps[j] > x; --j) sps[j + 1] = sps[j]; sps[j + 1] = x }
     med = n % 2 ? sps[(n + 1) / 2] : 0.5 * (sps[n / 2] + sps[n / 2 + 1])
-    printf "ensemble scene=%s opts=%s copies=%d at_rest_3s=%d (vmax_3s <= 0.01) vmax_3s=%g..%g max_anchor_err_m=%g max_ground_pen_m=%g max_limit_viol_rad=%g anchor_ok=%d pen_ok=%d limit_ok=%d nan_copies=%d failed_copies=%d steps_per_s_median=%.0f\n",
-           scene, opts == "" ? "-" : opts, n, rest, vlo, vhi, anc, pen, lim, anc_ok, pen_ok, lim_ok, nan, failed, med
+    for (i = 2; i <= n; ++i) { x = abs_[i]; for (j = i - 1; j >= 1 && abs_[j] > x; --j) abs_[j + 1] = abs_[j]; abs_[j + 1] = x }
+    amed = n % 2 ? abs_[(n + 1) / 2] : 0.5 * (abs_[n / 2] + abs_[n / 2 + 1])
+    printf "ensemble scene=%s opts=%s copies=%d at_rest_3s=%d (vmax_3s <= 0.01) vmax_3s=%g..%g max_anchor_err_m=%g max_ground_pen_m=%g max_limit_viol_rad=%g anchor_ok=%d pen_ok=%d limit_ok=%d nan_copies=%d failed_copies=%d steps_per_s_median=%.0f awake_body_steps_median=%.0f awake_body_steps=%.0f..%.0f asleep_end=%d\n",
+           scene, opts == "" ? "-" : opts, n, rest, vlo, vhi, anc, pen, lim, anc_ok, pen_ok, lim_ok, nan, failed, med, amed, abs_[1], abs_[n], asleep
   }'
 ((FAILED == 0))

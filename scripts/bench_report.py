@@ -28,7 +28,7 @@ SCENE_DESC = {
 QUALITY = ["max_anchor_err_m", "max_ground_pen_m", "max_limit_viol_rad", "pelvis_z_3s_mean",
            "ground_pen_3s_m", "anchor_err_3s_m", "vmax_3s", "nan"]
 OURS_EXTRA = ["substeps", "sleep", "max_contacts", "us_per_step_first_1s", "us_per_step_last_1s",
-              "awake_bodies_end", "pit_outside_end", "pelvis_z_end_max"]
+              "awake_bodies_end", "awake_body_steps", "pit_outside_end", "pelvis_z_end_max"]
 OURS_EXTRA_MEDIAN = {"us_per_step_first_1s", "us_per_step_last_1s"}  # timings: median
 
 
@@ -315,9 +315,11 @@ def report(meta, runs, failures, png_name):
         L.append("## ragdoll_sim: extra fields")
         L.append("")
         L.append("Cost per step in the first and the last simulated second (µs, median; "
-                 "sleeping bodies cost nothing), bodies awake at the end, contact count at the "
-                 "end; scene p: ragdolls whose pelvis ended outside the pit, and the highest "
-                 "pelvis at the end (m).")
+                 "sleeping bodies cost nothing), contact count at the end, bodies awake at the "
+                 "end and awake bodies summed over the steps (what sleeping left to solve: the "
+                 "same for every run of one binary, while a change of round-off alone can move "
+                 "it, in b by ~20 %, bench/HISTORY.md); scene p: ragdolls whose pelvis ended "
+                 "outside the pit, and the highest pelvis at the end (m).")
         L.append("")
         rows = []
         for (e, s, n), g in ours_groups:
