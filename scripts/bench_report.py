@@ -368,7 +368,9 @@ def report(meta, runs, failures, png_name):
                  "single run above is one sample. `scripts/bench_ensemble.sh` runs the scene as "
                  "copies whose ragdolls are all turned by a tiny yaw (copy 1 is the scene "
                  "itself) and counts the copies that meet each bar of the joints issue. The "
-                 "peer benches have no yaw option.")
+                 "peer benches have no yaw option. Awake body-steps (bodies awake after each "
+                 "step, summed) are what sleeping left to solve: against the scene's own count "
+                 "(extra fields above) they show where the timed trajectory lies in the spread.")
         L.append("")
         rows = []
         for e in meta["ensembles"]:
@@ -378,10 +380,14 @@ def report(meta, runs, failures, png_name):
                          "%s of %d (max %s)" % (e.get("anchor_ok", "?"), n, e.get("max_anchor_err_m", "?")),
                          "%s of %d (max %s)" % (e.get("pen_ok", "?"), n, e.get("max_ground_pen_m", "?")),
                          "%s of %d (max %s)" % (e.get("limit_ok", "?"), n, e.get("max_limit_viol_rad", "?")),
-                         e.get("nan_copies", "?"), e.get("steps_per_s_median", "?")])
+                         e.get("nan_copies", "?"), e.get("steps_per_s_median", "?"),
+                         "%s (%s)" % (e.get("awake_body_steps_median", "?"),
+                                      e.get("awake_body_steps", "?")),
+                         "%s of %d" % (e.get("asleep_end", "?"), n)])
         L.append(md_table(["scene", "copies", "at rest at 3 s (vmax_3s range, m/s)",
                            "anchor <= 1 mm", "penetration <= 5 mm", "limit <= 0.05 rad",
-                           "copies with NaN", "steps/s median"], rows))
+                           "copies with NaN", "steps/s median",
+                           "awake body-steps median (range)", "all asleep at the end"], rows))
         L.append("")
 
     # ---- failures
