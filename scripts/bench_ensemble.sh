@@ -71,7 +71,7 @@ printf '%s\n' "${LINES[@]}" | awk -v scene="$SCENE" -v opts="$OPTS" -v failed="$
     rest += (v["vmax_3s"] + 0 <= 0.01)
     nan += v["nan"]
     sps[n] = v["steps_per_s"] + 0
-    abs_[n] = v["awake_body_steps"] + 0
+    if ("awake_body_steps" in v) abs_[++na] = v["awake_body_steps"] + 0  # not from older builds
     asleep += (v["awake_bodies_end"] + 0 == 0)
     if (n == 1 || v["vmax_3s"] + 0 < vlo) vlo = v["vmax_3s"] + 0
     if (n == 1 || v["vmax_3s"] + 0 > vhi) vhi = v["vmax_3s"] + 0
@@ -86,9 +86,13 @@ printf '%s\n' "${LINES[@]}" | awk -v scene="$SCENE" -v opts="$OPTS" -v failed="$
     # median steps/s (insertion sort: n <= 64)
     for (i = 2; i <= n; ++i) { x = sps[i]; for (j = i - 1; j >= 1 && sps[j] > x; --j) sps[j + 1] = sps[j]; sps[j + 1] = x }
     med = n % 2 ? sps[(n + 1) / 2] : 0.5 * (sps[n / 2] + sps[n / 2 + 1])
-    for (i = 2; i <= n; ++i) { x = abs_[i]; for (j = i - 1; j >= 1 && abs_[j] > x; --j) abs_[j + 1] = abs_[j]; abs_[j + 1] = x }
-    amed = n % 2 ? abs_[(n + 1) / 2] : 0.5 * (abs_[n / 2] + abs_[n / 2 + 1])
-    printf "ensemble scene=%s opts=%s copies=%d at_rest_3s=%d (vmax_3s <= 0.01) vmax_3s=%g..%g max_anchor_err_m=%g max_ground_pen_m=%g max_limit_viol_rad=%g anchor_ok=%d pen_ok=%d limit_ok=%d nan_copies=%d failed_copies=%d steps_per_s_median=%.0f awake_body_steps_median=%.0f awake_body_steps=%.0f..%.0f asleep_end=%d\n",
-           scene, opts == "" ? "-" : opts, n, rest, vlo, vhi, anc, pen, lim, anc_ok, pen_ok, lim_ok, nan, failed, med, amed, abs_[1], abs_[n], asleep
+    awake = "awake_body_steps_median=- awake_body_steps=-"
+    if (na == n) {
+      for (i = 2; i <= n; ++i) { x = abs_[i]; for (j = i - 1; j >= 1 && abs_[j] > x; --j) abs_[j + 1] = abs_[j]; abs_[j + 1] = x }
+      amed = n % 2 ? abs_[(n + 1) / 2] : 0.5 * (abs_[n / 2] + abs_[n / 2 + 1])
+      awake = sprintf("awake_body_steps_median=%.0f awake_body_steps=%.0f..%.0f", amed, abs_[1], abs_[n])
+    }
+    printf "ensemble scene=%s opts=%s copies=%d at_rest_3s=%d (vmax_3s <= 0.01) vmax_3s=%g..%g max_anchor_err_m=%g max_ground_pen_m=%g max_limit_viol_rad=%g anchor_ok=%d pen_ok=%d limit_ok=%d nan_copies=%d failed_copies=%d steps_per_s_median=%.0f %s asleep_end=%d\n",
+           scene, opts == "" ? "-" : opts, n, rest, vlo, vhi, anc, pen, lim, anc_ok, pen_ok, lim_ok, nan, failed, med, awake, asleep
   }'
 ((FAILED == 0))
