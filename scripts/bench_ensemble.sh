@@ -64,6 +64,11 @@ if ((${#LINES[@]} == 0)); then
   exit 1
 fi
 printf '%s\n' "${LINES[@]}" | awk -v scene="$SCENE" -v opts="$OPTS" -v failed="$FAILED" '
+  # median of a[1..n], sorting a in place (insertion sort: n <= 64)
+  function median(a, n,    i, j, x) {
+    for (i = 2; i <= n; ++i) { x = a[i]; for (j = i - 1; j >= 1 && a[j] > x; --j) a[j + 1] = a[j]; a[j + 1] = x }
+    return n % 2 ? a[(n + 1) / 2] : 0.5 * (a[n / 2] + a[n / 2 + 1])
+  }
   {
     delete v
     for (i = 1; i <= NF; ++i) { split($i, kv, "="); v[kv[1]] = kv[2] }
@@ -83,13 +88,10 @@ printf '%s\n' "${LINES[@]}" | awk -v scene="$SCENE" -v opts="$OPTS" -v failed="$
     lim_ok += (v["max_limit_viol_rad"] + 0 <= 0.05)
   }
   END {
-    # median steps/s (insertion sort: n <= 64)
-    for (i = 2; i <= n; ++i) { x = sps[i]; for (j = i - 1; j >= 1 && sps[j] > x; --j) sps[j + 1] = sps[j]; sps[j + 1] = x }
-    med = n % 2 ? sps[(n + 1) / 2] : 0.5 * (sps[n / 2] + sps[n / 2 + 1])
+    med = median(sps, n)
     awake = "awake_body_steps_median=- awake_body_steps=-"
-    if (na == n) {
-      for (i = 2; i <= n; ++i) { x = abs_[i]; for (j = i - 1; j >= 1 && abs_[j] > x; --j) abs_[j + 1] = abs_[j]; abs_[j + 1] = x }
-      amed = n % 2 ? abs_[(n + 1) / 2] : 0.5 * (abs_[n / 2] + abs_[n / 2 + 1])
+    if (na == n) {  # median() leaves abs_ sorted: [1] and [n] are the range
+      amed = median(abs_, n)
       awake = sprintf("awake_body_steps_median=%.0f awake_body_steps=%.0f..%.0f", amed, abs_[1], abs_[n])
     }
     printf "ensemble scene=%s opts=%s copies=%d at_rest_3s=%d (vmax_3s <= 0.01) vmax_3s=%g..%g max_anchor_err_m=%g max_ground_pen_m=%g max_limit_viol_rad=%g anchor_ok=%d pen_ok=%d limit_ok=%d nan_copies=%d failed_copies=%d steps_per_s_median=%.0f %s asleep_end=%d\n",
