@@ -219,6 +219,9 @@ int main(int argc, char** argv) {
         else if (k == "joint_relax") wd.joint_relax_iterations = int(v);
         else if (k == "sleep_speed") wd.sleep_speed = v;
         else if (k == "time_to_sleep") wd.time_to_sleep = v;
+        else if (k == "rest_substeps") wd.rest_substeps = int(v);
+        else if (k == "rest_time") wd.rest_time = v;
+        else if (k == "rest_relax") wd.rest_relax_iterations = int(v);
         else if (k == "static_friction_speed") wd.static_friction_speed = v;
         else if (k == "joint_slop") wd.joint_slop = v;
         else if (k == "angular_slop") wd.angular_slop = v;

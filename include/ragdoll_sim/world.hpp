@@ -76,6 +76,17 @@ struct WorldDef {
   bool carry_sleeping_pairs = true;
   double time_to_sleep = 0.5;           // s an island must stay slow before it sleeps
   double sleep_speed = 0.05;            // m/s, max(|v|, extent |w|) below this counts as slow (Box2D v3)
+  // An island whose bodies have all been slow (the sleep test above) for rest_time is solved
+  // with rest_substeps substeps of rest_relax_iterations relax sweeps each, until one of its
+  // bodies moves faster, is woken (a command, a new contact with a moving body) or it sleeps:
+  // the last part of time_to_sleep costs less. Scene b (callgrind, one thread): -8.1 %
+  // instructions, asleep at the same step, the same quality metrics; with one substep a
+  // resting ragdoll jitters above the sleep speed and never sleeps. rest_substeps 0 (or not
+  // below substeps) turns it off; it needs enable_sleep (it reads the sleep timers). A split
+  // island, and the islands solved along with its halves, always take the full count.
+  double rest_time = 0.05;
+  int rest_substeps = 2;
+  int rest_relax_iterations = 1;
   MaterialTable materials;              // pair coefficients and the combine rules
   // Islands are solved in parallel on this many threads (0: all cores). The result does not
   // depend on it: islands share no bodies and each is solved in the same order. Default 1:
@@ -101,6 +112,8 @@ struct IslandCounters {
   int bodies = 0;         // awake bodies in the islands
   int joints = 0;         // joints solved
   int contacts = 0;       // contact manifolds solved
+  int resting_islands = 0;  // solved with the rest substeps (WorldDef::rest_substeps)
+  int resting_bodies = 0;   // bodies in those
 };
 
 // A body whose state was not finite (NaN / inf), found and undone by World::step: the body is

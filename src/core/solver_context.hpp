@@ -15,6 +15,8 @@ struct StepContext {
   double dt = 0.0;        // full step
   double h = 0.0;         // substep
   double inv_h = 0.0;
+  int substeps = 1;       // h = dt / substeps
+  int relax = 0;          // contact relax sweeps per substep (the first joint_relax_iterations also relax the joints)
   Softness contact_softness;
   Softness joint_softness;
   const WorldDef* def = nullptr;

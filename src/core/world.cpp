@@ -183,6 +183,7 @@ struct World::Impl {
     // attach[k + 1]). Whole: attached to a split island's half (not in a run).
     int attach[3] = {0, 0, 0};
     bool attached = false;
+    bool resting = false;  // takes WorldDef::rest_substeps (World::step)
     int work() const {
       return (body_end - body_begin) + (joint_end - joint_begin) + (contact_end - contact_begin);
     }
@@ -301,7 +302,13 @@ struct World::Impl {
     f(half);
     for (int a = r.attach[k]; a < r.attach[k + 1]; ++a) f(island_ranges[attached_islands[a]]);
   }
-  void solveIsland(const IslandRange& r, const StepContext& ctx, int substeps);
+  void solveIsland(const IslandRange& r, const StepContext& ctx);
+  // Every body of r has been slow for rest_time (WorldDef::rest_substeps).
+  bool islandResting(const IslandRange& r) const {
+    for (int k = r.body_begin; k < r.body_end; ++k)
+      if (!(motions[island_bodies[k]].sleep_time >= def.rest_time)) return false;
+    return true;
+  }
   void integrateVelocities(double h, int begin, int end);
   void integratePositions(double h, int begin, int end);
   // The solver body of body i at the step start: an awake body's velocities, inverse mass
@@ -814,7 +821,7 @@ void World::Impl::attachToSplitHalves() {
 // the boundary's impulses in every sweep, as they follow the contacts in a sweep of a whole
 // island. Work on the halves alone needs no barrier: they touch disjoint bodies. Thread k
 // always takes half k and boundary group k, so their constraints stay in its core's cache.
-void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int substeps) {
+void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx) {
   Joint* const* js = active_joints.data();
   const IslandRange halves[2] = {r.half(0), r.half(1)};
   const std::pair<int, int> slot = teamSlot();  // read by a split island's sweeps only
@@ -833,8 +840,8 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx, int 
     for (int k = p.joint_begin; k < p.joint_end; ++k)
       if (!js[k]->broken) f(*js[k]);
   };
-  const int relax = def.contact_relax_iterations;
-  for (int sub = 0; sub < substeps; ++sub) {
+  const int relax = ctx.relax;
+  for (int sub = 0; sub < ctx.substeps; ++sub) {
     // From the second substep on, the first relax sweep of the last one (if any) already set
     // the separations at the current deltas.
     const bool moved = sub == 0 || relax < 1;
@@ -1087,17 +1094,27 @@ void World::step(double dt) {
   Impl& w = *impl_;
   if (!(dt > 0.0)) return;
   const int substeps = std::max(1, w.def.substeps);
-  StepContext ctx;
-  ctx.dt = dt;
-  ctx.h = dt / substeps;
-  ctx.inv_h = 1.0 / ctx.h;
-  ctx.def = &w.def;
-  ctx.bodies = &w.solver;
-  ctx.motions = &w.motions;
-  ctx.contact_softness = Softness::make(std::min(w.def.contact_hertz, 0.25 * ctx.inv_h),
-                                        w.def.contact_damping_ratio, ctx.h);
-  ctx.joint_softness = Softness::make(std::min(w.def.joint_hertz, 0.25 * ctx.inv_h),
-                                      w.def.joint_damping_ratio, ctx.h);
+  const auto makeContext = [&](int n, int relax) {
+    StepContext c;
+    c.dt = dt;
+    c.h = dt / n;
+    c.inv_h = 1.0 / c.h;
+    c.substeps = n;
+    c.relax = std::max(0, relax);
+    c.def = &w.def;
+    c.bodies = &w.solver;
+    c.motions = &w.motions;
+    c.contact_softness = Softness::make(std::min(w.def.contact_hertz, 0.25 * c.inv_h),
+                                        w.def.contact_damping_ratio, c.h);
+    c.joint_softness = Softness::make(std::min(w.def.joint_hertz, 0.25 * c.inv_h),
+                                      w.def.joint_damping_ratio, c.h);
+    return c;
+  };
+  const StepContext ctx = makeContext(substeps, w.def.contact_relax_iterations);
+  const bool rest_mode = w.def.enable_sleep && w.def.rest_substeps > 0 &&
+                         w.def.rest_substeps < substeps;
+  const StepContext rest_ctx =
+      rest_mode ? makeContext(w.def.rest_substeps, w.def.rest_relax_iterations) : ctx;
 
   w.guardInputs();
   const bool any_awake =
@@ -1114,6 +1131,8 @@ void World::step(double dt) {
   for (Joint& j : w.joints)
     if (!j.broken && (w.motions[j.a].awake || w.motions[j.b].awake)) w.active_joints.push_back(&j);
   w.partitionIslands();
+  for (World::Impl::IslandRange& r : w.island_ranges)
+    r.resting = rest_mode && !r.split && !r.attached && w.islandResting(r);
   // Solver bodies outside the islands (static, asleep) here; an island's bodies, joints and
   // contacts are prepared by the thread that solves it, right before it does, so they are in
   // its core's cache, without three parallel loops of their own (256 ragdolls on 2 threads:
@@ -1122,15 +1141,21 @@ void World::step(double dt) {
   for (int i = 0; i < body_count; ++i)
     if (w.island_of_body[i] < 0) w.prepareSolverBody(i);
   w.contact_solver.resize();
+  // ctx for the split islands and those going along with their halves (never resting), else
+  // the island's own (contextOf).
+  const auto contextOf = [&](const World::Impl::IslandRange& r) -> const StepContext& {
+    return r.resting ? rest_ctx : ctx;
+  };
   const auto prepare = [&](const World::Impl::IslandRange& p) {
+    const StepContext& c = contextOf(p);
     for (int k = p.body_begin; k < p.body_end; ++k) w.prepareSolverBody(w.island_bodies[k]);
-    for (int k = p.joint_begin; k < p.joint_end; ++k) prepareJoint(*w.active_joints[k], ctx);
-    w.contact_solver.prepare(w.contacts, ctx, p.contact_begin, p.contact_end);
+    for (int k = p.joint_begin; k < p.joint_end; ++k) prepareJoint(*w.active_joints[k], c);
+    w.contact_solver.prepare(w.contacts, c, p.contact_begin, p.contact_end);
   };
   // After an island's substeps, on the same thread: restitution and the impulses stored for
   // the next warm start, then its bodies take the step (joint breaks only mark the joints).
-  const auto restitute = [&](int begin, int end) {
-    w.contact_solver.applyRestitution(ctx, begin, end);
+  const auto restitute = [&](int begin, int end, const StepContext& c) {
+    w.contact_solver.applyRestitution(c, begin, end);
     w.contact_solver.storeImpulses(w.contacts, begin, end);
   };
   const auto finishBodies = [&](const World::Impl::IslandRange& p) {
@@ -1153,15 +1178,15 @@ void World::step(double dt) {
       for (int k = t; k < 2; k += nt)
         w.contact_solver.prepare(w.contacts, ctx, r.boundaryBegin(k), r.boundaryEnd(k));
       w.team_barrier.wait(t, nt);
-      w.solveIsland(r, ctx, substeps);
+      w.solveIsland(r, ctx);
       // Restitution reads the halves' bodies as the boundary's does: halves first, then the
       // boundary, then the bodies take their velocities.
       for (int k = t; k < 2; k += nt)
         withAttached(k, [&](const World::Impl::IslandRange& p) {
-          restitute(p.contact_begin, p.contact_end);
+          restitute(p.contact_begin, p.contact_end, ctx);
         });
       w.team_barrier.wait(t, nt);
-      for (int k = t; k < 2; k += nt) restitute(r.boundaryBegin(k), r.boundaryEnd(k));
+      for (int k = t; k < 2; k += nt) restitute(r.boundaryBegin(k), r.boundaryEnd(k), ctx);
       w.team_barrier.wait(t, nt);
       for (int k = t; k < 2; k += nt) withAttached(k, finishBodies);
     }
@@ -1171,8 +1196,8 @@ void World::step(double dt) {
       const World::Impl::IslandRange& r = w.island_ranges[k];
       if (r.split || r.attached) continue;
       prepare(r);
-      w.solveIsland(r, ctx, substeps);
-      restitute(r.contact_begin, r.contact_end);
+      w.solveIsland(r, contextOf(r));
+      restitute(r.contact_begin, r.contact_end, contextOf(r));
       finishBodies(r);
     }
   };
@@ -1291,6 +1316,8 @@ IslandCounters World::islandCounters() const {
     c.bodies += r.body_end - r.body_begin;
     c.joints += r.joint_end - r.joint_begin;
     c.contacts += r.contact_end - r.contact_begin;
+    c.resting_islands += r.resting ? 1 : 0;
+    c.resting_bodies += r.resting ? r.body_end - r.body_begin : 0;
   }
   return c;
 }

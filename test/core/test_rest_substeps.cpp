@@ -1,0 +1,176 @@
+// Resting islands on fewer substeps (WorldDef::rest_substeps): when an island takes them, that
+// it leaves them as soon as something in it moves, and that what rests on them stays put and
+// sleeps as it does on the full count.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "ragdoll_sim/world.hpp"
+#include "scene_util.hpp"
+
+using namespace ragdoll_sim;
+using namespace ragdoll_sim::test;
+
+namespace {
+constexpr double kDt = 1e-3;
+
+WorldDef withRest(bool on) {
+  WorldDef d;
+  if (!on) d.rest_substeps = 0;
+  return d;
+}
+
+// Steps until everything sleeps (at most max_steps); returns the step count, -1 if never.
+int stepsToSleep(World& w, int max_steps) {
+  for (int i = 1; i <= max_steps; ++i) {
+    w.step(kDt);
+    if (w.awakeBodyCount() == 0) return i;
+  }
+  return -1;
+}
+}  // namespace
+
+// A box dropped 1 cm onto the ground: its island takes the rest substeps once it has been slow
+// for rest_time, not before, stays awake on them until time_to_sleep, and leaves them on the
+// step after an impulse (which wakes it and restarts its sleep timer).
+TEST(RestSubsteps, TakenAfterRestTimeAndLeftOnImpulse) {
+  const WorldDef def;
+  ASSERT_GT(def.rest_substeps, 0);
+  ASSERT_LT(def.rest_substeps, def.substeps);
+  World w(def);
+  addGround(w);
+  const Vec3 half(0.2, 0.2, 0.1);
+  const BodyId box = addBox(w, half, 2.0, Vec3(0, 0, 0.11));
+  int slow_from = -1, resting_from = -1;
+  for (int i = 1; i <= 400 && resting_from < 0; ++i) {
+    w.step(kDt);
+    const BodyState s = w.bodyState(box);
+    const bool slow = std::max(s.linear_velocity.norm(), 0.3 * s.angular_velocity.norm()) <
+                      def.sleep_speed;
+    if (!slow) slow_from = -1;
+    else if (slow_from < 0) slow_from = i;
+    if (w.islandCounters().resting_bodies > 0) resting_from = i;
+  }
+  ASSERT_GT(resting_from, 0) << "never took the rest substeps";
+  ASSERT_GT(slow_from, 0);
+  // The step that finds the island slow for rest_time is solved after that many slow steps.
+  EXPECT_GE(resting_from - slow_from, int(def.rest_time / kDt) - 1);
+  EXPECT_EQ(w.islandCounters().resting_islands, 1);
+  EXPECT_TRUE(w.isAwake(box));
+
+  w.applyLinearImpulse(box, Vec3(1.0, 0, 0), w.comPosition(box));
+  w.step(kDt);
+  EXPECT_EQ(w.islandCounters().resting_bodies, 0);
+  EXPECT_EQ(w.islandCounters().bodies, 1);
+  std::printf("[ rest     ] slow from step %d, rest substeps from step %d\n", slow_from, resting_from);
+}
+
+// Off (rest_substeps 0) no island ever takes them.
+TEST(RestSubsteps, OffNeverTaken) {
+  World w(withRest(false));
+  addGround(w);
+  addBox(w, Vec3(0.2, 0.2, 0.1), 2.0, Vec3(0, 0, 0.11));
+  for (int i = 0; i < 600; ++i) {
+    w.step(kDt);
+    ASSERT_EQ(w.islandCounters().resting_islands, 0) << "step " << i;
+  }
+}
+
+// Ten stacked boxes (Gauss-Seidel's slowest case: the load goes down the stack one contact per
+// sweep) rest and sleep on the rest substeps as on the full count: no contact deeper than the
+// linear slop, each box within 2 mm of the full count's rest pose, asleep no more than 0.1 s
+// later.
+TEST(RestSubsteps, TenBoxStackRestsAndSleepsAsOnFullCount) {
+  const Vec3 half(0.25, 0.25, 0.25);
+  std::vector<Vec3> rest[2];
+  int slept[2];
+  for (const bool on : {false, true}) {
+    World w(withRest(on));
+    addGround(w);
+    std::vector<BodyId> boxes;
+    for (int i = 0; i < 10; ++i) boxes.push_back(addBox(w, half, 1.0, Vec3(0, 0, 0.25 + 0.5 * i)));
+    int resting_steps = 0;
+    slept[on] = -1;
+    for (int i = 1; i <= 3000 && slept[on] < 0; ++i) {
+      w.step(kDt);
+      resting_steps += w.islandCounters().resting_islands;
+      if (w.awakeBodyCount() == 0) slept[on] = i;
+    }
+    EXPECT_EQ(resting_steps > 0, on);
+    for (const BodyId b : boxes) rest[on].push_back(w.comPosition(b));
+  }
+  ASSERT_GT(slept[0], 0);
+  ASSERT_GT(slept[1], 0) << "the stack never slept on the rest substeps";
+  EXPECT_LE(slept[1], slept[0] + 100);
+  double moved = 0.0;
+  double deepest = 0.0;  // on the rest substeps, of the ground and the nine box-box contacts
+  for (int i = 0; i < 10; ++i) {
+    moved = std::max(moved, (rest[1][i] - rest[0][i]).norm());
+    const double below = i == 0 ? 0.0 : rest[1][i - 1].z() + half.z();
+    deepest = std::max(deepest, below - (rest[1][i].z() - half.z()));
+  }
+  // The stack settles 0.08 mm lower per contact than on the full count, within the slop.
+  EXPECT_LT(moved, 2e-3);
+  EXPECT_LT(deepest, WorldDef().linear_slop);
+  std::printf("[ rest     ] 10-box stack asleep after %d steps (full count %d), poses within %.2e m, "
+              "deepest contact %.2e m\n", slept[1], slept[0], moved, deepest);
+}
+
+// A box on a 20 degree slope (mu 0.8 > tan 20 deg): static friction holds it on the rest
+// substeps; from the step it first takes them to the step it sleeps it creeps less than 0.1 mm.
+TEST(RestSubsteps, StaticFrictionHoldsOnSlope) {
+  Material m;
+  m.static_friction = m.kinetic_friction = 0.8;
+  const double slope = 20.0 * M_PI / 180.0;
+  const Quat tilt(Eigen::AngleAxisd(slope, Vec3::UnitY()));
+  World w;
+  addGround(w, m, tilt);
+  const Vec3 half(0.1, 0.1, 0.05);
+  const BodyId box = addBody(w, Geometry::box(half), 1.0, boxInertia(half, 1.0),
+                             Transform(tilt * Vec3(0, 0, 0.0505), tilt), m);
+  Vec3 at_rest = Vec3::Constant(NAN);
+  int slept = -1;
+  for (int i = 1; i <= 2000 && slept < 0; ++i) {
+    w.step(kDt);
+    if (!at_rest.allFinite() && w.islandCounters().resting_bodies > 0) at_rest = w.comPosition(box);
+    if (!w.isAwake(box)) slept = i;
+  }
+  ASSERT_TRUE(at_rest.allFinite()) << "never took the rest substeps";
+  ASSERT_GT(slept, 0) << "never slept";
+  const double creep = (w.comPosition(box) - at_rest).norm();
+  EXPECT_LT(creep, 1e-4);
+  std::printf("[ rest     ] box on 20 deg slope: creep %.2e m on the rest substeps, asleep at step %d\n",
+              creep, slept);
+}
+
+// A sphere dropped onto a box that rests on the rest substeps: the step whose island holds both
+// (a contact, speculative first, joins them) takes the full count, and the box is not left
+// asleep under it.
+TEST(RestSubsteps, ArrivingBodyBringsFullCount) {
+  World w;
+  addGround(w);
+  const BodyId box = addBox(w, Vec3(0.2, 0.2, 0.1), 2.0, Vec3(0, 0, 0.1));
+  int resting = 0;
+  for (int i = 0; i < 300; ++i) {  // within time_to_sleep: awake, resting from ~0.05 s
+    w.step(kDt);
+    resting += w.islandCounters().resting_bodies;
+  }
+  ASSERT_GT(resting, 0) << "the box never took the rest substeps";
+  const BodyId ball = addSphere(w, 0.05, 0.5, Vec3(0, 0, 0.45));
+  int joined = 0;
+  for (int i = 0; i < 400; ++i) {
+    w.step(kDt);
+    const IslandCounters c = w.islandCounters();
+    if (c.largest_island == 2 && w.bodyState(ball).linear_velocity.norm() > 0.1) {
+      ++joined;
+      EXPECT_EQ(c.resting_bodies, 0) << "step " << i;
+    }
+  }
+  EXPECT_GT(joined, 0) << "the sphere never joined the box's island while moving";
+  EXPECT_NEAR(w.comPosition(ball).z(), 0.25, 2e-3);  // on the box (top at 0.2)
+  EXPECT_GT(stepsToSleep(w, 2000), 0);
+  EXPECT_NEAR(w.comPosition(box).z(), 0.1, 2e-3);
+  std::printf("[ rest     ] sphere onto a resting box: %d steps in one island while it moved\n", joined);
+}
