@@ -303,6 +303,7 @@ int main(int argc, char** argv) {
   // change that only moves when the ragdolls sleep (a change of round-off can: bench/HISTORY.md)
   // from one that changes the cost of a step.
   long awake_body_steps = 0;
+  long resting_body_steps = 0;  // of those, in islands on the rest substeps (WorldDef::rest_substeps)
   const int window = std::min(1000, steps);
   const auto loop0 = std::chrono::steady_clock::now();
   for (int step = 1; step <= steps; ++step) {
@@ -314,6 +315,7 @@ int main(int argc, char** argv) {
     if (step > steps - window) wall_last += dt_wall;
     wall_trace += dt_wall;
     awake_body_steps += world.awakeBodyCount();
+    resting_body_steps += world.islandCounters().resting_bodies;
     if (trace > 0 && step % trace == 0) {
       // fastest ragdoll link: COM speed and angular speed (what sleeping compares)
       // and the mechanical energy (kinetic + potential in the scene's gravity) of the ragdolls
@@ -376,12 +378,12 @@ int main(int argc, char** argv) {
       "ground_pen_3s_m=%.4f anchor_err_3s_m=%.3g vmax_3s=%.3g worst_limit=%s@%d nan=%d "
       "loop_wall_s=%.3f substeps=%d joint_hertz=%g contact_hertz=%g sleep=%d threads=%d rolling=%g yaw=%g max_contacts=%zu "
       "us_per_step_first_1s=%.1f us_per_step_last_1s=%.1f awake_bodies_end=%d "
-      "awake_body_steps=%ld worst_pen=%s@%d worst_anchor=%s@%d%s\n",
+      "awake_body_steps=%ld resting_body_steps=%ld worst_pen=%s@%d worst_anchor=%s@%d%s\n",
       sc.id, n, bodies, steps, wall, sps, sps * bodies, 1e6 * wall / (steps * double(bodies)),
       m.max_anchor, m.max_pen, m.max_limit, m.pel_mean, m.pel_min, m.pel_max, m.pen3, m.anchor3,
       m.vmax3, m.worst_joint.c_str(), m.worst_step, m.nan ? 1 : 0, loop_wall, wd.substeps,
       wd.joint_hertz, wd.contact_hertz, wd.enable_sleep ? 1 : 0, wd.threads, rolling, yaw, world.contacts().size(),
       1e6 * wall_first / window, 1e6 * wall_last / window, world.awakeBodyCount(),
-      awake_body_steps, m.pen_link.c_str(), m.pen_step, m.anchor_joint.c_str(), m.anchor_step, extra.c_str());
+      awake_body_steps, resting_body_steps, m.pen_link.c_str(), m.pen_step, m.anchor_joint.c_str(), m.anchor_step, extra.c_str());
   return 0;
 }

@@ -1131,8 +1131,16 @@ void World::step(double dt) {
   for (Joint& j : w.joints)
     if (!j.broken && (w.motions[j.a].awake || w.motions[j.b].awake)) w.active_joints.push_back(&j);
   w.partitionIslands();
+  // A split island's halves and the islands attached to them share one substep loop: they rest
+  // together or not at all (an attached island follows its split island).
   for (World::Impl::IslandRange& r : w.island_ranges)
-    r.resting = rest_mode && !r.split && !r.attached && w.islandResting(r);
+    r.resting = rest_mode && !r.attached && w.islandResting(r);
+  for (World::Impl::IslandRange& r : w.island_ranges)
+    if (r.split && r.resting)
+      for (int k = 0; k < 2; ++k)
+        w.withAttached(r, r, k, [&](const World::Impl::IslandRange& p) {
+          r.resting = r.resting && w.islandResting(p);
+        });
   // Solver bodies outside the islands (static, asleep) here; an island's bodies, joints and
   // contacts are prepared by the thread that solves it, right before it does, so they are in
   // its core's cache, without three parallel loops of their own (256 ragdolls on 2 threads:
@@ -1141,13 +1149,10 @@ void World::step(double dt) {
   for (int i = 0; i < body_count; ++i)
     if (w.island_of_body[i] < 0) w.prepareSolverBody(i);
   w.contact_solver.resize();
-  // ctx for the split islands and those going along with their halves (never resting), else
-  // the island's own (contextOf).
   const auto contextOf = [&](const World::Impl::IslandRange& r) -> const StepContext& {
     return r.resting ? rest_ctx : ctx;
   };
-  const auto prepare = [&](const World::Impl::IslandRange& p) {
-    const StepContext& c = contextOf(p);
+  const auto prepare = [&](const World::Impl::IslandRange& p, const StepContext& c) {
     for (int k = p.body_begin; k < p.body_end; ++k) w.prepareSolverBody(w.island_bodies[k]);
     for (int k = p.joint_begin; k < p.joint_end; ++k) prepareJoint(*w.active_joints[k], c);
     w.contact_solver.prepare(w.contacts, c, p.contact_begin, p.contact_end);
@@ -1171,22 +1176,24 @@ void World::step(double dt) {
 #pragma omp parallel num_threads(std::min(2, w.threadCount()))
     {
       const auto [t, nt] = teamSlot();
+      const StepContext& c = contextOf(r);  // for the halves and the attached islands too
       // half k and the islands attached to it (attachToSplitHalves)
       const auto withAttached = [&](int k, auto&& f) { w.withAttached(r, r.half(k), k, f); };
-      for (int k = t; k < 2; k += nt) withAttached(k, prepare);
+      for (int k = t; k < 2; k += nt)
+        withAttached(k, [&](const World::Impl::IslandRange& p) { prepare(p, c); });
       w.team_barrier.wait(t, nt);
       for (int k = t; k < 2; k += nt)
-        w.contact_solver.prepare(w.contacts, ctx, r.boundaryBegin(k), r.boundaryEnd(k));
+        w.contact_solver.prepare(w.contacts, c, r.boundaryBegin(k), r.boundaryEnd(k));
       w.team_barrier.wait(t, nt);
-      w.solveIsland(r, ctx);
+      w.solveIsland(r, c);
       // Restitution reads the halves' bodies as the boundary's does: halves first, then the
       // boundary, then the bodies take their velocities.
       for (int k = t; k < 2; k += nt)
         withAttached(k, [&](const World::Impl::IslandRange& p) {
-          restitute(p.contact_begin, p.contact_end, ctx);
+          restitute(p.contact_begin, p.contact_end, c);
         });
       w.team_barrier.wait(t, nt);
-      for (int k = t; k < 2; k += nt) restitute(r.boundaryBegin(k), r.boundaryEnd(k), ctx);
+      for (int k = t; k < 2; k += nt) restitute(r.boundaryBegin(k), r.boundaryEnd(k), c);
       w.team_barrier.wait(t, nt);
       for (int k = t; k < 2; k += nt) withAttached(k, finishBodies);
     }
@@ -1195,9 +1202,10 @@ void World::step(double dt) {
     for (int k = w.island_runs[t]; k < w.island_runs[t + 1]; ++k) {
       const World::Impl::IslandRange& r = w.island_ranges[k];
       if (r.split || r.attached) continue;
-      prepare(r);
-      w.solveIsland(r, contextOf(r));
-      restitute(r.contact_begin, r.contact_end, contextOf(r));
+      const StepContext& c = contextOf(r);
+      prepare(r, c);
+      w.solveIsland(r, c);
+      restitute(r.contact_begin, r.contact_end, c);
       finishBodies(r);
     }
   };

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <vector>
 
 #include "ragdoll_sim/world.hpp"
@@ -173,4 +174,54 @@ TEST(RestSubsteps, ArrivingBodyBringsFullCount) {
   EXPECT_GT(stepsToSleep(w, 2000), 0);
   EXPECT_NEAR(w.comPosition(box).z(), 0.1, 2e-3);
   std::printf("[ rest     ] sphere onto a resting box: %d steps in one island while it moved\n", joined);
+}
+
+// 64 boxes in 8 jointed chains lying side by side on the ground: one island, which World
+// splits in two halves. At rest it takes the rest substeps as a whole. A box dropped beside it
+// is an island of its own, solved along with the halves in their substep loop: while it falls
+// the raft keeps the full count, whatever its own state. The same poses on 1 and 2 threads.
+TEST(RestSubsteps, SplitIslandRestsTogetherWithItsAttachedIslands) {
+  std::vector<Transform> end[2];
+  for (const int threads : {1, 2}) {
+    WorldDef def;
+    def.threads = threads;
+    World w(def);
+    addGround(w);
+    const double h = 0.1;
+    std::vector<BodyId> boxes;
+    for (int c = 0; c < 8; ++c)
+      for (int k = 0; k < 8; ++k) {
+        const BodyId b = addBox(w, Vec3(h, h, h), 1.0, Vec3(2 * h * k, 2 * h * c, h));
+        if (k > 0) chainLink(w, boxes.back(), b, h);
+        boxes.push_back(b);
+      }
+    int split_resting = 0;
+    for (int i = 0; i < 100; ++i) {
+      w.step(kDt);
+      const IslandCounters n = w.islandCounters();
+      ASSERT_EQ(n.split_islands, 1) << "step " << i;
+      split_resting += n.resting_islands;
+    }
+    EXPECT_GT(split_resting, 0) << "the split raft never took the rest substeps";
+    ASSERT_EQ(w.islandCounters().resting_bodies, 64);
+    const BodyId ball = addSphere(w, 0.05, 0.5, Vec3(5, 5, 0.4));
+    int falling = 0;
+    for (int i = 0; i < 300; ++i) {
+      w.step(kDt);
+      const IslandCounters n = w.islandCounters();
+      if (w.bodyState(ball).linear_velocity.norm() > 0.1) {
+        ++falling;
+        EXPECT_EQ(n.islands, 2) << "step " << i;
+        EXPECT_EQ(n.split_islands, 1) << "step " << i;
+        EXPECT_EQ(n.resting_islands, 0) << "step " << i;
+      }
+    }
+    EXPECT_GT(falling, 100);
+    EXPECT_NEAR(w.comPosition(ball).z(), 0.05, 2e-3);
+    for (const BodyId b : boxes) end[threads - 1].push_back(w.bodyPose(b));
+  }
+  for (size_t k = 0; k < end[0].size(); ++k) {
+    ASSERT_EQ(std::memcmp(end[0][k].p.data(), end[1][k].p.data(), sizeof(double) * 3), 0) << k;
+    ASSERT_EQ(std::memcmp(end[0][k].q.coeffs().data(), end[1][k].q.coeffs().data(), sizeof(double) * 4), 0);
+  }
 }
