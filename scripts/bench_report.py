@@ -28,7 +28,8 @@ SCENE_DESC = {
 QUALITY = ["max_anchor_err_m", "max_ground_pen_m", "max_limit_viol_rad", "pelvis_z_3s_mean",
            "ground_pen_3s_m", "anchor_err_3s_m", "vmax_3s", "nan"]
 OURS_EXTRA = ["substeps", "sleep", "max_contacts", "us_per_step_first_1s", "us_per_step_last_1s",
-              "awake_bodies_end", "awake_body_steps", "pit_outside_end", "pelvis_z_end_max"]
+              "awake_bodies_end", "awake_body_steps", "resting_body_steps", "pit_outside_end",
+              "pelvis_z_end_max"]
 OURS_EXTRA_MEDIAN = {"us_per_step_first_1s", "us_per_step_last_1s"}  # timings: median
 
 
