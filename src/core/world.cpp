@@ -8,7 +8,9 @@
 //      their manifold, manifold_cache.hpp); impulses carried over by feature id (warm
 //      starting);
 //   2. islands (island.hpp): awake bodies, joints and contacts grouped per island; substep
-//      h = dt / substeps;
+//      h = dt / substeps (rest_substeps, with rest_relax_iterations relax sweeps, for an island
+//      whose bodies have all been slow for WorldDef::rest_time; a split island with the
+//      islands attached to its halves, which share its substep loop);
 //   3. per island (islands in parallel, WorldDef::threads, each thread a run of consecutive
 //      islands, see partitionIslands, which it prepares (solver bodies, joints, contacts, each
 //      into its own slot) and solves; each island in a fixed order, so the result does not
@@ -1132,15 +1134,16 @@ void World::step(double dt) {
     if (!j.broken && (w.motions[j.a].awake || w.motions[j.b].awake)) w.active_joints.push_back(&j);
   w.partitionIslands();
   // A split island's halves and the islands attached to them share one substep loop: they rest
-  // together or not at all (an attached island follows its split island).
+  // together or not at all.
   for (World::Impl::IslandRange& r : w.island_ranges)
     r.resting = rest_mode && !r.attached && w.islandResting(r);
-  for (World::Impl::IslandRange& r : w.island_ranges)
-    if (r.split && r.resting)
-      for (int k = 0; k < 2; ++k)
-        w.withAttached(r, r, k, [&](const World::Impl::IslandRange& p) {
-          r.resting = r.resting && w.islandResting(p);
-        });
+  for (World::Impl::IslandRange& r : w.island_ranges) {
+    if (!r.split) continue;
+    const int* const attached = w.attached_islands.data();
+    for (int a = r.attach[0]; a < r.attach[2]; ++a)
+      r.resting = r.resting && w.islandResting(w.island_ranges[attached[a]]);
+    for (int a = r.attach[0]; a < r.attach[2]; ++a) w.island_ranges[attached[a]].resting = r.resting;
+  }
   // Solver bodies outside the islands (static, asleep) here; an island's bodies, joints and
   // contacts are prepared by the thread that solves it, right before it does, so they are in
   // its core's cache, without three parallel loops of their own (256 ragdolls on 2 threads:
