@@ -1134,12 +1134,12 @@ void World::step(double dt) {
     if (!j.broken && (w.motions[j.a].awake || w.motions[j.b].awake)) w.active_joints.push_back(&j);
   w.partitionIslands();
   // A split island's halves and the islands attached to them share one substep loop: they rest
-  // together or not at all.
-  for (World::Impl::IslandRange& r : w.island_ranges)
-    r.resting = rest_mode && !r.attached && w.islandResting(r);
+  // together or not at all, as the split island decides.
+  const int* const attached = w.attached_islands.data();
   for (World::Impl::IslandRange& r : w.island_ranges) {
+    if (r.attached) continue;
+    r.resting = rest_mode && w.islandResting(r);
     if (!r.split) continue;
-    const int* const attached = w.attached_islands.data();
     for (int a = r.attach[0]; a < r.attach[2]; ++a)
       r.resting = r.resting && w.islandResting(w.island_ranges[attached[a]]);
     for (int a = r.attach[0]; a < r.attach[2]; ++a) w.island_ranges[attached[a]].resting = r.resting;

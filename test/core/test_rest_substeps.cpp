@@ -48,7 +48,8 @@ TEST(RestSubsteps, TakenAfterRestTimeAndLeftOnImpulse) {
   for (int i = 1; i <= 400 && resting_from < 0; ++i) {
     w.step(kDt);
     const BodyState s = w.bodyState(box);
-    const bool slow = std::max(s.linear_velocity.norm(), 0.3 * s.angular_velocity.norm()) <
+    // the sleep test: max(|v|, extent |w|), extent = the box's farthest point from its centre
+    const bool slow = std::max(s.linear_velocity.norm(), half.norm() * s.angular_velocity.norm()) <
                       def.sleep_speed;
     if (!slow) slow_from = -1;
     else if (slow_from < 0) slow_from = i;
