@@ -20,6 +20,7 @@ struct Contact {
   double static_friction = 0.0, kinetic_friction = 0.0, restitution = 0.0;
   double rolling = 0.0;  // m: rolling_resistance * rolling radius (max of the two shapes)
   Vec3 rolling_impulse = Vec3::Zero();  // N m s, world, in the tangent plane (warm start)
+  double impulse_h = 0.0;  // s: the substep the impulses were accumulated over (0: none yet)
   // Separating-axis cache: the last narrowphase found the shapes apart along this world axis
   // (A to B). While their projections on it stay farther apart than the speculative
   // distance, the pair is skipped (a projection gap is a lower bound on the distance).
@@ -34,6 +35,7 @@ inline uint64_t pairKey(int shape_a, int shape_b) {
 // Carries the impulses of `old` points to the points of `fresh` with the same feature id.
 inline void matchImpulses(const Contact& old, Contact& fresh) {
   fresh.rolling_impulse = old.rolling_impulse;
+  fresh.impulse_h = old.impulse_h;
   for (int i = 0; i < fresh.manifold.count; ++i) {
     fresh.normal_impulse[i] = 0.0;
     fresh.friction_impulse[i].setZero();

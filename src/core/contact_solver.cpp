@@ -29,6 +29,9 @@
 //   on a plane then decelerates at 5/7 c g, like a disc of friction on the rotation.
 // Restitution: after the substeps, points that approached faster than the threshold get
 //   lambda = -m_n (vn + e vn_before), accumulated and clamped like the normal row.
+// Warm start: the impulses kept from the last step were accumulated over its substep h0; an
+//   island on another substep h (rest substeps, a new dt or substep count) starts from them
+//   times h / h0, the same force (warmStartScale, solver_context.hpp).
 #include "contact_solver.hpp"
 
 #include <algorithm>
@@ -141,6 +144,7 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
                                      c.manifold.points[0].point + oB);
     Vec3 vt = v0 - v0.dot(cc.normal) * cc.normal;
     double max_slip = 0.0;
+    const double scale = warmStartScale(c.impulse_h, ctx.h);
     cc.tangent[0] = vt.norm() > 1e-9 ? Vec3(vt.normalized()) : anyPerpendicular(cc.normal);
     cc.tangent[1] = cc.normal.cross(cc.tangent[0]);
 
@@ -154,11 +158,11 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
       const Vec3 dv = relativeVelocity(A, B, p.rA, p.rB);
       p.relative_velocity = dv.dot(cc.normal);
       max_slip = std::max(max_slip, (dv - p.relative_velocity * cc.normal).norm());
-      p.normal_impulse = c.normal_impulse[i];
+      p.normal_impulse = scale * c.normal_impulse[i];
       p.max_normal_impulse = 0.0;
       for (int k = 0; k < 2; ++k) {
         p.tangent_row[k] = makeRow(A, B, p.rA, p.rB, cc.tangent[k]);
-        p.tangent_impulse[k] = c.friction_impulse[i].dot(cc.tangent[k]);
+        p.tangent_impulse[k] = scale * c.friction_impulse[i].dot(cc.tangent[k]);
       }
     }
     cc.friction = max_slip < def.static_friction_speed ? c.static_friction : c.kinetic_friction;
@@ -169,7 +173,7 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
       for (int k = 0; k < 2; ++k) {
         cc.roll_iA[k] = A.inv_inertia * cc.tangent[k];
         cc.roll_iB[k] = B.inv_inertia * cc.tangent[k];
-        cc.rolling_impulse[k] = c.rolling_impulse.dot(cc.tangent[k]);
+        cc.rolling_impulse[k] = scale * c.rolling_impulse.dot(cc.tangent[k]);
       }
       for (int k = 0; k < 2; ++k)
         for (int l = 0; l < 2; ++l) K(k, l) = cc.tangent[k].dot(cc.roll_iA[l] + cc.roll_iB[l]);
@@ -352,10 +356,12 @@ void ContactSolver::applyRestitution(const StepContext& ctx, int begin, int end)
   }
 }
 
-void ContactSolver::storeImpulses(std::vector<Contact>& contacts, int begin, int end) const {
+void ContactSolver::storeImpulses(std::vector<Contact>& contacts, double h, int begin,
+                                  int end) const {
   for (int k = begin; k < end; ++k) {
     const ContactConstraint& cc = constraints_[k];
     Contact& c = contacts[cc.contact];
+    c.impulse_h = h;
     for (int i = 0; i < cc.count; ++i) {
       const ContactConstraintPoint& p = cc.points[i];
       c.normal_impulse[i] = p.normal_impulse;

@@ -65,9 +65,9 @@ class ContactSolver {
   // number `sweep` of the step (from 1); true when it moved a body.
   bool project(const StepContext& ctx, int begin, int end, int sweep);
   // Restitution, then the impulses kept for the next step's warm start, of constraints
-  // [begin, end) (after the island's substeps).
+  // [begin, end) (after the island's substeps), accumulated over substeps of h.
   void applyRestitution(const StepContext& ctx, int begin, int end);
-  void storeImpulses(std::vector<Contact>& contacts, int begin, int end) const;
+  void storeImpulses(std::vector<Contact>& contacts, double h, int begin, int end) const;
 
  private:
   std::vector<ContactConstraint> constraints_;

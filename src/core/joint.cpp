@@ -69,10 +69,30 @@ void solveAnchor(Joint& j, SolverBody& A, SolverBody& B, const StepContext& ctx,
   const double max_impulse = j.spring.break_force * ctx.h;
   if (j.point.solve(A, B, ctx.joint_softness, use_bias, max_impulse)) j.overloaded = true;
 }
+// Every part's accumulated impulse times s (warmStartScale, solver_context.hpp).
+void scaleImpulses(Joint& j, double s) {
+  j.point.impulse *= s;
+  j.hinge_axis.impulse *= s;
+  for (AngleLimitPart* l : {&j.limits[0], &j.limits[1], &j.limits[2], &j.swing_twist.twist}) {
+    l->lower_impulse *= s;
+    l->upper_impulse *= s;
+  }
+  for (AngleMotorPart& m : j.motor_parts) m.impulse *= s;
+  j.swing_twist.cone_impulse *= s;
+  j.angle_lock.impulse *= s;
+  j.line.impulse *= s;
+  j.linear_limit.lower_impulse *= s;
+  j.linear_limit.upper_impulse *= s;
+  j.linear_motor.impulse *= s;
+}
 }  // namespace
 
 void prepareJoint(Joint& j, const StepContext& ctx) {
   j.moved_sweep = 0;
+  if (j.impulse_h != ctx.h) {
+    scaleImpulses(j, warmStartScale(j.impulse_h, ctx.h));
+    j.impulse_h = ctx.h;
+  }
   switch (j.type) {
     case JointType::Ball: prepareBallJoint(j, ctx); break;
     case JointType::Hinge: prepareHingeJoint(j, ctx); break;

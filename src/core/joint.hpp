@@ -32,6 +32,7 @@ struct Joint {
   int moved_sweep = 0;  // the last position sweep of the step in which it moved a body
   double force = 0.0;  // N in the anchor during the last substep
   double torque = 0.0;  // N m in a fixed joint's rotation lock during the last substep
+  double impulse_h = 0.0;  // s: the substep the parts' impulses were accumulated over
   std::array<JointMotor, 3> motors;       // hinge, prismatic: [0]; ball: per Euler axis
   std::array<AngleMotorPart, 3> motor_parts;
 

@@ -36,6 +36,12 @@ inline bool movable(const SolverBody& b) {
          std::abs(b.inv_inertia(1, 1)) > kZero || std::abs(b.inv_inertia(2, 2)) > kZero;
 }
 
+// Accumulated impulses are per substep (about force x h): warm starting on substep h from
+// impulses accumulated over h0 scales them by h / h0 (1 when h0 == h, exactly; h0 = 0: none
+// kept yet). Without it an island switching from 3 substeps to its 2 rest substeps started
+// each substep with 2/3 of the impulse that holds it up, and one woken back to 3 with 3/2.
+inline double warmStartScale(double h0, double h) { return h0 > 0.0 ? h / h0 : 1.0; }
+
 // K^-1 of an effective mass matrix (2x2, 3x3), or zero where K is singular (det <= 1e-300).
 // One cofactor pass gives both: a separate determinant() cost as much as the inverse.
 template <class M>

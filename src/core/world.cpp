@@ -6,7 +6,7 @@
 //      (boxes, the sweep's pair loop with the pair filter, and the pairs in parallel;
 //      separated pairs skipped by their cached axis, touching pairs that barely moved keep
 //      their manifold, manifold_cache.hpp); impulses carried over by feature id (warm
-//      starting);
+//      starting; scaled by h / h_old where the substep changed, warmStartScale);
 //   2. islands (island.hpp): awake bodies, joints and contacts grouped per island; substep
 //      h = dt / substeps (rest_substeps, with rest_relax_iterations relax sweeps, for an island
 //      whose bodies have all been slow for WorldDef::rest_time; a split island with the
@@ -1164,7 +1164,7 @@ void World::step(double dt) {
   // the next warm start, then its bodies take the step (joint breaks only mark the joints).
   const auto restitute = [&](int begin, int end, const StepContext& c) {
     w.contact_solver.applyRestitution(c, begin, end);
-    w.contact_solver.storeImpulses(w.contacts, begin, end);
+    w.contact_solver.storeImpulses(w.contacts, c.h, begin, end);
   };
   const auto finishBodies = [&](const World::Impl::IslandRange& p) {
     for (int k = p.body_begin; k < p.body_end; ++k) w.finishBody(w.island_bodies[k]);
