@@ -279,6 +279,13 @@ bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* c, std::string* erro
             read(pnh, "balance/kd", "a number (rad s/m)", &c->balance.kd, error) &&
             read(pnh, "balance/ankles", "a list of joint names", &c->balance.ankles, error) &&
             read(pnh, "balance/feet", "a list of link names", &c->balance.feet, error) &&
+            read(pnh, "sleep/enabled", "a bool", &c->sleep.enabled, error) &&
+            read(pnh, "sleep/time", "a number (s)", &c->sleep.time, error) &&
+            read(pnh, "sleep/speed", "a number (m/s)", &c->sleep.speed, error) &&
+            read(pnh, "sleep/rest_time", "a number (s)", &c->sleep.rest_time, error) &&
+            read(pnh, "sleep/rest_substeps", "an integer", &c->sleep.rest_substeps, error) &&
+            read(pnh, "sleep/rest_relax_iterations", "an integer",
+                 &c->sleep.rest_relax_iterations, error) &&
             loadMaterials(pnh, &c->materials, error) && loadJointSettings(pnh, c, error) &&
             loadRvizSettings(pnh, c, error);
   if (!ok) return false;
@@ -355,6 +362,15 @@ std::string validateNodeConfig(const NodeConfig& c) {
   if (!(e = validateMotorGains(c.motor, "parameter ~motor")).empty()) return e;
   if (!std::isfinite(c.balance.kp) || !std::isfinite(c.balance.kd))
     return "parameters ~balance/kp and ~balance/kd must be finite";
+  if (!(e = nonneg("sleep/time", c.sleep.time)).empty()) return e;
+  if (!(e = nonneg("sleep/speed", c.sleep.speed)).empty()) return e;
+  if (!(e = nonneg("sleep/rest_time", c.sleep.rest_time)).empty()) return e;
+  if (c.sleep.rest_substeps < 0)
+    return "parameter ~sleep/rest_substeps must be >= 0 (0 = off), got " +
+           std::to_string(c.sleep.rest_substeps);
+  if (c.sleep.rest_relax_iterations < 0)
+    return "parameter ~sleep/rest_relax_iterations must be >= 0, got " +
+           std::to_string(c.sleep.rest_relax_iterations);
   if (!(e = validateMarkerSettings(c.markers)).empty()) return e;
   if (!(e = validatePokeSettings(c.poke)).empty()) return e;
   return validateDragSettings(c.drag);

@@ -244,6 +244,7 @@ void SimNode::publishStats(const ros::Time& stamp) {
   m.steps = static_cast<uint64_t>(steps_);
   m.skipped_steps = static_cast<uint64_t>(pacer_.droppedSteps());
   m.sim_time = simTime();
+  m.awake_bodies = static_cast<uint32_t>(world_->awakeBodyCount());
   stats_pub_.publish(m);
 }
 

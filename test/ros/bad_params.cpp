@@ -29,6 +29,8 @@ TEST(BadParams, NodeExitsNonZeroNamingTheParameter) {
       {"_substeps:=0", {"~substeps", "got 0"}},
       {"_physics_rate:=-5.0", {"~physics_rate", "got -5"}},
       {"_gravity:=[0.0,-9.81]", {"gravity", "list of 3 numbers"}},
+      {"_sleep/speed:=-0.5", {"~sleep/speed", "got -0.5"}},
+      {"_sleep/rest_substeps:=-2", {"~sleep/rest_substeps", "got -2"}},
   };
   int k = 0;
   for (const auto& [args, words] : cases) {
