@@ -29,7 +29,9 @@ TEST(Sleep, DefaultSleepsAndDisabledStaysAwake) {
     const ragdoll_sim::Step::Response a = on.step(kChunk), b = off.step(kChunk);
     ASSERT_TRUE(a.success && b.success) << a.message << " / " << b.message;
     EXPECT_EQ(b.awake_bodies, bodies) << "~sleep/enabled false, yet asleep at " << b.sim_time << " s";
-    if (asleep_at > 0.0) EXPECT_EQ(a.awake_bodies, 0u) << "woke up by itself at " << a.sim_time << " s";
+    if (asleep_at > 0.0) {
+      EXPECT_EQ(a.awake_bodies, 0u) << "woke up by itself at " << a.sim_time << " s";
+    }
     if (a.awake_bodies == 0 && asleep_at < 0.0) asleep_at = a.sim_time;
   }
   ASSERT_GT(asleep_at, 0.0) << "the default node's ragdoll never slept within 10 s";
