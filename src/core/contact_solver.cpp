@@ -30,8 +30,8 @@
 // Restitution: after the substeps, points that approached faster than the threshold get
 //   lambda = -m_n (vn + e vn_before), accumulated and clamped like the normal row.
 // Warm start: the impulses kept from the last step were accumulated over its substep h0; an
-//   island on another substep h (rest substeps, a new dt or substep count) starts from them
-//   times h / h0, the same force (warmStartScale, solver_context.hpp).
+//   island on another substep h (rest substeps, a new dt) starts from them times h / h0, the
+//   same force (warmStartScale, solver_context.hpp).
 #include "contact_solver.hpp"
 
 #include <algorithm>
