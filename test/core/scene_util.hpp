@@ -1,6 +1,8 @@
 // Small scene builders shared by the core tests.
 #pragma once
 
+#include <vector>
+
 #include "ragdoll_sim/world.hpp"
 
 namespace ragdoll_sim {
@@ -71,6 +73,32 @@ inline JointId chainLink(World& w, BodyId a, BodyId b, double half_x) {
   j.frame_a = Transform(Vec3(half_x, 0, 0), Quat::Identity());
   j.frame_b = Transform(Vec3(-half_x, 0, 0), Quat::Identity());
   return w.createBallJoint(j);
+}
+
+// A chain of `masses.size()` shapeless bodies hung from a static anchor at `top` by ball
+// joints, links 0.3 m long along `dir` from the anchor, every joint closed (+x: horizontal, it
+// swings under gravity; -z: it hangs at rest). The joints go to *joints, top first.
+inline std::vector<BodyId> addChain(World& w, const Vec3& top, const std::vector<double>& masses,
+                                    const Vec3& dir = Vec3::UnitX(),
+                                    std::vector<JointId>* joints = nullptr) {
+  const BodyId anchor = addStatic(w, Transform(top, Quat::Identity()));
+  std::vector<BodyId> chain;
+  BodyId parent = anchor;
+  for (size_t i = 0; i < masses.size(); ++i) {
+    const double m = masses[i];
+    const Vec3 pos = top + (0.15 + 0.3 * double(i)) * dir;
+    const BodyId b = addDynamic(w, m, Mat3::Identity() * 0.01 * m, Transform(pos, Quat::Identity()));
+    BallJointDef j;
+    j.body_a = parent;
+    j.body_b = b;
+    j.frame_a.p = parent == anchor ? Vec3::Zero() : Vec3(0.15 * dir);
+    j.frame_b.p = -0.15 * dir;
+    const JointId id = w.createBallJoint(j);
+    if (joints) joints->push_back(id);
+    chain.push_back(b);
+    parent = b;
+  }
+  return chain;
 }
 
 // Period of an oscillating value: steps the world `steps` times and averages the time between

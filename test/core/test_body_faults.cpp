@@ -22,28 +22,6 @@ constexpr double kDt = 1e-3;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// A chain of `masses.size()` shapeless bodies hanging from a static anchor at `top` by ball
-// joints, each 0.3 m long, pointing along +x (horizontal: it swings under gravity).
-std::vector<BodyId> addChain(World& w, const Vec3& top, const std::vector<double>& masses) {
-  const BodyId anchor = addStatic(w, Transform(top, Quat::Identity()));
-  std::vector<BodyId> chain;
-  BodyId parent = anchor;
-  for (size_t i = 0; i < masses.size(); ++i) {
-    const double m = masses[i];
-    const Vec3 pos = top + Vec3(0.3 * double(i + 1), 0, 0);
-    const BodyId b = addDynamic(w, m, Mat3::Identity() * 0.01 * m, Transform(pos, Quat::Identity()));
-    BallJointDef j;
-    j.body_a = parent;
-    j.body_b = b;
-    j.frame_a.p = parent == anchor ? Vec3::Zero() : Vec3(0.15, 0, 0);
-    j.frame_b.p = Vec3(-0.15, 0, 0);
-    w.createBallJoint(j);
-    chain.push_back(b);
-    parent = b;
-  }
-  return chain;
-}
-
 bool finite(const BodyState& s) {
   return s.pose.p.allFinite() && s.pose.q.coeffs().allFinite() && s.linear_velocity.allFinite() &&
          s.angular_velocity.allFinite();
