@@ -304,6 +304,9 @@ ragdoll_sim::PhysicsConfig SimNode::currentPhysics() const {
   c.kinetic_friction = config_.ragdoll_surface.kinetic_friction;
   c.restitution = config_.ragdoll_surface.restitution;
   c.real_time_factor = std::isfinite(config_.real_time_factor) ? config_.real_time_factor : 0.0;
+  c.sleep_enabled = config_.sleep.enabled;
+  c.sleep_time = config_.sleep.time;
+  c.sleep_speed = config_.sleep.speed;
   return c;
 }
 
@@ -325,7 +328,7 @@ void SimNode::onReconfigure(ragdoll_sim::PhysicsConfig& cfg, uint32_t) {
   // (the answer then holds the values in force).
   for (double v : {cfg.gravity_x, cfg.gravity_y, cfg.gravity_z, cfg.time_step,
                    cfg.static_friction, cfg.kinetic_friction, cfg.restitution,
-                   cfg.real_time_factor}) {
+                   cfg.real_time_factor, cfg.sleep_time, cfg.sleep_speed}) {
     if (std::isfinite(v)) continue;
     warn("reconfigure/not finite", "reconfigure rejected: a value is not finite (NaN or inf); "
                                    "the physics parameters stay as they were");
@@ -353,8 +356,8 @@ void SimNode::onReconfigure(ragdoll_sim::PhysicsConfig& cfg, uint32_t) {
     config_.real_time_factor = cfg.real_time_factor;
     restartPacing();
   }
-  // Solver settings and materials live in the World and its shapes: rebuild it, carrying
-  // every body's state, broken joint and motor over.
+  // Solver and sleep settings and materials live in the World and its shapes: rebuild it,
+  // carrying every body's state, broken joint and motor over (every body wakes).
   bool rebuild = false;
   if (cfg.substeps != config_.substeps || cfg.position_iterations != config_.position_iterations) {
     log << " substeps " << cfg.substeps << ", position_iterations " << cfg.position_iterations;
@@ -372,6 +375,15 @@ void SimNode::onReconfigure(ragdoll_sim::PhysicsConfig& cfg, uint32_t) {
     config_.ragdoll_surface = config_.material;
     config_.ground_surface = config_.material;
     config_.materials = MaterialTable();  // pair entries would override the new values
+    rebuild = true;
+  }
+  if (cfg.sleep_enabled != old.sleep_enabled || cfg.sleep_time != old.sleep_time ||
+      cfg.sleep_speed != old.sleep_speed) {
+    log << " sleep " << (cfg.sleep_enabled ? "on" : "off") << ", after " << cfg.sleep_time
+        << " s below " << cfg.sleep_speed << " m/s (every body wakes)";
+    config_.sleep.enabled = cfg.sleep_enabled;
+    config_.sleep.time = cfg.sleep_time;
+    config_.sleep.speed = cfg.sleep_speed;
     rebuild = true;
   }
   if (rebuild) {

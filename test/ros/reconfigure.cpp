@@ -6,7 +6,6 @@
 #include <map>
 #include <memory>
 
-#include <dynamic_reconfigure/Reconfigure.h>
 #include <ragdoll_sim/SetRagdollState.h>
 
 #include "node_log.hpp"
@@ -19,28 +18,10 @@ namespace {
 const std::string kNode = "/ragdoll_sim";
 SimClient sim(kNode);
 
-// Sets some parameters; returns the node's answer (the whole configuration) in *doubles/*ints.
+// Sets some parameters; returns the node's answer (the whole configuration) in *now.
 bool reconfigure(const std::map<std::string, double>& doubles, const std::map<std::string, int>& ints = {},
                  std::map<std::string, double>* now = nullptr) {
-  dynamic_reconfigure::Reconfigure r;
-  for (const auto& [name, value] : doubles) {
-    dynamic_reconfigure::DoubleParameter p;
-    p.name = name;
-    p.value = value;
-    r.request.config.doubles.push_back(p);
-  }
-  for (const auto& [name, value] : ints) {
-    dynamic_reconfigure::IntParameter p;
-    p.name = name;
-    p.value = value;
-    r.request.config.ints.push_back(p);
-  }
-  if (!ros::service::call(kNode + "/set_parameters", r)) return false;
-  if (now) {
-    for (const auto& p : r.response.config.doubles) (*now)[p.name] = p.value;
-    for (const auto& p : r.response.config.ints) (*now)[p.name] = p.value;
-  }
-  return true;
+  return sim.reconfigure({doubles, ints, {}}, now);
 }
 
 bool setState(const Vec3& p, const Eigen::Quaterniond& q, const Vec3& v) {
@@ -69,6 +50,7 @@ TEST(Reconfigure, A_StartsFromTheNodesParameters) {
   EXPECT_DOUBLE_EQ(now["time_step"], 0.001);
   EXPECT_EQ(now["substeps"], 3);  // the node's default
   EXPECT_DOUBLE_EQ(now["real_time_factor"], 1.0);
+  EXPECT_EQ(now["sleep_enabled"], 1.0);  // ~sleep/enabled (the sleep rostest changes it)
 }
 
 TEST(Reconfigure, B_Gravity) {

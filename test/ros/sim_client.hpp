@@ -1,12 +1,15 @@
-// Helpers shared by the rostests that drive the node through its services: step, link states
-// and the total linear momentum of a ragdoll from ~get_link_state and the URDF masses.
+// Helpers shared by the rostests that drive the node through its services: step, link states,
+// dynamic_reconfigure, and the total linear momentum of a ragdoll from ~get_link_state and the
+// URDF masses.
 #pragma once
 
 #include <cmath>
+#include <map>
 #include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
+#include <dynamic_reconfigure/Reconfigure.h>
 #include <ragdoll_sim/GetLinkState.h>
 #include <ragdoll_sim/Step.h>
 #include <ros/ros.h>
@@ -49,6 +52,41 @@ class SimClient {
       ros::WallDuration(0.02).sleep();
     }
     return false;
+  }
+  // Sets some of the physics parameters (cfg/Physics.cfg) through ~set_parameters; *now gets
+  // the node's answer, the whole configuration (bools as 0 / 1). False on a failed call.
+  struct Params {
+    std::map<std::string, double> doubles;
+    std::map<std::string, int> ints;
+    std::map<std::string, bool> bools;
+  };
+  bool reconfigure(const Params& set, std::map<std::string, double>* now = nullptr) const {
+    dynamic_reconfigure::Reconfigure r;
+    for (const auto& [name, value] : set.doubles) {
+      dynamic_reconfigure::DoubleParameter p;
+      p.name = name;
+      p.value = value;
+      r.request.config.doubles.push_back(p);
+    }
+    for (const auto& [name, value] : set.ints) {
+      dynamic_reconfigure::IntParameter p;
+      p.name = name;
+      p.value = value;
+      r.request.config.ints.push_back(p);
+    }
+    for (const auto& [name, value] : set.bools) {
+      dynamic_reconfigure::BoolParameter p;
+      p.name = name;
+      p.value = value;
+      r.request.config.bools.push_back(p);
+    }
+    if (!ros::service::call(node_ + "/set_parameters", r)) return false;
+    if (now) {
+      for (const auto& p : r.response.config.doubles) (*now)[p.name] = p.value;
+      for (const auto& p : r.response.config.ints) (*now)[p.name] = p.value;
+      for (const auto& p : r.response.config.bools) (*now)[p.name] = p.value ? 1.0 : 0.0;
+    }
+    return true;
   }
   const std::string& node() const { return node_; }
 

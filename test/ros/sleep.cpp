@@ -1,9 +1,15 @@
 // rostest: ~sleep on the bundled ragdoll dropped from its spawn pose. With the defaults it comes
 // to rest and sleeps within 10 s of sim time (~step's awake_bodies reaches 0), and stays asleep;
-// with ~sleep/enabled false the same drop keeps every body awake to the end.
+// with ~sleep/enabled false the same drop keeps every body awake to the end. Then the sleep
+// settings changed at run time through dynamic_reconfigure (sleep_enabled, sleep_time,
+// sleep_speed): off wakes every body and keeps it awake, on with a shorter time puts the
+// resting ragdoll to sleep within that time, and NaN is refused.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
+#include <limits>
+#include <map>
 
 #include "node_log.hpp"
 #include "sim_client.hpp"
@@ -37,6 +43,66 @@ TEST(Sleep, DefaultSleepsAndDisabledStaysAwake) {
   ASSERT_GT(asleep_at, 0.0) << "the default node's ragdoll never slept within 10 s";
   std::printf("[ sleep    ] %u bodies: asleep by %.2f s with the defaults; all awake at 10 s with "
               "~sleep/enabled false\n", bodies, asleep_at);
+}
+
+namespace {
+// Steps in chunks of `chunk` until every body sleeps; the sim time it took, or -1 if none
+// slept within `limit` s.
+double timeToSleep(const SimClient& sim, int chunk, double limit) {
+  const double t0 = sim.step(0).sim_time;
+  for (double t = t0; t - t0 <= limit;) {
+    const ragdoll_sim::Step::Response r = sim.step(chunk);
+    if (!r.success) return -1.0;
+    t = r.sim_time;
+    if (r.awake_bodies == 0) return t - t0;
+  }
+  return -1.0;
+}
+}  // namespace
+
+// Runs after the test above: /sleep_on's ragdoll is asleep, /sleep_off's at rest and awake.
+TEST(Sleep, ReconfiguredAtRunTime) {
+  const SimClient on("/sleep_on"), off("/sleep_off");
+  std::map<std::string, double> now_on, now_off;
+  ASSERT_TRUE(on.reconfigure({}, &now_on));
+  ASSERT_TRUE(off.reconfigure({}, &now_off));
+  // The answers start from each node's parameters, not the .cfg defaults.
+  EXPECT_EQ(now_on["sleep_enabled"], 1.0);
+  EXPECT_EQ(now_off["sleep_enabled"], 0.0) << "~sleep/enabled false from the launch file";
+  EXPECT_DOUBLE_EQ(now_on["sleep_time"], 0.5);
+  EXPECT_DOUBLE_EQ(now_on["sleep_speed"], 0.05);
+  const uint32_t bodies = off.step(0).awake_bodies;
+  ASSERT_GT(bodies, 1u);
+  ASSERT_EQ(on.step(0).awake_bodies, 0u) << "the first test left /sleep_on asleep";
+
+  // Off: the World is rebuilt with the bodies' states, every body wakes and stays awake.
+  ASSERT_TRUE(on.reconfigure({{}, {}, {{"sleep_enabled", false}}}));
+  for (int k = 0; k < 8; ++k) {
+    const ragdoll_sim::Step::Response r = on.step(kChunk);
+    ASSERT_TRUE(r.success);
+    EXPECT_EQ(r.awake_bodies, bodies) << "asleep at " << r.sim_time << " s with sleep off";
+  }
+  // On again with a shorter sleep time: the resting ragdoll sleeps after about that time.
+  ASSERT_TRUE(on.reconfigure({{{"sleep_time", 0.2}}, {}, {{"sleep_enabled", true}}}, &now_on));
+  EXPECT_DOUBLE_EQ(now_on["sleep_time"], 0.2);
+  const double slept_on = timeToSleep(on, 10, 2.0);
+  EXPECT_GE(slept_on, 0.2 - 1e-6) << "asleep before sleep_time";
+  EXPECT_LT(slept_on, 0.5) << "the default 0.5 s, not the new 0.2 s (-1: never within 2 s)";
+  // /sleep_off's ragdoll, at rest and awake since the start, sleeps once sleep is on.
+  ASSERT_TRUE(off.reconfigure({{}, {}, {{"sleep_enabled", true}}}));
+  const double slept_off = timeToSleep(off, 10, 2.0);
+  EXPECT_GE(slept_off, 0.5 - 1e-6);
+  EXPECT_LT(slept_off, 1.0) << "-1: never within 2 s";
+
+  // NaN is refused whole: the answer holds the values in force.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  ASSERT_TRUE(on.reconfigure({{{"sleep_speed", nan}}, {}, {}}, &now_on));
+  EXPECT_DOUBLE_EQ(now_on["sleep_speed"], 0.05);
+  EXPECT_DOUBLE_EQ(now_on["sleep_time"], 0.2);
+  EXPECT_EQ(on.step(kChunk).awake_bodies, 0u) << "a refused change must not rebuild or wake";
+  std::printf("[ sleep    ] reconfigured: off kept %u bodies awake for 2 s; on with sleep_time "
+              "0.2 s asleep after %.3f s; the other node on (0.5 s) after %.3f s\n", bodies,
+              slept_on, slept_off);
 }
 
 int main(int argc, char** argv) {
