@@ -6,7 +6,6 @@
 // resting ragdoll to sleep within that time, and NaN is refused.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <map>
