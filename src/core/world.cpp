@@ -12,12 +12,13 @@
 //      whose bodies have all been slow for WorldDef::rest_time; a split island with the
 //      islands attached to its halves, which share its substep loop);
 //   3. per island (islands in parallel, WorldDef::threads, each thread a run of consecutive
-//      islands, see partitionIslands, which it prepares (solver bodies, joints, contacts, each
-//      into its own slot) and solves; each island in a fixed order, so the result does not
-//      depend on the thread count; an island of kSplitMin bodies or more that holds more than
-//      half the awake work is split in two halves: each sweep solves its boundary contacts on
-//      one thread, then both halves at once, see island_split.hpp), per substep: integrate
-//      velocities (gravity, forces, damping), warm start, solve with bias (soft), integrate
+//      islands, see partitionIslands, then what the other runs have left, run_queue.hpp,
+//      which it prepares (solver bodies, joints, contacts, each into its own slot) and
+//      solves; each island in a fixed order, so the result does not depend on the thread
+//      count; an island of kSplitMin bodies or more that holds more than half the awake
+//      work is split in two halves: each sweep solves its boundary contacts on one thread,
+//      then both halves at once, see island_split.hpp), per substep: integrate velocities
+//      (gravity, forces, damping), warm start, solve with bias (soft), integrate
 //      positions, relax without bias (contacts several sweeps, the joints in the first
 //      sweeps: Gauss-Seidel over a manifold's points and along a limb needs them to take back
 //      the push-out velocity and to carry a landing's load up the chain, see
@@ -60,6 +61,7 @@
 #include "island_split.hpp"
 #include "joint.hpp"
 #include "manifold_cache.hpp"
+#include "run_queue.hpp"
 #include "team_barrier.hpp"
 
 namespace ragdoll_sim {
@@ -208,6 +210,7 @@ struct World::Impl {
   char position_moved[2][2] = {};
   std::vector<IslandRange> island_ranges;
   std::vector<int> island_runs;  // thread t solves islands [island_runs[t], island_runs[t + 1])
+  RunQueue run_queue;            // ... and then steals what is left of the others' runs
   std::vector<int> attached_islands;  // grouped by split island and half (IslandRange::attach)
   std::vector<std::pair<int, int>> attach_scratch;
   std::vector<long> island_load;
@@ -747,7 +750,8 @@ void World::Impl::partitionIslands() {
   // Each thread takes a run of consecutive islands (in body order) of about equal work, the
   // same run step after step while the islands last: its bodies and constraints stay in that
   // core's cache. (Handing out islands dynamically, biggest first, moved them between the
-  // cores: scene b ran 12 % slower on 2 threads.)
+  // cores: scene b ran 12 % slower on 2 threads.) A thread done with its run takes what is
+  // left of the others' from their back (run_queue.hpp).
   const int threads = threadCount();
   long total = 0;
   const auto work = [&](int k) {
@@ -1201,16 +1205,20 @@ void World::step(double dt) {
       for (int k = t; k < 2; k += nt) withAttached(k, finishBodies);
     }
   }
+  const auto solveOne = [&](int k) {
+    const World::Impl::IslandRange& r = w.island_ranges[k];
+    if (r.split || r.attached) return;
+    const StepContext& c = contextOf(r);
+    prepare(r, c);
+    w.solveIsland(r, c);
+    restitute(r.contact_begin, r.contact_end, c);
+    finishBodies(r);
+  };
+  // Its own run first, then what is left of the others' (run_queue.hpp).
+  w.run_queue.reset(w.island_runs);
   const auto solveRun = [&](int t) {
-    for (int k = w.island_runs[t]; k < w.island_runs[t + 1]; ++k) {
-      const World::Impl::IslandRange& r = w.island_ranges[k];
-      if (r.split || r.attached) continue;
-      const StepContext& c = contextOf(r);
-      prepare(r, c);
-      w.solveIsland(r, c);
-      restitute(r.contact_begin, r.contact_end, c);
-      finishBodies(r);
-    }
+    for (int k; (k = w.run_queue.take(t)) >= 0;) solveOne(k);
+    for (int k; (k = w.run_queue.steal(t)) >= 0;) solveOne(k);
   };
   // (no runs when every island is split or goes along with a split one's half)
   if (w.run_work > 0 && islands > 1 && int(w.island_bodies.size()) >= kParallelMin) {
