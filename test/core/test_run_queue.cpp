@@ -39,8 +39,9 @@ TEST(RunQueue, OwnRunInOrderThenTheOthersFromTheBack) {
   EXPECT_EQ(q.steal(1), -1);
 }
 
-// Threads of unequal runs (one short, one long, one empty), the long run's owner starting late:
-// each island is taken once, and the others have taken part of the late thread's run.
+// Threads of unequal runs (one short, one long, one empty), the long run's owner starting late
+// (once the others have stolen from its run, or after 1 s without): each island is taken once,
+// and the others have taken part of the late thread's run.
 TEST(RunQueue, EveryIslandOnceUnderContentionAndALateThreadIsHelped) {
   constexpr int kThreads = 3, kIslands = 20000, kRounds = 20;
   const std::vector<int> runs = {0, 10, kIslands, kIslands};
@@ -51,7 +52,11 @@ TEST(RunQueue, EveryIslandOnceUnderContentionAndALateThreadIsHelped) {
     q.reset(runs);
     std::atomic<int> from_late_run{0};  // islands of run 1 taken by threads 0 and 2
     const auto work = [&](int t) {
-      if (t == 1) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      if (t == 1) {  // starts once another thread has stolen from its run (or after 1 s)
+        const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+        while (from_late_run.load() == 0 && std::chrono::steady_clock::now() < give_up)
+          std::this_thread::yield();
+      }
       for (int k; (k = q.take(t)) >= 0;) taken[k].fetch_add(1);
       for (int k; (k = q.steal(t)) >= 0;) {
         taken[k].fetch_add(1);
