@@ -62,29 +62,25 @@ class SimClient {
   };
   bool reconfigure(const Params& set, std::map<std::string, double>* now = nullptr) const {
     dynamic_reconfigure::Reconfigure r;
-    for (const auto& [name, value] : set.doubles) {
-      dynamic_reconfigure::DoubleParameter p;
-      p.name = name;
-      p.value = value;
-      r.request.config.doubles.push_back(p);
-    }
-    for (const auto& [name, value] : set.ints) {
-      dynamic_reconfigure::IntParameter p;
-      p.name = name;
-      p.value = value;
-      r.request.config.ints.push_back(p);
-    }
-    for (const auto& [name, value] : set.bools) {
-      dynamic_reconfigure::BoolParameter p;
-      p.name = name;
-      p.value = value;
-      r.request.config.bools.push_back(p);
-    }
+    // (Double|Int|Bool)Parameter: each a name and a value of its type
+    const auto add = [](auto& out, const auto& in) {
+      for (const auto& [name, value] : in) {
+        out.emplace_back();
+        out.back().name = name;
+        out.back().value = value;
+      }
+    };
+    const auto read = [now](const auto& in) {
+      for (const auto& p : in) (*now)[p.name] = double(p.value);  // a bool as 0 / 1
+    };
+    add(r.request.config.doubles, set.doubles);
+    add(r.request.config.ints, set.ints);
+    add(r.request.config.bools, set.bools);
     if (!ros::service::call(node_ + "/set_parameters", r)) return false;
     if (now) {
-      for (const auto& p : r.response.config.doubles) (*now)[p.name] = p.value;
-      for (const auto& p : r.response.config.ints) (*now)[p.name] = p.value;
-      for (const auto& p : r.response.config.bools) (*now)[p.name] = p.value ? 1.0 : 0.0;
+      read(r.response.config.doubles);
+      read(r.response.config.ints);
+      read(r.response.config.bools);
     }
     return true;
   }
