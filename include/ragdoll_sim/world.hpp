@@ -155,6 +155,12 @@ class World {
   double time() const;
   const WorldDef& def() const;
   void setGravity(const Vec3& g);
+  // WorldDef's enable_sleep, time_to_sleep and sleep_speed, changed while the world runs:
+  // nothing is rebuilt and no body wakes, except that turning sleep off wakes every sleeping
+  // body (it would never wake by itself). Turning it on restarts every body's slow time, so an
+  // island sleeps time_to_sleep after that at the earliest. Throws std::invalid_argument for a
+  // negative or non-finite time or speed.
+  void setSleep(bool enable, double time_to_sleep, double sleep_speed);
   // Bodies reset since the last call, oldest first (at most kMaxPendingFaults are kept between
   // calls; bodyFaultCount() counts them all).
   std::vector<BodyFault> takeBodyFaults();

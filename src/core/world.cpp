@@ -1254,6 +1254,25 @@ double World::time() const { return impl_->time; }
 const WorldDef& World::def() const { return impl_->def; }
 void World::setGravity(const Vec3& g) { impl_->def.gravity = g; }
 
+void World::setSleep(bool enable, double time_to_sleep, double sleep_speed) {
+  if (!(time_to_sleep >= 0.0 && std::isfinite(time_to_sleep) && sleep_speed >= 0.0 &&
+        std::isfinite(sleep_speed)))
+    throw std::invalid_argument("ragdoll_sim: setSleep needs a finite time_to_sleep >= 0 and a "
+                                "finite sleep_speed >= 0");
+  Impl& w = *impl_;
+  if (enable != w.def.enable_sleep) {
+    // Slow times stood still while sleep was off (updateSleep); a body asleep when it is
+    // turned off must move again.
+    for (size_t i = 0; i < w.bodies.size(); ++i) {
+      if (!enable && !w.motions[i].awake && w.isDynamic(int(i))) w.wake(int(i));
+      w.motions[i].sleep_time = 0.0;
+    }
+  }
+  w.def.enable_sleep = enable;
+  w.def.time_to_sleep = time_to_sleep;
+  w.def.sleep_speed = sleep_speed;
+}
+
 std::vector<BodyFault> World::takeBodyFaults() {
   std::vector<BodyFault> out;
   out.swap(impl_->faults);

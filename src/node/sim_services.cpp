@@ -356,8 +356,9 @@ void SimNode::onReconfigure(ragdoll_sim::PhysicsConfig& cfg, uint32_t) {
     config_.real_time_factor = cfg.real_time_factor;
     restartPacing();
   }
-  // Solver and sleep settings and materials live in the World and its shapes: rebuild it,
-  // carrying every body's state, broken joint and motor over (every body wakes).
+  // Sleep changes in place (World::setSleep: nothing wakes unless sleep goes off). Solver
+  // settings and materials live in the World and its shapes: rebuild it, carrying every body's
+  // state, broken joint and motor over (every body wakes).
   bool rebuild = false;
   if (cfg.substeps != config_.substeps || cfg.position_iterations != config_.position_iterations) {
     log << " substeps " << cfg.substeps << ", position_iterations " << cfg.position_iterations;
@@ -380,11 +381,13 @@ void SimNode::onReconfigure(ragdoll_sim::PhysicsConfig& cfg, uint32_t) {
   if (cfg.sleep_enabled != old.sleep_enabled || cfg.sleep_time != old.sleep_time ||
       cfg.sleep_speed != old.sleep_speed) {
     log << " sleep " << (cfg.sleep_enabled ? "on" : "off") << ", after " << cfg.sleep_time
-        << " s below " << cfg.sleep_speed << " m/s (every body wakes)";
+        << " s below " << cfg.sleep_speed << " m/s"
+        << (!cfg.sleep_enabled && old.sleep_enabled ? " (sleeping bodies wake)" : "");
     config_.sleep.enabled = cfg.sleep_enabled;
     config_.sleep.time = cfg.sleep_time;
     config_.sleep.speed = cfg.sleep_speed;
-    rebuild = true;
+    // The .cfg ranges keep both >= 0, and NaN was refused above: setSleep cannot throw.
+    world_->setSleep(cfg.sleep_enabled, cfg.sleep_time, cfg.sleep_speed);
   }
   if (rebuild) {
     std::string e;

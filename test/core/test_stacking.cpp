@@ -5,8 +5,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 #include "ragdoll_sim/world.hpp"
@@ -302,4 +304,60 @@ TEST(Penetration, CorrectionSplitsByInverseMassWithoutEnergy) {
   EXPECT_LT(max_ke, 1e-6);
   std::printf("[ split    ] moved light %.4f m, heavy %.4f m (ratio %.3f), max KE %.1e J\n", dl, dh,
               dl / dh, max_ke);
+}
+
+// World::setSleep changes the sleep settings in place: two stacked boxes asleep stay asleep
+// (same poses, same contacts) when the thresholds change; sleep off wakes them and keeps them
+// awake; sleep on again puts them to sleep time_to_sleep after the switch at the earliest (the
+// slow times restart, even those counted before sleep went off); a bad value throws and changes
+// nothing.
+TEST(Sleeping, SettingsChangedInPlace) {
+  World w;
+  addGround(w);
+  addBox(w, Vec3(0.2, 0.2, 0.2), 1.0, Vec3(0, 0, 0.2));
+  const BodyId upper = addBox(w, Vec3(0.2, 0.2, 0.2), 1.0, Vec3(0.05, 0, 0.6));
+  ASSERT_LT(stepUntilAsleep(w), 5000);
+  const Transform pose = w.bodyPose(upper);
+  const size_t contacts = w.contacts().size();
+
+  w.setSleep(true, 2.0, 0.01);  // stricter: a sleeping island is not re-judged
+  for (int i = 0; i < 100; ++i) w.step(kDt);
+  EXPECT_EQ(w.awakeBodyCount(), 0);
+  EXPECT_EQ((w.bodyPose(upper).p - pose.p).norm(), 0.0);
+  EXPECT_EQ(w.contacts().size(), contacts);
+  EXPECT_TRUE(w.def().enable_sleep);
+  EXPECT_EQ(w.def().time_to_sleep, 2.0);
+  EXPECT_EQ(w.def().sleep_speed, 0.01);
+
+  w.setSleep(false, 0.5, 0.05);
+  EXPECT_EQ(w.awakeBodyCount(), 2) << "sleep off must wake the sleepers";
+  for (int i = 0; i < 2000; ++i) w.step(kDt);
+  EXPECT_EQ(w.awakeBodyCount(), 2) << "asleep with sleep off";
+  EXPECT_LT((w.bodyPose(upper).p - pose.p).norm(), 1e-3) << "the stack moved once awake";
+
+  // Slow for 0.5 s with sleep on (time_to_sleep 1 s), then off and on again with 0.3 s: the
+  // 0.5 s already counted must not put the stack to sleep at the first step.
+  w.setSleep(true, 1.0, 0.05);
+  for (int i = 0; i < 500; ++i) w.step(kDt);
+  EXPECT_EQ(w.awakeBodyCount(), 2);
+  w.setSleep(false, 1.0, 0.05);
+  const double t_on = 0.3;
+  w.setSleep(true, t_on, 0.05);
+  int steps = 0;
+  while (w.awakeBodyCount() > 0 && steps < 5000) {
+    w.step(kDt);
+    ++steps;
+  }
+  EXPECT_EQ(w.awakeBodyCount(), 0);
+  EXPECT_GE(steps * kDt, t_on - 1e-9) << "slept before time_to_sleep after the switch";
+  EXPECT_LE(steps * kDt, t_on + 0.05) << "the stack was at rest: it sleeps right at t_on";
+
+  const double nan = std::nan("");
+  EXPECT_THROW(w.setSleep(true, -1.0, 0.05), std::invalid_argument);
+  EXPECT_THROW(w.setSleep(true, 0.5, nan), std::invalid_argument);
+  EXPECT_THROW(w.setSleep(false, std::numeric_limits<double>::infinity(), 0.05),
+               std::invalid_argument);
+  EXPECT_TRUE(w.def().enable_sleep);
+  EXPECT_EQ(w.def().time_to_sleep, t_on);
+  EXPECT_EQ(w.awakeBodyCount(), 0);
 }

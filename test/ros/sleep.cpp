@@ -3,7 +3,8 @@
 // with ~sleep/enabled false the same drop keeps every body awake to the end. Then the sleep
 // settings changed at run time through dynamic_reconfigure (sleep_enabled, sleep_time,
 // sleep_speed): off wakes every body and keeps it awake, on with a shorter time puts the
-// resting ragdoll to sleep within that time, and NaN is refused.
+// resting ragdoll to sleep within that time, NaN is refused, and new thresholds while asleep
+// change in place (World::setSleep) without waking anything.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -74,7 +75,7 @@ TEST(Sleep, ReconfiguredAtRunTime) {
   ASSERT_GT(bodies, 1u);
   ASSERT_EQ(on.step(0).awake_bodies, 0u) << "the first test left /sleep_on asleep";
 
-  // Off: the World is rebuilt with the bodies' states, every body wakes and stays awake.
+  // Off: every sleeping body wakes and stays awake.
   ASSERT_TRUE(on.reconfigure({{}, {}, {{"sleep_enabled", false}}}));
   for (int k = 0; k < 8; ++k) {
     const ragdoll_sim::Step::Response r = on.step(kChunk);
@@ -99,6 +100,12 @@ TEST(Sleep, ReconfiguredAtRunTime) {
   EXPECT_DOUBLE_EQ(now_on["sleep_speed"], 0.05);
   EXPECT_DOUBLE_EQ(now_on["sleep_time"], 0.2);
   EXPECT_EQ(on.step(kChunk).awake_bodies, 0u) << "a refused change must not rebuild or wake";
+  // New thresholds while asleep: changed in place, nothing wakes (a rebuilt World would).
+  ASSERT_TRUE(on.reconfigure({{{"sleep_time", 0.3}, {"sleep_speed", 0.04}}, {}, {}}, &now_on));
+  EXPECT_DOUBLE_EQ(now_on["sleep_time"], 0.3);
+  EXPECT_DOUBLE_EQ(now_on["sleep_speed"], 0.04);
+  EXPECT_EQ(on.step(0).awake_bodies, 0u) << "new sleep thresholds woke the sleeping ragdoll";
+  EXPECT_EQ(on.step(kChunk).awake_bodies, 0u);
   std::printf("[ sleep    ] reconfigured: off kept %u bodies awake for 2 s; on with sleep_time "
               "0.2 s asleep after %.3f s; the other node on (0.5 s) after %.3f s\n", bodies,
               slept_on, slept_off);
