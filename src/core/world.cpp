@@ -1238,7 +1238,7 @@ void World::step(double dt) {
     solveRun(0);  // threadCount() is 1
 #endif
   } else if (w.run_work > 0) {
-    for (int t = 0; t < w.threadCount(); ++t) solveRun(t);
+    solveRun(0);  // its own run, then the others' (stolen from the back)
   }
   w.breakJoints();
   for (int i = 0; i < body_count; ++i)
