@@ -211,17 +211,17 @@ int main(int argc, char** argv) {
         else if (k == "joint_zeta") wd.joint_damping_ratio = v;
         else if (k == "contact_hertz") wd.contact_hertz = v;
         else if (k == "contact_zeta") wd.contact_damping_ratio = v;
-        else if (k == "sleep") wd.enable_sleep = v != 0.0;
+        else if (k == "sleep") wd.sleep.enabled = v != 0.0;
         else if (k == "threads") wd.threads = int(v);
         else if (k == "position_iterations") wd.position_iterations = int(v);
         else if (k == "anchor_iterations") wd.anchor_iterations = int(v);
         else if (k == "relax") wd.contact_relax_iterations = int(v);
         else if (k == "joint_relax") wd.joint_relax_iterations = int(v);
-        else if (k == "sleep_speed") wd.sleep_speed = v;
-        else if (k == "time_to_sleep") wd.time_to_sleep = v;
-        else if (k == "rest_substeps") wd.rest_substeps = int(v);
-        else if (k == "rest_time") wd.rest_time = v;
-        else if (k == "rest_relax") wd.rest_relax_iterations = int(v);
+        else if (k == "sleep_speed") wd.sleep.speed = v;
+        else if (k == "time_to_sleep") wd.sleep.time = v;
+        else if (k == "rest_substeps") wd.sleep.rest_substeps = int(v);
+        else if (k == "rest_time") wd.sleep.rest_time = v;
+        else if (k == "rest_relax") wd.sleep.rest_relax_iterations = int(v);
         else if (k == "static_friction_speed") wd.static_friction_speed = v;
         else if (k == "joint_slop") wd.joint_slop = v;
         else if (k == "angular_slop") wd.angular_slop = v;
@@ -303,7 +303,7 @@ int main(int argc, char** argv) {
   // change that only moves when the ragdolls sleep (a change of round-off can: bench/HISTORY.md)
   // from one that changes the cost of a step.
   long awake_body_steps = 0;
-  long resting_body_steps = 0;  // of those, in islands on the rest substeps (WorldDef::rest_substeps)
+  long resting_body_steps = 0;  // of those, in islands on the rest substeps (SleepDef::rest_substeps)
   const int window = std::min(1000, steps);
   const auto loop0 = std::chrono::steady_clock::now();
   for (int step = 1; step <= steps; ++step) {
@@ -382,7 +382,7 @@ int main(int argc, char** argv) {
       sc.id, n, bodies, steps, wall, sps, sps * bodies, 1e6 * wall / (steps * double(bodies)),
       m.max_anchor, m.max_pen, m.max_limit, m.pel_mean, m.pel_min, m.pel_max, m.pen3, m.anchor3,
       m.vmax3, m.worst_joint.c_str(), m.worst_step, m.nan ? 1 : 0, loop_wall, wd.substeps,
-      wd.joint_hertz, wd.contact_hertz, wd.enable_sleep ? 1 : 0, wd.threads, rolling, yaw, world.contacts().size(),
+      wd.joint_hertz, wd.contact_hertz, wd.sleep.enabled ? 1 : 0, wd.threads, rolling, yaw, world.contacts().size(),
       1e6 * wall_first / window, 1e6 * wall_last / window, world.awakeBodyCount(),
       awake_body_steps, resting_body_steps, m.pen_link.c_str(), m.pen_step, m.anchor_joint.c_str(), m.anchor_step, extra.c_str());
   return 0;

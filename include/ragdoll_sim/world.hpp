@@ -15,6 +15,26 @@
 
 namespace ragdoll_sim {
 
+// Sleeping and the rest substeps: read at every step, so World::setSleep changes them while the
+// world runs.
+struct SleepDef {
+  bool enabled = true;
+  double time = 0.5;    // s an island must stay slow before it sleeps
+  double speed = 0.05;  // m/s, max(|v|, extent |w|) below this counts as slow (Box2D v3)
+  // An island whose bodies have all been slow (the sleep test above) for rest_time is solved
+  // with rest_substeps substeps of rest_relax_iterations relax sweeps each, until one of its
+  // bodies moves faster, is woken (a command, a new contact with a moving body) or it sleeps:
+  // the last part of the sleep time costs less. Scenes b and c (callgrind, one thread): -8.1 %
+  // and -4.7 % instructions, asleep at the same step, the same quality metrics; with one
+  // substep a resting ragdoll jitters above the sleep speed and never sleeps. rest_substeps 0
+  // (or not below WorldDef::substeps) turns it off; it needs `enabled` (it reads the sleep
+  // timers). A split island shares its substep loop with the islands solved along with its
+  // halves: it takes the rest substeps only when they all rest too.
+  double rest_time = 0.05;
+  int rest_substeps = 2;
+  int rest_relax_iterations = 1;
+};
+
 struct WorldDef {
   Vec3 gravity = Vec3(0, 0, -9.81);
   // Solver substeps per step (soft step). 3, with contact_hertz 360 and 3 position sweeps,
@@ -68,26 +88,12 @@ struct WorldDef {
   // enters the solver) and after it.
   double max_linear_speed = 100.0;      // m/s
   double max_angular_speed = 200.0;     // rad/s
-  bool enable_sleep = true;
+  SleepDef sleep;                       // sleeping and the rest substeps (World::setSleep)
   // A pair of shapes that both keep last step's box (sleeping or static bodies) or plane is
   // carried over from the last step instead of found and filtered by the broadphase again: its
   // overlap cannot have changed. Off: every pair is found every step (to check; the result is
   // the same bit for bit). 256 ragdolls of which one is awake: ~1.35 -> ~1.0 ms per step.
   bool carry_sleeping_pairs = true;
-  double time_to_sleep = 0.5;           // s an island must stay slow before it sleeps
-  double sleep_speed = 0.05;            // m/s, max(|v|, extent |w|) below this counts as slow (Box2D v3)
-  // An island whose bodies have all been slow (the sleep test above) for rest_time is solved
-  // with rest_substeps substeps of rest_relax_iterations relax sweeps each, until one of its
-  // bodies moves faster, is woken (a command, a new contact with a moving body) or it sleeps:
-  // the last part of time_to_sleep costs less. Scenes b and c (callgrind, one thread): -8.1 %
-  // and -4.7 % instructions, asleep at the same step, the same quality metrics; with one
-  // substep a resting ragdoll jitters above the sleep speed and never sleeps. rest_substeps 0
-  // (or not below substeps) turns it off; it needs enable_sleep (it reads the sleep timers). A
-  // split island shares its substep loop with the islands solved along with its halves: it
-  // takes the rest substeps only when they all rest too.
-  double rest_time = 0.05;
-  int rest_substeps = 2;
-  int rest_relax_iterations = 1;
   MaterialTable materials;              // pair coefficients and the combine rules
   // Islands are solved in parallel on this many threads (0: all cores). The result does not
   // depend on it: islands share no bodies and each is solved in the same order. Default 1:
@@ -113,7 +119,7 @@ struct IslandCounters {
   int bodies = 0;         // awake bodies in the islands
   int joints = 0;         // joints solved
   int contacts = 0;       // contact manifolds solved
-  int resting_islands = 0;  // solved with the rest substeps (WorldDef::rest_substeps)
+  int resting_islands = 0;  // solved with the rest substeps (SleepDef::rest_substeps)
   int resting_bodies = 0;   // bodies in those
 };
 
@@ -155,12 +161,14 @@ class World {
   double time() const;
   const WorldDef& def() const;
   void setGravity(const Vec3& g);
-  // WorldDef's enable_sleep, time_to_sleep and sleep_speed, changed while the world runs:
-  // nothing is rebuilt and no body wakes, except that turning sleep off wakes every sleeping
-  // body (it would never wake by itself). Turning it on restarts every body's slow time, so an
-  // island sleeps time_to_sleep after that at the earliest. Throws std::invalid_argument for a
-  // negative or non-finite time or speed.
-  void setSleep(bool enable, double time_to_sleep, double sleep_speed);
+  // WorldDef::sleep changed while the world runs: nothing is rebuilt and no body wakes,
+  // except that turning sleep off wakes every sleeping body (it would never wake by itself).
+  // Turning it on restarts every body's slow time, so an island sleeps `time` after that at the
+  // earliest and takes the rest substeps rest_time after it. New rest settings apply from the
+  // next step (warm starts are rescaled to a new substep, solver_context.hpp). Throws
+  // std::invalid_argument, changing nothing, for a negative or non-finite time, speed or
+  // rest_time, or a negative rest_substeps or rest_relax_iterations.
+  void setSleep(const SleepDef& sleep);
   // Bodies reset since the last call, oldest first (at most kMaxPendingFaults are kept between
   // calls; bodyFaultCount() counts them all).
   std::vector<BodyFault> takeBodyFaults();

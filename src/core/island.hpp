@@ -1,6 +1,6 @@
 // Islands: dynamic bodies connected through joints or touching contacts (union-find, rebuilt
 // every step in O(bodies + constraints)). An island sleeps as a whole once every body in it
-// has been slow for WorldDef::time_to_sleep, and wakes as a whole when any body in it wakes
+// has been slow for SleepDef::time, and wakes as a whole when any body in it wakes
 // (a command, or a contact with an awake body).
 #pragma once
 

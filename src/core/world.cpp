@@ -9,7 +9,7 @@
 //      starting; scaled by h / h_old where the substep changed, warmStartScale);
 //   2. islands (island.hpp): awake bodies, joints and contacts grouped per island; substep
 //      h = dt / substeps (rest_substeps, with rest_relax_iterations relax sweeps, for an island
-//      whose bodies have all been slow for WorldDef::rest_time; a split island with the
+//      whose bodies have all been slow for SleepDef::rest_time; a split island with the
 //      islands attached to its halves, which share its substep loop);
 //   3. per island (islands in parallel, WorldDef::threads, each thread a run of consecutive
 //      islands, see partitionIslands, then what the other runs have left, run_queue.hpp,
@@ -187,7 +187,7 @@ struct World::Impl {
     // attach[k + 1]). Whole: attached to a split island's half (not in a run).
     int attach[3] = {0, 0, 0};
     bool attached = false;
-    bool resting = false;  // takes WorldDef::rest_substeps (World::step)
+    bool resting = false;  // takes SleepDef::rest_substeps (World::step)
     int work() const {
       return (body_end - body_begin) + (joint_end - joint_begin) + (contact_end - contact_begin);
     }
@@ -308,10 +308,10 @@ struct World::Impl {
     for (int a = r.attach[k]; a < r.attach[k + 1]; ++a) f(island_ranges[attached_islands[a]]);
   }
   void solveIsland(const IslandRange& r, const StepContext& ctx);
-  // Every body of r has been slow for rest_time (WorldDef::rest_substeps).
+  // Every body of r has been slow for rest_time (SleepDef::rest_substeps).
   bool islandResting(const IslandRange& r) const {
     for (int k = r.body_begin; k < r.body_end; ++k)
-      if (!(motions[island_bodies[k]].sleep_time >= def.rest_time)) return false;
+      if (!(motions[island_bodies[k]].sleep_time >= def.sleep.rest_time)) return false;
     return true;
   }
   void integrateVelocities(double h, int begin, int end);
@@ -969,7 +969,7 @@ void World::Impl::buildIslands() {
 }
 
 void World::Impl::updateSleep(double dt) {
-  if (!def.enable_sleep) return;
+  if (!def.sleep.enabled) return;
   const int n = int(bodies.size());
   // island root's sleep_time becomes the island minimum (roots have the smallest index)
   std::vector<double>& slow = island_slow;
@@ -978,13 +978,13 @@ void World::Impl::updateSleep(double dt) {
     BodyMotion& m = motions[i];
     if (!m.awake) continue;
     const double speed = std::max(m.v.norm(), m.extent * m.w.norm());  // as Box2D v3
-    m.sleep_time = speed < def.sleep_speed ? m.sleep_time + dt : 0.0;
+    m.sleep_time = speed < def.sleep.speed ? m.sleep_time + dt : 0.0;
     double& r = slow[islands.find(i)];
     r = std::min(r, m.sleep_time);
   }
   for (int i = 0; i < n; ++i) {
     BodyMotion& m = motions[i];
-    if (!m.awake || slow[islands.find(i)] < def.time_to_sleep) continue;
+    if (!m.awake || slow[islands.find(i)] < def.sleep.time) continue;
     m.awake = false;
     m.v.setZero();
     m.w.setZero();
@@ -1126,10 +1126,10 @@ void World::step(double dt) {
     return c;
   };
   const StepContext ctx = makeContext(substeps, w.def.contact_relax_iterations);
-  const bool rest_mode = w.def.enable_sleep && w.def.rest_substeps > 0 &&
-                         w.def.rest_substeps < substeps;
+  const bool rest_mode = w.def.sleep.enabled && w.def.sleep.rest_substeps > 0 &&
+                         w.def.sleep.rest_substeps < substeps;
   const StepContext rest_ctx =
-      rest_mode ? makeContext(w.def.rest_substeps, w.def.rest_relax_iterations) : ctx;
+      rest_mode ? makeContext(w.def.sleep.rest_substeps, w.def.sleep.rest_relax_iterations) : ctx;
 
   w.guardInputs();
   const bool any_awake =
@@ -1254,23 +1254,22 @@ double World::time() const { return impl_->time; }
 const WorldDef& World::def() const { return impl_->def; }
 void World::setGravity(const Vec3& g) { impl_->def.gravity = g; }
 
-void World::setSleep(bool enable, double time_to_sleep, double sleep_speed) {
-  if (!(time_to_sleep >= 0.0 && std::isfinite(time_to_sleep) && sleep_speed >= 0.0 &&
-        std::isfinite(sleep_speed)))
-    throw std::invalid_argument("ragdoll_sim: setSleep needs a finite time_to_sleep >= 0 and a "
-                                "finite sleep_speed >= 0");
+void World::setSleep(const SleepDef& sleep) {
+  const auto nonneg = [](double x) { return x >= 0.0 && std::isfinite(x); };
+  if (!(nonneg(sleep.time) && nonneg(sleep.speed) && nonneg(sleep.rest_time) &&
+        sleep.rest_substeps >= 0 && sleep.rest_relax_iterations >= 0))
+    throw std::invalid_argument("ragdoll_sim: setSleep needs a finite time, speed and rest_time "
+                                ">= 0, and rest_substeps, rest_relax_iterations >= 0");
   Impl& w = *impl_;
-  if (enable != w.def.enable_sleep) {
+  if (sleep.enabled != w.def.sleep.enabled) {
     // Slow times stood still while sleep was off (updateSleep); a body asleep when it is
     // turned off must move again.
     for (size_t i = 0; i < w.bodies.size(); ++i) {
-      if (!enable && !w.motions[i].awake && w.isDynamic(int(i))) w.wake(int(i));
+      if (!sleep.enabled && !w.motions[i].awake && w.isDynamic(int(i))) w.wake(int(i));
       w.motions[i].sleep_time = 0.0;
     }
   }
-  w.def.enable_sleep = enable;
-  w.def.time_to_sleep = time_to_sleep;
-  w.def.sleep_speed = sleep_speed;
+  w.def.sleep = sleep;
 }
 
 std::vector<BodyFault> World::takeBodyFaults() {

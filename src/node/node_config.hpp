@@ -33,16 +33,6 @@ struct BalanceConfig {
   std::vector<std::string> feet{"foot_l", "foot_r"};      // support links
 };
 
-// Sleeping and the rest substeps (WorldDef, include/ragdoll_sim/world.hpp).
-struct SleepSettings {
-  bool enabled = WorldDef().enable_sleep;
-  double time = WorldDef().time_to_sleep;        // s an island stays slow before it sleeps
-  double speed = WorldDef().sleep_speed;         // m/s, max(|v|, extent |w|) counts as slow below it
-  double rest_time = WorldDef().rest_time;       // s slow before the rest substeps
-  int rest_substeps = WorldDef().rest_substeps;  // 0 = off
-  int rest_relax_iterations = WorldDef().rest_relax_iterations;
-};
-
 struct NodeConfig {
   double physics_rate = 1000.0;        // Hz, fixed physics step = 1 / physics_rate
   double real_time_factor = 1.0;       // sim s per wall s; 0 or inf = as fast as possible
@@ -81,7 +71,7 @@ struct NodeConfig {
   JointSettings joint_defaults;        // ~joint_defaults (config/joints.yaml)
   std::vector<std::pair<std::string, JointSettings>> joints;  // ~joints: name -> settings
   BalanceConfig balance;               // ~balance/...
-  SleepSettings sleep;                 // ~sleep/...
+  SleepDef sleep;                      // ~sleep/... (WorldDef::sleep)
   MarkerSettings markers;              // ~markers/... (publish_markers switches them all)
   PokeSettings poke;                   // ~poke/...
   DragSettings drag;                   // ~drag/...

@@ -307,6 +307,9 @@ ragdoll_sim::PhysicsConfig SimNode::currentPhysics() const {
   c.sleep_enabled = config_.sleep.enabled;
   c.sleep_time = config_.sleep.time;
   c.sleep_speed = config_.sleep.speed;
+  c.rest_time = config_.sleep.rest_time;
+  c.rest_substeps = config_.sleep.rest_substeps;
+  c.rest_relax_iterations = config_.sleep.rest_relax_iterations;
   return c;
 }
 
@@ -328,7 +331,7 @@ void SimNode::onReconfigure(ragdoll_sim::PhysicsConfig& cfg, uint32_t) {
   // (the answer then holds the values in force).
   for (double v : {cfg.gravity_x, cfg.gravity_y, cfg.gravity_z, cfg.time_step,
                    cfg.static_friction, cfg.kinetic_friction, cfg.restitution,
-                   cfg.real_time_factor, cfg.sleep_time, cfg.sleep_speed}) {
+                   cfg.real_time_factor, cfg.sleep_time, cfg.sleep_speed, cfg.rest_time}) {
     if (std::isfinite(v)) continue;
     warn("reconfigure/not finite", "reconfigure rejected: a value is not finite (NaN or inf); "
                                    "the physics parameters stay as they were");
@@ -356,9 +359,9 @@ void SimNode::onReconfigure(ragdoll_sim::PhysicsConfig& cfg, uint32_t) {
     config_.real_time_factor = cfg.real_time_factor;
     restartPacing();
   }
-  // Sleep changes in place (World::setSleep: nothing wakes unless sleep goes off). Solver
-  // settings and materials live in the World and its shapes: rebuild it, carrying every body's
-  // state, broken joint and motor over (every body wakes).
+  // Sleep and rest settings change in place (World::setSleep: nothing wakes unless sleep goes
+  // off). Solver settings and materials live in the World and its shapes: rebuild it, carrying
+  // every body's state, broken joint and motor over (every body wakes).
   bool rebuild = false;
   if (cfg.substeps != config_.substeps || cfg.position_iterations != config_.position_iterations) {
     log << " substeps " << cfg.substeps << ", position_iterations " << cfg.position_iterations;
@@ -383,12 +386,25 @@ void SimNode::onReconfigure(ragdoll_sim::PhysicsConfig& cfg, uint32_t) {
     log << " sleep " << (cfg.sleep_enabled ? "on" : "off") << ", after " << cfg.sleep_time
         << " s below " << cfg.sleep_speed << " m/s"
         << (!cfg.sleep_enabled && old.sleep_enabled ? " (sleeping bodies wake)" : "");
-    config_.sleep.enabled = cfg.sleep_enabled;
-    config_.sleep.time = cfg.sleep_time;
-    config_.sleep.speed = cfg.sleep_speed;
-    // The .cfg ranges keep both >= 0, and NaN was refused above: setSleep cannot throw.
-    world_->setSleep(cfg.sleep_enabled, cfg.sleep_time, cfg.sleep_speed);
   }
+  if (cfg.rest_time != old.rest_time || cfg.rest_substeps != old.rest_substeps ||
+      cfg.rest_relax_iterations != old.rest_relax_iterations) {
+    log << " rest substeps " << cfg.rest_substeps << " of " << cfg.rest_relax_iterations
+        << " relax sweeps after " << cfg.rest_time << " s slow"
+        << (cfg.rest_substeps == 0 || cfg.rest_substeps >= config_.substeps ? " (off)" : "");
+  }
+  SleepDef sleep = config_.sleep;
+  sleep.enabled = cfg.sleep_enabled;
+  sleep.time = cfg.sleep_time;
+  sleep.speed = cfg.sleep_speed;
+  sleep.rest_time = cfg.rest_time;
+  sleep.rest_substeps = cfg.rest_substeps;
+  sleep.rest_relax_iterations = cfg.rest_relax_iterations;
+  if (!rebuild) {
+    // The .cfg ranges keep every value >= 0, and NaN was refused above: it cannot throw.
+    world_->setSleep(sleep);
+  }
+  config_.sleep = sleep;  // a rebuild reads it
   if (rebuild) {
     std::string e;
     if (!buildWorld(/*carry_state=*/true, &e)) ROS_ERROR("reconfigure: %s", e.c_str());

@@ -54,12 +54,7 @@ WorldDef SimNode::worldDef() const {
   wd.materials = config_.materials;
   wd.max_linear_speed = config_.max_linear_speed;
   wd.max_angular_speed = config_.max_angular_speed;
-  wd.enable_sleep = config_.sleep.enabled;
-  wd.time_to_sleep = config_.sleep.time;
-  wd.sleep_speed = config_.sleep.speed;
-  wd.rest_time = config_.sleep.rest_time;
-  wd.rest_substeps = config_.sleep.rest_substeps;
-  wd.rest_relax_iterations = config_.sleep.rest_relax_iterations;
+  wd.sleep = config_.sleep;
   return wd;
 }
 

@@ -193,7 +193,7 @@ class Loader {
   void excludeRestOverlaps() {
     WorldDef wd;
     wd.gravity = Vec3::Zero();
-    wd.enable_sleep = false;
+    wd.sleep.enabled = false;
     World world(wd);
     const Ragdoll r = spawnRagdoll(world, def_, Transform());
     world.step(1e-9);

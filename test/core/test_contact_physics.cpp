@@ -186,7 +186,7 @@ TEST(Sleep, SlowestOfDriftAndSpinDecides) {
     const double r = 0.1, m = 1.0;
     const BodyId b = addBody(w, Geometry::sphere(r), m, Mat3::Identity() * 0.4 * m * r * r,
                              Transform(), Material());
-    w.setBodyState(b, Transform(), Vec3(f * wd.sleep_speed, 0, 0), Vec3(0, 0, f * wd.sleep_speed / r));
+    w.setBodyState(b, Transform(), Vec3(f * wd.sleep.speed, 0, 0), Vec3(0, 0, f * wd.sleep.speed / r));
     for (int i = 0; i < 1000; ++i) w.step(kDt);
     EXPECT_EQ(w.isAwake(b), f > 1.0) << "speed factor " << f;
   }

@@ -24,7 +24,7 @@ struct Chains {
 
   explicit Chains(int threads) {
     WorldDef def;
-    def.enable_sleep = false;
+    def.sleep.enabled = false;
     def.threads = threads;
     world = std::make_unique<World>(def);
     addGround(*world);

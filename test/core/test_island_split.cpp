@@ -149,7 +149,7 @@ struct Raft {
   explicit Raft(int threads) {
     WorldDef def;
     def.gravity.setZero();
-    def.enable_sleep = false;
+    def.sleep.enabled = false;
     def.threads = threads;
     world = std::make_unique<World>(def);
     add(Vec3::Zero());
@@ -268,7 +268,7 @@ TEST(SplitIsland, OtherIslandsGoAlongWithTheHalvesUnchanged) {
     const std::vector<BodyId> chains = addChains(*with.world);
     WorldDef def;
     def.gravity.setZero();
-    def.enable_sleep = false;
+    def.sleep.enabled = false;
     def.threads = threads;
     World chains_world(def);
     const std::vector<BodyId> chains_alone = addChains(chains_world);

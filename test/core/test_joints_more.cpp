@@ -71,7 +71,7 @@ WorldDef zeroG() {
 // Settling is measured on the solver alone: a body that went to sleep would hold still anyway.
 WorldDef noSleep() {
   WorldDef d;
-  d.enable_sleep = false;
+  d.sleep.enabled = false;
   return d;
 }
 
@@ -627,7 +627,7 @@ TEST(JointProjection, SliderWeldAndHingeAxisComeBackWithoutVelocity) {
   for (const bool on : {true, false}) {
     for (int kind = 0; kind < 5; ++kind) {
       WorldDef d = zeroG();
-      d.enable_sleep = false;
+      d.sleep.enabled = false;
       d.joint_hertz = 1.0;
       if (!on) d.joint_slop = d.angular_slop = 1e9;
       World w(d);
@@ -716,7 +716,7 @@ TEST(PositionSweeps, EachProjectionThatMovesABodyLetsTheNextSweepRun) {
     double error_after[2] = {0, 0};
     for (const int sweeps : {1, 3}) {
       WorldDef d = zeroG();
-      d.enable_sleep = false;
+      d.sleep.enabled = false;
       d.joint_hertz = 1.0;
       d.position_iterations = sweeps;
       d.anchor_iterations = 0;
@@ -796,7 +796,7 @@ TEST(PositionSweeps, EachProjectionThatMovesABodyLetsTheNextSweepRun) {
 // would be skipped, C would stay and B-C would end 0.1 m open.
 TEST(PositionSweeps, AMovedBodyMakesItsOtherJointsLookAgain) {
   WorldDef d = zeroG();
-  d.enable_sleep = false;
+  d.sleep.enabled = false;
   d.joint_hertz = 1.0;
   d.anchor_iterations = 0;
   World w(d);
@@ -859,7 +859,7 @@ TEST(LimitProjection, TurnsAViolatedLimitBackWithoutAddingVelocity) {
   for (const double slop : {WorldDef().angular_slop, 1e9}) {
     for (int kind = 0; kind < 4; ++kind) {
       WorldDef d = zeroG();
-      d.enable_sleep = false;
+      d.sleep.enabled = false;
       d.joint_hertz = 1.0;
       d.angular_slop = slop;
       World w(d);

@@ -352,7 +352,7 @@ TEST(ManifoldCache, RollingOnTheFlatKeepsItsSpeed) {
   for (const double v0 : {0.1, 0.3}) {
     for (const bool capsule : {false, true}) {
       WorldDef def;
-      def.enable_sleep = false;
+      def.sleep.enabled = false;
       World w(def);
       addGround(w);
       const double r = 0.05, hh = 0.15, mass = 2.0;

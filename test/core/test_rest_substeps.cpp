@@ -1,4 +1,4 @@
-// Resting islands on fewer substeps (WorldDef::rest_substeps): when an island takes them, that
+// Resting islands on fewer substeps (SleepDef::rest_substeps): when an island takes them, that
 // it leaves them as soon as something in it moves, and that what rests on them stays put and
 // sleeps as it does on the full count.
 #include <gtest/gtest.h>
@@ -19,7 +19,7 @@ constexpr double kDt = 1e-3;
 
 WorldDef withRest(bool on) {
   WorldDef d;
-  if (!on) d.rest_substeps = 0;
+  if (!on) d.sleep.rest_substeps = 0;
   return d;
 }
 
@@ -38,8 +38,8 @@ int stepsToSleep(World& w, int max_steps) {
 // step after an impulse (which wakes it and restarts its sleep timer).
 TEST(RestSubsteps, TakenAfterRestTimeAndLeftOnImpulse) {
   const WorldDef def;
-  ASSERT_GT(def.rest_substeps, 0);
-  ASSERT_LT(def.rest_substeps, def.substeps);
+  ASSERT_GT(def.sleep.rest_substeps, 0);
+  ASSERT_LT(def.sleep.rest_substeps, def.substeps);
   World w(def);
   addGround(w);
   const Vec3 half(0.2, 0.2, 0.1);
@@ -50,7 +50,7 @@ TEST(RestSubsteps, TakenAfterRestTimeAndLeftOnImpulse) {
     const BodyState s = w.bodyState(box);
     // the sleep test: max(|v|, extent |w|), extent = the box's farthest point from its centre
     const bool slow = std::max(s.linear_velocity.norm(), half.norm() * s.angular_velocity.norm()) <
-                      def.sleep_speed;
+                      def.sleep.speed;
     if (!slow) slow_from = -1;
     else if (slow_from < 0) slow_from = i;
     if (w.islandCounters().resting_bodies > 0) resting_from = i;
@@ -58,7 +58,7 @@ TEST(RestSubsteps, TakenAfterRestTimeAndLeftOnImpulse) {
   ASSERT_GT(resting_from, 0) << "never took the rest substeps";
   ASSERT_GT(slow_from, 0);
   // The step that finds the island slow for rest_time is solved after that many slow steps.
-  EXPECT_GE(resting_from - slow_from, int(def.rest_time / kDt) - 1);
+  EXPECT_GE(resting_from - slow_from, int(def.sleep.rest_time / kDt) - 1);
   EXPECT_EQ(w.islandCounters().resting_islands, 1);
   EXPECT_TRUE(w.isAwake(box));
 
@@ -67,6 +67,45 @@ TEST(RestSubsteps, TakenAfterRestTimeAndLeftOnImpulse) {
   EXPECT_EQ(w.islandCounters().resting_bodies, 0);
   EXPECT_EQ(w.islandCounters().bodies, 1);
   std::printf("[ rest     ] slow from step %d, rest substeps from step %d\n", slow_from, resting_from);
+}
+
+// The rest settings changed in place (World::setSleep) apply from the next step: a box resting
+// on the rest substeps leaves them when rest_substeps goes to 0 or rest_time grows past the time
+// it has been slow, and takes them again when they come back, without waking or moving.
+TEST(RestSubsteps, SettingsChangedInPlace) {
+  World w;
+  addGround(w);
+  const BodyId box = addBox(w, Vec3(0.2, 0.2, 0.1), 2.0, Vec3(0, 0, 0.11));
+  SleepDef sleep = w.def().sleep;
+  sleep.time = 10.0;  // stays awake through the test
+  w.setSleep(sleep);
+  for (int i = 0; i < 300; ++i) w.step(kDt);
+  ASSERT_EQ(w.islandCounters().resting_islands, 1);
+  const Vec3 p0 = w.bodyPose(box).p;
+
+  SleepDef off = sleep;
+  off.rest_substeps = 0;
+  w.setSleep(off);
+  w.step(kDt);
+  EXPECT_EQ(w.islandCounters().resting_islands, 0) << "rest_substeps 0 must turn them off";
+  EXPECT_EQ(w.def().sleep.rest_substeps, 0);
+  w.setSleep(sleep);
+  w.step(kDt);
+  EXPECT_EQ(w.islandCounters().resting_islands, 1) << "back on: the box has been slow long";
+
+  // Slow for ~0.3 s: a rest_time of 1 s is not reached yet, and is 0.7 s later.
+  SleepDef later = sleep;
+  later.rest_time = 1.0;
+  w.setSleep(later);
+  int steps = 0;
+  do {
+    w.step(kDt);
+    ++steps;
+  } while (w.islandCounters().resting_islands == 0 && steps < 2000);
+  EXPECT_GT(steps, 600) << "rest_time 1 s taken too early";
+  EXPECT_LT(steps, 800) << "rest_time 1 s not taken about 0.7 s later";
+  EXPECT_TRUE(w.isAwake(box));
+  EXPECT_LT((w.bodyPose(box).p - p0).norm(), 1e-4) << "the box moved at the switches";
 }
 
 // Off (rest_substeps 0) no island ever takes them.

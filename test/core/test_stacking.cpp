@@ -128,7 +128,7 @@ int stepUntilAsleep(World& w) {
 // quarter of the load: 55 um and 1.2e-2 m/s.
 TEST(Stacking, WarmStartCarriesTheLoadToANewTimeStep) {
   WorldDef def;
-  def.enable_sleep = false;  // neither asleep nor on the rest substeps when dt changes
+  def.sleep.enabled = false;  // neither asleep nor on the rest substeps when dt changes
   World w(def);
   addGround(w);
   const Vec3 half(0.2, 0.2, 0.1);
@@ -311,6 +311,16 @@ TEST(Penetration, CorrectionSplitsByInverseMassWithoutEnergy) {
 // awake; sleep on again puts them to sleep time_to_sleep after the switch at the earliest (the
 // slow times restart, even those counted before sleep went off); a bad value throws and changes
 // nothing.
+namespace {
+SleepDef sleepDef(bool enabled, double time, double speed) {
+  SleepDef d;
+  d.enabled = enabled;
+  d.time = time;
+  d.speed = speed;
+  return d;
+}
+}  // namespace
+
 TEST(Sleeping, SettingsChangedInPlace) {
   World w;
   addGround(w);
@@ -320,16 +330,16 @@ TEST(Sleeping, SettingsChangedInPlace) {
   const Transform pose = w.bodyPose(upper);
   const size_t contacts = w.contacts().size();
 
-  w.setSleep(true, 2.0, 0.01);  // stricter: a sleeping island is not re-judged
+  w.setSleep(sleepDef(true, 2.0, 0.01));  // stricter: a sleeping island is not re-judged
   for (int i = 0; i < 100; ++i) w.step(kDt);
   EXPECT_EQ(w.awakeBodyCount(), 0);
   EXPECT_EQ((w.bodyPose(upper).p - pose.p).norm(), 0.0);
   EXPECT_EQ(w.contacts().size(), contacts);
-  EXPECT_TRUE(w.def().enable_sleep);
-  EXPECT_EQ(w.def().time_to_sleep, 2.0);
-  EXPECT_EQ(w.def().sleep_speed, 0.01);
+  EXPECT_TRUE(w.def().sleep.enabled);
+  EXPECT_EQ(w.def().sleep.time, 2.0);
+  EXPECT_EQ(w.def().sleep.speed, 0.01);
 
-  w.setSleep(false, 0.5, 0.05);
+  w.setSleep(sleepDef(false, 0.5, 0.05));
   EXPECT_EQ(w.awakeBodyCount(), 2) << "sleep off must wake the sleepers";
   for (int i = 0; i < 2000; ++i) w.step(kDt);
   EXPECT_EQ(w.awakeBodyCount(), 2) << "asleep with sleep off";
@@ -337,12 +347,12 @@ TEST(Sleeping, SettingsChangedInPlace) {
 
   // Slow for 0.5 s with sleep on (time_to_sleep 1 s), then off and on again with 0.3 s: the
   // 0.5 s already counted must not put the stack to sleep at the first step.
-  w.setSleep(true, 1.0, 0.05);
+  w.setSleep(sleepDef(true, 1.0, 0.05));
   for (int i = 0; i < 500; ++i) w.step(kDt);
   EXPECT_EQ(w.awakeBodyCount(), 2);
-  w.setSleep(false, 1.0, 0.05);
+  w.setSleep(sleepDef(false, 1.0, 0.05));
   const double t_on = 0.3;
-  w.setSleep(true, t_on, 0.05);
+  w.setSleep(sleepDef(true, t_on, 0.05));
   int steps = 0;
   while (w.awakeBodyCount() > 0 && steps < 5000) {
     w.step(kDt);
@@ -353,11 +363,20 @@ TEST(Sleeping, SettingsChangedInPlace) {
   EXPECT_LE(steps * kDt, t_on + 0.05) << "the stack was at rest: it sleeps right at t_on";
 
   const double nan = std::nan("");
-  EXPECT_THROW(w.setSleep(true, -1.0, 0.05), std::invalid_argument);
-  EXPECT_THROW(w.setSleep(true, 0.5, nan), std::invalid_argument);
-  EXPECT_THROW(w.setSleep(false, std::numeric_limits<double>::infinity(), 0.05),
+  EXPECT_THROW(w.setSleep(sleepDef(true, -1.0, 0.05)), std::invalid_argument);
+  EXPECT_THROW(w.setSleep(sleepDef(true, 0.5, nan)), std::invalid_argument);
+  EXPECT_THROW(w.setSleep(sleepDef(false, std::numeric_limits<double>::infinity(), 0.05)),
                std::invalid_argument);
-  EXPECT_TRUE(w.def().enable_sleep);
-  EXPECT_EQ(w.def().time_to_sleep, t_on);
+  SleepDef bad = sleepDef(true, 0.5, 0.05);
+  bad.rest_time = nan;
+  EXPECT_THROW(w.setSleep(bad), std::invalid_argument);
+  bad.rest_time = 0.05;
+  bad.rest_substeps = -1;
+  EXPECT_THROW(w.setSleep(bad), std::invalid_argument);
+  bad.rest_substeps = 2;
+  bad.rest_relax_iterations = -1;
+  EXPECT_THROW(w.setSleep(bad), std::invalid_argument);
+  EXPECT_TRUE(w.def().sleep.enabled);
+  EXPECT_EQ(w.def().sleep.time, t_on);
   EXPECT_EQ(w.awakeBodyCount(), 0);
 }

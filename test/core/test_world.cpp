@@ -209,7 +209,7 @@ TEST(World, BallJointEulerLimitsHold) {
 // the arm would cross it within the substep.
 TEST(World, BallJointEulerLimitsHoldWhenSpunFast) {
   WorldDef wd;
-  wd.enable_sleep = false;
+  wd.sleep.enabled = false;
   // Each spin and its reverse: every axis runs into its lower and its upper limit first.
   for (const Vec3& spin : {Vec3(40.0, -30.0, 50.0), Vec3(-120.0, 80.0, 100.0),
                            Vec3(0.0, 150.0, -60.0), Vec3(-40.0, 30.0, -50.0),

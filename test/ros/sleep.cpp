@@ -2,9 +2,10 @@
 // to rest and sleeps within 10 s of sim time (~step's awake_bodies reaches 0), and stays asleep;
 // with ~sleep/enabled false the same drop keeps every body awake to the end. Then the sleep
 // settings changed at run time through dynamic_reconfigure (sleep_enabled, sleep_time,
-// sleep_speed): off wakes every body and keeps it awake, on with a shorter time puts the
-// resting ragdoll to sleep within that time, NaN is refused, and new thresholds while asleep
-// change in place (World::setSleep) without waking anything.
+// sleep_speed, rest_time, rest_substeps, rest_relax_iterations): the answers start from the
+// nodes' parameters, off wakes every body and keeps it awake, on with a shorter time puts the
+// resting ragdoll to sleep within that time, NaN is refused, and new thresholds and rest
+// settings while asleep change in place (World::setSleep) without waking anything.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -71,6 +72,10 @@ TEST(Sleep, ReconfiguredAtRunTime) {
   EXPECT_EQ(now_off["sleep_enabled"], 0.0) << "~sleep/enabled false from the launch file";
   EXPECT_DOUBLE_EQ(now_on["sleep_time"], 0.5);
   EXPECT_DOUBLE_EQ(now_on["sleep_speed"], 0.05);
+  EXPECT_DOUBLE_EQ(now_on["rest_time"], 0.05);
+  EXPECT_EQ(now_on["rest_substeps"], 2.0);
+  EXPECT_EQ(now_on["rest_relax_iterations"], 1.0);
+  EXPECT_EQ(now_off["rest_substeps"], 0.0) << "~sleep/rest_substeps 0 from the launch file";
   const uint32_t bodies = off.step(0).awake_bodies;
   ASSERT_GT(bodies, 1u);
   ASSERT_EQ(on.step(0).awake_bodies, 0u) << "the first test left /sleep_on asleep";
@@ -106,6 +111,16 @@ TEST(Sleep, ReconfiguredAtRunTime) {
   EXPECT_DOUBLE_EQ(now_on["sleep_speed"], 0.04);
   EXPECT_EQ(on.step(0).awake_bodies, 0u) << "new sleep thresholds woke the sleeping ragdoll";
   EXPECT_EQ(on.step(kChunk).awake_bodies, 0u);
+  // The rest substeps' settings too (a NaN rest_time is refused whole).
+  ASSERT_TRUE(on.reconfigure({{{"rest_time", nan}}, {{"rest_substeps", 0}}, {}}, &now_on));
+  EXPECT_DOUBLE_EQ(now_on["rest_time"], 0.05);
+  EXPECT_EQ(now_on["rest_substeps"], 2.0) << "refused whole";
+  ASSERT_TRUE(on.reconfigure(
+      {{{"rest_time", 0.1}}, {{"rest_substeps", 1}, {"rest_relax_iterations", 2}}, {}}, &now_on));
+  EXPECT_DOUBLE_EQ(now_on["rest_time"], 0.1);
+  EXPECT_EQ(now_on["rest_substeps"], 1.0);
+  EXPECT_EQ(now_on["rest_relax_iterations"], 2.0);
+  EXPECT_EQ(on.step(kChunk).awake_bodies, 0u) << "new rest settings woke the sleeping ragdoll";
   std::printf("[ sleep    ] reconfigured: off kept %u bodies awake for 2 s; on with sleep_time "
               "0.2 s asleep after %.3f s; the other node on (0.5 s) after %.3f s\n", bodies,
               slept_on, slept_off);

@@ -70,7 +70,7 @@ struct Scene {
   static WorldDef zeroG() {
     WorldDef d;
     d.gravity.setZero();
-    d.enable_sleep = false;  // shapeless bodies count as slow whatever their spin
+    d.sleep.enabled = false;  // shapeless bodies count as slow whatever their spin
     return d;
   }
   // Relative spin of b on a about world axis n.

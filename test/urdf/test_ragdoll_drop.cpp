@@ -140,7 +140,7 @@ TEST(RagdollDrop, SameFallWhereverItIs) {
 TEST(RagdollDrop, OffGridSpawnSettlesInZeroGravity) {
   WorldDef wd;
   wd.gravity.setZero();
-  wd.enable_sleep = false;
+  wd.sleep.enabled = false;
   Scene s(wd, Transform(Vec3(0.123456789, -0.987654321, 5.0), quatFromRpy(0.1, 0.2, 0.3)));
   std::vector<Vec3> last(s.ragdoll.bodies.size(), Vec3::Zero());
   double kick = 0.0, vmax = 0.0;

@@ -93,7 +93,7 @@ TEST(RagdollHits, HandImpulseOf100NsKeepsAnchorsTogether) {
 TEST(RagdollHits, LimbsRestingOnLimitsDoNotJitter) {
   const RagdollDef def = bundled();
   WorldDef wd;
-  wd.enable_sleep = false;  // a sleeping body would pass trivially
+  wd.sleep.enabled = false;  // a sleeping body would pass trivially
   World w(wd);
   addGround(w);
   const Ragdoll r = spawnRagdoll(w, def, Transform(Vec3(0, 0, 1.2), quatFromRpy(0.4, 0.3, 0)));
@@ -148,7 +148,7 @@ TEST(RagdollHits, LyingRagdollDoesNotCreep) {
   std::vector<double> travel;
   for (const auto& d : drops) {
     WorldDef wd;
-    wd.enable_sleep = false;  // a sleeping body would pass trivially
+    wd.sleep.enabled = false;  // a sleeping body would pass trivially
     World w(wd);
     Material mat;
     mat.static_friction = mat.kinetic_friction = 0.8;
