@@ -245,6 +245,7 @@ void SimNode::publishStats(const ros::Time& stamp) {
   m.skipped_steps = static_cast<uint64_t>(pacer_.droppedSteps());
   m.sim_time = simTime();
   m.awake_bodies = static_cast<uint32_t>(world_->awakeBodyCount());
+  m.resting_bodies = static_cast<uint32_t>(world_->islandCounters().resting_bodies);
   stats_pub_.publish(m);
 }
 

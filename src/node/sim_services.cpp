@@ -126,6 +126,7 @@ bool SimNode::onStep(ragdoll_sim::Step::Request& req, ragdoll_sim::Step::Respons
   res.sim_time = simTime();
   res.pending_commands = static_cast<uint32_t>(queue_.size());
   res.awake_bodies = static_cast<uint32_t>(world_->awakeBodyCount());
+  res.resting_bodies = static_cast<uint32_t>(world_->islandCounters().resting_bodies);
   return true;
 }
 

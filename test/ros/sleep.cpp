@@ -5,7 +5,9 @@
 // sleep_speed, rest_time, rest_substeps, rest_relax_iterations): the answers start from the
 // nodes' parameters, off wakes every body and keeps it awake, on with a shorter time puts the
 // resting ragdoll to sleep within that time, NaN is refused, and new thresholds and rest
-// settings while asleep change in place (World::setSleep) without waking anything.
+// settings while asleep change in place (World::setSleep) without waking anything; ~step's
+// resting_bodies shows the rest substeps taken after rest_time, off with rest_substeps 0 and
+// back when they return.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -121,6 +123,26 @@ TEST(Sleep, ReconfiguredAtRunTime) {
   EXPECT_EQ(now_on["rest_substeps"], 1.0);
   EXPECT_EQ(now_on["rest_relax_iterations"], 2.0);
   EXPECT_EQ(on.step(kChunk).awake_bodies, 0u) << "new rest settings woke the sleeping ragdoll";
+
+  // Their effect, seen in ~step's resting_bodies: woken (sleep off, then on with a long sleep
+  // time), the resting ragdoll takes the rest substeps after rest_time, leaves them at the next
+  // step when rest_substeps goes to 0 and takes them again when they come back.
+  ASSERT_TRUE(on.reconfigure({{{"sleep_time", 10.0}, {"rest_time", 0.05}},
+                              {{"rest_substeps", 2}, {"rest_relax_iterations", 1}},
+                              {{"sleep_enabled", false}}}));
+  ASSERT_TRUE(on.reconfigure({{}, {}, {{"sleep_enabled", true}}}));
+  const ragdoll_sim::Step::Response woken = on.step(1);
+  EXPECT_EQ(woken.awake_bodies, bodies);
+  EXPECT_EQ(woken.resting_bodies, 0u) << "resting before rest_time";
+  const ragdoll_sim::Step::Response rested = on.step(200);
+  EXPECT_EQ(rested.awake_bodies, bodies);
+  EXPECT_EQ(rested.resting_bodies, bodies) << "the ragdoll at rest for 0.2 s is not resting";
+  ASSERT_TRUE(on.reconfigure({{}, {{"rest_substeps", 0}}, {}}));
+  const ragdoll_sim::Step::Response rest_off = on.step(1);
+  EXPECT_EQ(rest_off.resting_bodies, 0u) << "rest_substeps 0 must turn them off";
+  EXPECT_EQ(rest_off.awake_bodies, bodies);
+  ASSERT_TRUE(on.reconfigure({{}, {{"rest_substeps", 2}}, {}}));
+  EXPECT_EQ(on.step(1).resting_bodies, bodies) << "back on: the ragdoll has been slow long";
   std::printf("[ sleep    ] reconfigured: off kept %u bodies awake for 2 s; on with sleep_time "
               "0.2 s asleep after %.3f s; the other node on (0.5 s) after %.3f s\n", bodies,
               slept_on, slept_off);
