@@ -33,6 +33,10 @@ struct SleepDef {
   double rest_time = 0.05;
   int rest_substeps = 2;
   int rest_relax_iterations = 1;
+  // Whether resting islands take the rest substeps under `substeps` full ones.
+  bool restOn(int substeps) const {
+    return enabled && rest_substeps > 0 && rest_substeps < substeps;
+  }
 };
 
 struct WorldDef {

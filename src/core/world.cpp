@@ -1126,8 +1126,7 @@ void World::step(double dt) {
     return c;
   };
   const StepContext ctx = makeContext(substeps, w.def.contact_relax_iterations);
-  const bool rest_mode = w.def.sleep.enabled && w.def.sleep.rest_substeps > 0 &&
-                         w.def.sleep.rest_substeps < substeps;
+  const bool rest_mode = w.def.sleep.restOn(substeps);
   const StepContext rest_ctx =
       rest_mode ? makeContext(w.def.sleep.rest_substeps, w.def.sleep.rest_relax_iterations) : ctx;
 

@@ -388,28 +388,26 @@ void SimNode::onReconfigure(ragdoll_sim::PhysicsConfig& cfg, uint32_t) {
         << " s below " << cfg.sleep_speed << " m/s"
         << (!cfg.sleep_enabled && old.sleep_enabled ? " (sleeping bodies wake)" : "");
   }
-  if (cfg.rest_time != old.rest_time || cfg.rest_substeps != old.rest_substeps ||
-      cfg.rest_relax_iterations != old.rest_relax_iterations) {
-    log << " rest substeps " << cfg.rest_substeps << " of " << cfg.rest_relax_iterations
-        << " relax sweeps after " << cfg.rest_time << " s slow"
-        << (cfg.rest_substeps == 0 || cfg.rest_substeps >= config_.substeps ? " (off)" : "");
-  }
-  SleepDef sleep = config_.sleep;
+  SleepDef& sleep = config_.sleep;  // a rebuild reads it
   sleep.enabled = cfg.sleep_enabled;
   sleep.time = cfg.sleep_time;
   sleep.speed = cfg.sleep_speed;
   sleep.rest_time = cfg.rest_time;
   sleep.rest_substeps = cfg.rest_substeps;
   sleep.rest_relax_iterations = cfg.rest_relax_iterations;
-  if (!rebuild) {
-    // The .cfg ranges keep every value >= 0, and NaN was refused above: it cannot throw.
-    world_->setSleep(sleep);
+  if (cfg.rest_time != old.rest_time || cfg.rest_substeps != old.rest_substeps ||
+      cfg.rest_relax_iterations != old.rest_relax_iterations) {
+    log << " rest substeps " << cfg.rest_substeps << " of " << cfg.rest_relax_iterations
+        << " relax sweeps after " << cfg.rest_time << " s slow"
+        << (sleep.restOn(config_.substeps) ? "" : " (off)");
   }
-  config_.sleep = sleep;  // a rebuild reads it
   if (rebuild) {
     std::string e;
     if (!buildWorld(/*carry_state=*/true, &e)) ROS_ERROR("reconfigure: %s", e.c_str());
     structureChanged();
+  } else {
+    // The .cfg ranges keep every value >= 0, and NaN was refused above: it cannot throw.
+    world_->setSleep(sleep);
   }
   const std::string changes = log.str();
   if (!changes.empty() && reconfigure_ready_)
