@@ -246,6 +246,10 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  if (const std::string e = worldDefError(wd); !e.empty()) {
+    std::fprintf(stderr, "bench_ragdoll: --opt: %s\n", e.c_str());
+    return 2;
+  }
   if (n_ragdolls >= 0 && scenario != 'g') {
     std::fprintf(stderr, "bench_ragdoll: --ragdolls is only for scene g\n");
     return 2;

@@ -15,6 +15,10 @@ enum class CombineRule { GeometricMean, Average, Min, Max };
 bool parseCombineRule(const std::string& text, CombineRule* rule);
 double combine(CombineRule rule, double a, double b);
 
+// "" when every coefficient is finite and >= 0 and restitution <= 1, else the first that is not,
+// named as in Material ("restitution must be a finite number in [0, 1], got 1.5").
+std::string materialError(const Material& m);
+
 class MaterialTable {
  public:
   CombineRule friction_rule = CombineRule::GeometricMean;
@@ -31,6 +35,9 @@ class MaterialTable {
   void setPair(int a, int b, const Material& pair);
   // The pair's listed coefficients, else the combination of the two surfaces' own.
   Material resolve(const Material& a, const Material& b) const;
+  // "" when every material and pair entry passes materialError, else which does not
+  // ("materials 'ice': kinetic_friction must be ...", "materials pair 'ice'/'rubber': ...").
+  std::string error() const;
 
  private:
   std::vector<std::string> names_{""};

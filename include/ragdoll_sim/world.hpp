@@ -39,6 +39,11 @@ struct SleepDef {
   }
 };
 
+// "" when the settings can be used, else what is wrong with the first field that cannot, named
+// as in the struct ("speed must be a finite number >= 0, got -1"): time, speed and rest_time
+// finite and >= 0, rest_substeps and rest_relax_iterations >= 0.
+std::string sleepDefError(const SleepDef& sleep);
+
 struct WorldDef {
   Vec3 gravity = Vec3(0, 0, -9.81);
   // Solver substeps per step (soft step). 3, with contact_hertz 360 and 3 position sweeps,
@@ -104,7 +109,14 @@ struct WorldDef {
   // on a machine whose cores are busy (tests, rviz), waiting for a preempted worker costs
   // more than it gains. The node's `~threads` and the benchmark's `--opt threads=N` set it.
   int threads = 1;
+  static constexpr int kMaxThreads = 256;
 };
+
+// "" when the World can simulate with these settings, else what is wrong with the first field
+// that it cannot, named as in the struct ("sleep.speed must be a finite number >= 0, got -1",
+// "contact_hertz must be ..."): the ranges are in src/core/world_def.cpp. World's constructor
+// throws std::invalid_argument with it; the node names its parameters after the same fields.
+std::string worldDefError(const WorldDef& def);
 
 // A contact point for display and tests.
 struct ContactInfo {
@@ -143,6 +155,7 @@ struct BodyFault {
 
 class World {
  public:
+  // Throws std::invalid_argument with worldDefError's message for settings it cannot use.
   explicit World(const WorldDef& def = WorldDef());
   ~World();
   World(const World&) = delete;
@@ -150,6 +163,7 @@ class World {
 
   // --- building -------------------------------------------------------------------------
   BodyId createBody(const BodyDef& def);
+  // Throws std::invalid_argument for a material that materialError refuses.
   void addShape(BodyId body, const ShapeDef& def);
   JointId createBallJoint(const BallJointDef& def);
   JointId createHingeJoint(const HingeJointDef& def);
@@ -170,8 +184,8 @@ class World {
   // Turning it on restarts every body's slow time, so an island sleeps `time` after that at the
   // earliest and takes the rest substeps rest_time after it. New rest settings apply from the
   // next step (warm starts are rescaled to a new substep, solver_context.hpp). Throws
-  // std::invalid_argument, changing nothing, for a negative or non-finite time, speed or
-  // rest_time, or a negative rest_substeps or rest_relax_iterations.
+  // std::invalid_argument with sleepDefError's message, changing nothing, for settings out of
+  // range.
   void setSleep(const SleepDef& sleep);
   // Bodies reset since the last call, oldest first (at most kMaxPendingFaults are kept between
   // calls; bodyFaultCount() counts them all).

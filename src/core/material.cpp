@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "ragdoll_sim/range_check.hpp"
+
 namespace ragdoll_sim {
 
 bool parseCombineRule(const std::string& text, CombineRule* rule) {
@@ -22,6 +24,29 @@ double combine(CombineRule rule, double a, double b) {
     case CombineRule::Max: return std::max(a, b);
   }
   return a;
+}
+
+std::string materialError(const Material& m) {
+  for (const std::string& e :
+       {nonNegativeError("static_friction", m.static_friction),
+        nonNegativeError("kinetic_friction", m.kinetic_friction),
+        rangeError("restitution", m.restitution, 0.0, 1.0),
+        nonNegativeError("rolling_resistance", m.rolling_resistance)})
+    if (!e.empty()) return e;
+  return "";
+}
+
+std::string MaterialTable::error() const {
+  for (int i = 0; i < n_; ++i) {
+    std::string e = materialError(materials_[i]);
+    if (!e.empty()) return "materials '" + names_[i] + "': " + e;
+    for (int j = i; j < n_; ++j) {
+      if (!has_pair_[size_t(i) * n_ + j]) continue;
+      e = materialError(pairs_[size_t(i) * n_ + j]);
+      if (!e.empty()) return "materials pair '" + names_[i] + "'/'" + names_[j] + "': " + e;
+    }
+  }
+  return "";
 }
 
 void MaterialTable::grow(int n) {

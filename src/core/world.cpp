@@ -1009,7 +1009,11 @@ Joint& World::Impl::addJoint(JointType type, BodyId a, BodyId b, const Transform
   return joints.back();
 }
 
-World::World(const WorldDef& def) : impl_(new Impl) { impl_->def = def; }
+World::World(const WorldDef& def) : impl_(new Impl) {
+  const std::string e = worldDefError(def);
+  if (!e.empty()) throw std::invalid_argument("ragdoll_sim: WorldDef: " + e);
+  impl_->def = def;
+}
 World::~World() = default;
 
 BodyId World::createBody(const BodyDef& def) {
@@ -1053,6 +1057,10 @@ BodyId World::createBody(const BodyDef& def) {
 
 void World::addShape(BodyId id, const ShapeDef& def) {
   impl_->checkBody(id);
+  const std::string e = materialError(def.material);
+  if (!e.empty())
+    throw std::invalid_argument("ragdoll_sim: a shape of body '" + impl_->bodies[id.index].def.name +
+                                "': material " + e);
   Body& b = impl_->bodies[id.index];
   b.shapes.push_back(def);
   b.shape_ids.push_back(int(impl_->shapes.size()));
@@ -1254,11 +1262,8 @@ const WorldDef& World::def() const { return impl_->def; }
 void World::setGravity(const Vec3& g) { impl_->def.gravity = g; }
 
 void World::setSleep(const SleepDef& sleep) {
-  const auto nonneg = [](double x) { return x >= 0.0 && std::isfinite(x); };
-  if (!(nonneg(sleep.time) && nonneg(sleep.speed) && nonneg(sleep.rest_time) &&
-        sleep.rest_substeps >= 0 && sleep.rest_relax_iterations >= 0))
-    throw std::invalid_argument("ragdoll_sim: setSleep needs a finite time, speed and rest_time "
-                                ">= 0, and rest_substeps, rest_relax_iterations >= 0");
+  const std::string e = sleepDefError(sleep);
+  if (!e.empty()) throw std::invalid_argument("ragdoll_sim: setSleep: " + e);
   Impl& w = *impl_;
   if (sleep.enabled != w.def.sleep.enabled) {
     // Slow times stood still while sleep was off (updateSleep); a body asleep when it is

@@ -7,6 +7,7 @@
 #include <ros/node_handle.h>
 #include <xmlrpcpp/XmlRpcException.h>
 
+#include "ragdoll_sim/range_check.hpp"
 #include "pacing.hpp"
 #include "commands.hpp"
 
@@ -18,9 +19,6 @@ Transform NodeConfig::spawnTransform() const {
 }
 
 namespace {
-
-// ~threads beyond this is a typo, not a machine: OpenMP would start them all.
-constexpr int kMaxThreads = 256;
 
 // A parameter that is absent keeps its default; one that is present with the wrong type is an
 // error (ros::NodeHandle::param would silently fall back to the default).
@@ -48,10 +46,7 @@ bool coefficients(XmlRpc::XmlRpcValue& list, int first, Material* m) {
   m->kinetic_friction = number(list[first + 1]);
   m->restitution = number(list[first + 2]);
   if (list.size() == first + 4) m->rolling_resistance = number(list[first + 3]);
-  return std::isfinite(m->static_friction) && m->static_friction >= 0 &&
-         std::isfinite(m->kinetic_friction) && m->kinetic_friction >= 0 &&
-         std::isfinite(m->restitution) && m->restitution >= 0 && m->restitution <= 1 &&
-         std::isfinite(m->rolling_resistance) && m->rolling_resistance >= 0;
+  return materialError(*m).empty();
 }
 
 // ~materials: {combine: {friction, restitution}, surfaces: {name: [mu_s, mu_k, e(, c_r)]},
@@ -303,74 +298,62 @@ bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* c, std::string* erro
                  &c->ground_surface, error);
 }
 
+WorldDef worldDefOf(const NodeConfig& c) {
+  WorldDef wd;
+  wd.gravity = c.gravity;
+  wd.substeps = c.substeps;
+  wd.threads = c.threads;
+  wd.position_iterations = c.position_iterations;
+  wd.materials = c.materials;
+  wd.max_linear_speed = c.max_linear_speed;
+  wd.max_angular_speed = c.max_angular_speed;
+  wd.sleep = c.sleep;
+  return wd;
+}
+
 std::string validateNodeConfig(const NodeConfig& c) {
-  auto positive = [](const char* name, double v) -> std::string {
-    if (std::isfinite(v) && v > 0.0) return "";
-    std::ostringstream s;
-    s << "parameter ~" << name << " must be a finite number > 0, got " << v;
-    return s.str();
-  };
-  auto nonneg = [](const char* name, double v) -> std::string {
-    if (std::isfinite(v) && v >= 0.0) return "";
-    std::ostringstream s;
-    s << "parameter ~" << name << " must be a finite number >= 0, got " << v;
-    return s.str();
+  // The core's messages name the field ("sleep.speed must be ..."); the parameter is
+  // ~sleep/speed.
+  const auto param = [](std::string e) {
+    if (e.empty()) return e;
+    const size_t dot = e.find('.');
+    if (dot < e.find(' ')) e[dot] = '/';
+    return "parameter ~" + e;
   };
   std::string e;
-  if (!(e = positive("physics_rate", c.physics_rate)).empty()) return e;
+  if (!(e = param(positiveError("physics_rate", c.physics_rate))).empty()) return e;
   if (c.physics_rate > 1e6) return "parameter ~physics_rate must be <= 1e6 Hz";
-  if (!(e = positive("publish_rate", c.publish_rate)).empty()) return e;
-  if (c.substeps < 1) return "parameter ~substeps must be >= 1, got " + std::to_string(c.substeps);
-  if (c.threads < 0 || c.threads > kMaxThreads)
-    return "parameter ~threads must be 0 (all cores) or 1.." + std::to_string(kMaxThreads) +
-           ", got " + std::to_string(c.threads);
-  if (c.position_iterations < 0)
-    return "parameter ~position_iterations must be >= 0, got " + std::to_string(c.position_iterations);
+  if (!(e = param(positiveError("publish_rate", c.publish_rate))).empty()) return e;
+  if (!(e = param(worldDefError(worldDefOf(c)))).empty()) return e;
   if (*realTimeFactorError(c.real_time_factor)) {
     std::ostringstream s;
     s << "parameter ~real_time_factor " << realTimeFactorError(c.real_time_factor) << ", got "
       << c.real_time_factor;
     return s.str();
   }
-  if (!(e = nonneg("clock_rate", c.clock_rate)).empty()) return e;
+  if (!(e = param(nonNegativeError("clock_rate", c.clock_rate))).empty()) return e;
   if (!c.ragdoll_name.empty() && !ragdollNameError(c.ragdoll_name).empty())
     return "parameter ~ragdoll_name: " + ragdollNameError(c.ragdoll_name);
-  if (!c.gravity.allFinite()) return "parameter ~gravity must be finite";
   const SpawnPose& s = c.spawn;
   for (double v : {s.x, s.y, s.z, s.roll, s.pitch, s.yaw})
     if (!std::isfinite(v)) return "parameters ~spawn/{x,y,z,roll,pitch,yaw} must be finite";
-  if (!(e = nonneg("static_friction", c.material.static_friction)).empty()) return e;
-  if (!(e = nonneg("kinetic_friction", c.material.kinetic_friction)).empty()) return e;
-  if (!(e = nonneg("restitution", c.material.restitution)).empty()) return e;
-  if (c.material.restitution > 1.0) return "parameter ~restitution must be <= 1";
-  if (!(e = nonneg("rolling_resistance", c.material.rolling_resistance)).empty()) return e;
+  if (!(e = param(materialError(c.material))).empty()) return e;
   if (c.world_frame.empty()) return "parameter ~world_frame must not be empty";
-  if (!(e = positive("max_impulse", c.max_impulse)).empty()) return e;
-  if (!(e = positive("max_force", c.max_force)).empty()) return e;
-  if (!(e = positive("max_torque", c.max_torque)).empty()) return e;
-  if (!(e = positive("max_lever_arm", c.max_lever_arm)).empty()) return e;
-  if (!(e = positive("max_catchup", c.max_catchup)).empty()) return e;
-  if (!(e = positive("max_linear_speed", c.max_linear_speed)).empty()) return e;
-  if (!(e = positive("max_angular_speed", c.max_angular_speed)).empty()) return e;
-  if (!(e = positive("max_position", c.max_position)).empty()) return e;
-  if (c.max_steps_per_call < 1)
-    return "parameter ~max_steps_per_call must be >= 1, got " +
-           std::to_string(c.max_steps_per_call);
-  if (c.max_queued_commands < 1)
-    return "parameter ~max_queued_commands must be >= 1, got " +
-           std::to_string(c.max_queued_commands);
+  for (const auto& [name, v] :
+       {std::pair<const char*, double>{"max_impulse", c.max_impulse},
+        {"max_force", c.max_force},
+        {"max_torque", c.max_torque},
+        {"max_lever_arm", c.max_lever_arm},
+        {"max_catchup", c.max_catchup},
+        {"max_position", c.max_position}})
+    if (!(e = param(positiveError(name, v))).empty()) return e;
+  if (!(e = param(intRangeError("max_steps_per_call", c.max_steps_per_call, 1))).empty())
+    return e;
+  if (!(e = param(intRangeError("max_queued_commands", c.max_queued_commands, 1))).empty())
+    return e;
   if (!(e = validateMotorGains(c.motor, "parameter ~motor")).empty()) return e;
   if (!std::isfinite(c.balance.kp) || !std::isfinite(c.balance.kd))
     return "parameters ~balance/kp and ~balance/kd must be finite";
-  if (!(e = nonneg("sleep/time", c.sleep.time)).empty()) return e;
-  if (!(e = nonneg("sleep/speed", c.sleep.speed)).empty()) return e;
-  if (!(e = nonneg("sleep/rest_time", c.sleep.rest_time)).empty()) return e;
-  if (c.sleep.rest_substeps < 0)
-    return "parameter ~sleep/rest_substeps must be >= 0 (0 = off), got " +
-           std::to_string(c.sleep.rest_substeps);
-  if (c.sleep.rest_relax_iterations < 0)
-    return "parameter ~sleep/rest_relax_iterations must be >= 0, got " +
-           std::to_string(c.sleep.rest_relax_iterations);
   if (!(e = validateMarkerSettings(c.markers)).empty()) return e;
   if (!(e = validatePokeSettings(c.poke)).empty()) return e;
   return validateDragSettings(c.drag);

@@ -83,7 +83,11 @@ struct NodeConfig {
 // (naming the parameter) when a value is present but invalid.
 bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* config, std::string* error);
 
-// Range checks, ROS-free. Returns "" when valid, else a message naming the parameter.
+// The World's settings from the parameters (the rest keep WorldDef's defaults).
+WorldDef worldDefOf(const NodeConfig& c);
+
+// Range checks, ROS-free. Returns "" when valid, else a message naming the parameter. The
+// parameters that go into the World are checked by the core's worldDefError (one rule each).
 std::string validateNodeConfig(const NodeConfig& c);
 
 }  // namespace node

@@ -81,7 +81,6 @@ class SimNode {
   bool makeInstance(RagdollDef def, const std::string& name, const std::string& tf_prefix,
                     const Transform& spawn, bool warn_unknown_joints, RagdollInstance* out,
                     std::string* error);
-  WorldDef worldDef() const;
   // A new World with the ground and every ragdoll: at its spawn pose (joints whole), or, with
   // carry_state, in the pose and velocity it has now with its broken joints still broken.
   bool buildWorld(bool carry_state, std::string* error);

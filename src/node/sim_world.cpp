@@ -45,19 +45,6 @@ bool SimNode::makeInstance(RagdollDef def, const std::string& name, const std::s
   return true;
 }
 
-WorldDef SimNode::worldDef() const {
-  WorldDef wd;
-  wd.gravity = config_.gravity;
-  wd.substeps = config_.substeps;
-  wd.threads = config_.threads;
-  wd.position_iterations = config_.position_iterations;
-  wd.materials = config_.materials;
-  wd.max_linear_speed = config_.max_linear_speed;
-  wd.max_angular_speed = config_.max_angular_speed;
-  wd.sleep = config_.sleep;
-  return wd;
-}
-
 bool SimNode::spawnInWorld(RagdollInstance& r, std::string* error) {
   try {  // the World refuses what it cannot simulate (e.g. a non-finite pose) by throwing
     r.ragdoll = spawnRagdoll(*world_, r.def, r.spawn_pose, &config_.ragdoll_surface);
@@ -89,7 +76,12 @@ bool SimNode::buildWorld(bool carry_state, std::string* error) {
   }
   for (RagdollInstance& r : ragdolls_) r.balance.reset();  // they drive the old world's joints
 
-  world_ = std::make_unique<World>(worldDef());
+  try {  // validated at start-up, and the .cfg ranges hold at run time: this is a guard
+    world_ = std::make_unique<World>(worldDefOf(config_));
+  } catch (const std::invalid_argument& e) {
+    *error = e.what();
+    return false;
+  }
   ground_ = BodyId();
   if (config_.ground) {
     BodyDef gd;

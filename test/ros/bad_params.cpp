@@ -31,6 +31,11 @@ TEST(BadParams, NodeExitsNonZeroNamingTheParameter) {
       {"_gravity:=[0.0,-9.81]", {"gravity", "list of 3 numbers"}},
       {"_sleep/speed:=-0.5", {"~sleep/speed", "got -0.5"}},
       {"_sleep/rest_substeps:=-2", {"~sleep/rest_substeps", "got -2"}},
+      // Checked by the core's worldDefError / materialError, named as the node's parameters.
+      {"_position_iterations:=-1", {"~position_iterations", "got -1"}},
+      {"_max_angular_speed:=0.0", {"~max_angular_speed", "> 0", "got 0"}},
+      {"_restitution:=1.5", {"~restitution", "[0, 1]", "got 1.5"}},
+      {"_sleep/rest_time:=-0.25", {"~sleep/rest_time", "got -0.25"}},
   };
   int k = 0;
   for (const auto& [args, words] : cases) {

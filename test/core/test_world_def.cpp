@@ -1,0 +1,162 @@
+// WorldDef's ranges (src/core/world_def.cpp): every field out of range is refused by
+// worldDefError with its name, World's constructor throws with that message, a shape with a bad
+// material is refused without being added, and the defaults pass.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "ragdoll_sim/range_check.hpp"
+#include "ragdoll_sim/world.hpp"
+
+using namespace ragdoll_sim;
+
+namespace {
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+const double kInf = std::numeric_limits<double>::infinity();
+
+struct BadCase {
+  std::string name;  // the field the message must name
+  std::function<void(WorldDef&)> spoil;
+};
+
+bool contains(const std::string& text, const std::string& word) {
+  return text.find(word) != std::string::npos;
+}
+}  // namespace
+
+TEST(RangeCheck, Boundaries) {
+  EXPECT_EQ(positiveError("x", 1e-300), "");
+  EXPECT_EQ(positiveError("x", 0.0), "x must be a finite number > 0, got 0");
+  EXPECT_NE(positiveError("x", kInf), "");
+  EXPECT_NE(positiveError("x", kNaN), "");
+  EXPECT_EQ(nonNegativeError("x", 0.0), "");
+  EXPECT_EQ(nonNegativeError("x", -0.5), "x must be a finite number >= 0, got -0.5");
+  EXPECT_NE(nonNegativeError("x", kNaN), "");
+  EXPECT_EQ(rangeError("x", 1.0, 0.0, 1.0), "");
+  EXPECT_EQ(rangeError("x", 0.0, 0.0, 1.0), "");
+  EXPECT_EQ(rangeError("x", 1.5, 0.0, 1.0), "x must be a finite number in [0, 1], got 1.5");
+  EXPECT_NE(rangeError("x", kNaN, 0.0, 1.0), "");
+  EXPECT_EQ(intRangeError("n", 0, 0), "");
+  EXPECT_EQ(intRangeError("n", -1, 0, INT_MAX, " (0 = off)"), "n must be >= 0 (0 = off), got -1");
+  EXPECT_EQ(intRangeError("n", 9, 1, 8), "n must be >= 1 and <= 8, got 9");
+  EXPECT_EQ(intRangeError("n", 8, 1, 8), "");
+}
+
+TEST(WorldDefRanges, DefaultsPass) {
+  EXPECT_EQ(worldDefError(WorldDef()), "");
+  EXPECT_EQ(sleepDefError(SleepDef()), "");
+  WorldDef edge;  // the ends of each range are allowed
+  edge.contact_relax_iterations = edge.joint_relax_iterations = edge.position_iterations = 0;
+  edge.anchor_iterations = 0;
+  edge.position_factor = 1.0;
+  edge.contact_hertz = edge.joint_hertz = 0.0;  // rigid rows
+  edge.contact_damping_ratio = edge.joint_damping_ratio = 0.0;
+  edge.joint_slop = edge.angular_slop = edge.linear_slop = 0.0;
+  edge.speculative_distance = edge.manifold_cache_distance = 0.0;
+  edge.threads = WorldDef::kMaxThreads;
+  edge.sleep.rest_substeps = 0;
+  EXPECT_EQ(worldDefError(edge), "");
+  edge.threads = 0;
+  EXPECT_NO_THROW(World w(edge));
+}
+
+TEST(WorldDefRanges, EveryFieldOutOfRangeIsNamedAndRefused) {
+  const std::vector<BadCase> cases = {
+      {"gravity", [](WorldDef& d) { d.gravity.y() = kNaN; }},
+      {"substeps", [](WorldDef& d) { d.substeps = 0; }},
+      {"contact_relax_iterations", [](WorldDef& d) { d.contact_relax_iterations = -1; }},
+      {"joint_relax_iterations", [](WorldDef& d) { d.joint_relax_iterations = -1; }},
+      {"position_iterations", [](WorldDef& d) { d.position_iterations = -1; }},
+      {"anchor_iterations", [](WorldDef& d) { d.anchor_iterations = -2; }},
+      {"position_factor", [](WorldDef& d) { d.position_factor = 1.5; }},
+      {"position_factor", [](WorldDef& d) { d.position_factor = -0.1; }},
+      {"max_position_correction", [](WorldDef& d) { d.max_position_correction = kInf; }},
+      {"joint_slop", [](WorldDef& d) { d.joint_slop = -1e-4; }},
+      {"angular_slop", [](WorldDef& d) { d.angular_slop = kNaN; }},
+      {"max_angular_correction", [](WorldDef& d) { d.max_angular_correction = -0.2; }},
+      {"contact_hertz", [](WorldDef& d) { d.contact_hertz = -360.0; }},
+      {"contact_damping_ratio", [](WorldDef& d) { d.contact_damping_ratio = -1.0; }},
+      {"joint_hertz", [](WorldDef& d) { d.joint_hertz = kNaN; }},
+      {"joint_damping_ratio", [](WorldDef& d) { d.joint_damping_ratio = -2.0; }},
+      {"max_push_velocity", [](WorldDef& d) { d.max_push_velocity = -3.0; }},
+      {"restitution_threshold", [](WorldDef& d) { d.restitution_threshold = kNaN; }},
+      {"static_friction_speed", [](WorldDef& d) { d.static_friction_speed = -0.02; }},
+      {"speculative_distance", [](WorldDef& d) { d.speculative_distance = -0.02; }},
+      {"manifold_cache_distance", [](WorldDef& d) { d.manifold_cache_distance = kNaN; }},
+      {"linear_slop", [](WorldDef& d) { d.linear_slop = -5e-4; }},
+      {"max_linear_speed", [](WorldDef& d) { d.max_linear_speed = 0.0; }},
+      {"max_angular_speed", [](WorldDef& d) { d.max_angular_speed = kInf; }},
+      {"threads", [](WorldDef& d) { d.threads = -1; }},
+      {"threads", [](WorldDef& d) { d.threads = WorldDef::kMaxThreads + 1; }},
+      {"sleep.time", [](WorldDef& d) { d.sleep.time = -0.5; }},
+      {"sleep.speed", [](WorldDef& d) { d.sleep.speed = kNaN; }},
+      {"sleep.rest_time", [](WorldDef& d) { d.sleep.rest_time = kInf; }},
+      {"sleep.rest_substeps", [](WorldDef& d) { d.sleep.rest_substeps = -1; }},
+      {"sleep.rest_relax_iterations", [](WorldDef& d) { d.sleep.rest_relax_iterations = -1; }},
+      {"materials 'ice': kinetic_friction",
+       [](WorldDef& d) { d.materials.add("ice", {0.1, -0.03, 0.1}); }},
+      {"materials 'ice': restitution",
+       [](WorldDef& d) { d.materials.add("ice", {0.1, 0.03, 1.5}); }},
+      {"materials pair 'ice'/'steel': static_friction",
+       [](WorldDef& d) {
+         const int ice = d.materials.add("ice", {0.1, 0.03, 0.1});
+         const int steel = d.materials.add("steel", {0.74, 0.57, 0.6});
+         d.materials.setPair(steel, ice, {kNaN, 0.02, 0.2});
+       }},
+  };
+  for (const BadCase& c : cases) {
+    WorldDef d;
+    c.spoil(d);
+    const std::string e = worldDefError(d);
+    EXPECT_EQ(e.rfind(c.name, 0), 0u) << c.name << ": " << e;  // named first
+    try {
+      World w(d);
+      ADD_FAILURE() << c.name << ": the World took it";
+    } catch (const std::invalid_argument& ex) {
+      EXPECT_TRUE(contains(ex.what(), c.name)) << ex.what();
+    }
+  }
+}
+
+TEST(WorldDefRanges, SetSleepNamesTheField) {
+  World w;
+  SleepDef s;
+  s.rest_relax_iterations = -3;
+  try {
+    w.setSleep(s);
+    ADD_FAILURE() << "setSleep took rest_relax_iterations -3";
+  } catch (const std::invalid_argument& ex) {
+    EXPECT_TRUE(contains(ex.what(), "rest_relax_iterations must be >= 0, got -3")) << ex.what();
+  }
+  EXPECT_EQ(w.def().sleep.rest_relax_iterations, SleepDef().rest_relax_iterations);
+}
+
+TEST(WorldDefRanges, ShapeWithBadMaterialIsRefusedAndNotAdded) {
+  World w;
+  BodyDef bd;
+  bd.name = "box";
+  const BodyId b = w.createBody(bd);
+  ShapeDef sd;
+  sd.geometry = Geometry::box(Vec3(0.1, 0.1, 0.1));
+  for (double mu : {-0.1, kNaN}) {
+    sd.material.kinetic_friction = mu;
+    try {
+      w.addShape(b, sd);
+      ADD_FAILURE() << "addShape took kinetic_friction " << mu;
+    } catch (const std::invalid_argument& ex) {
+      EXPECT_TRUE(contains(ex.what(), "'box'")) << ex.what();
+      EXPECT_TRUE(contains(ex.what(), "kinetic_friction")) << ex.what();
+    }
+  }
+  EXPECT_TRUE(w.bodyShapes(b).empty());
+  sd.material.kinetic_friction = 0.5;
+  w.addShape(b, sd);
+  EXPECT_EQ(w.bodyShapes(b).size(), 1u);
+  w.step(1e-3);  // the world goes on
+  EXPECT_TRUE(w.bodyState(b).pose.p.allFinite());
+}
