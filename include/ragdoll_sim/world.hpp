@@ -109,7 +109,7 @@ struct WorldDef {
   // on a machine whose cores are busy (tests, rviz), waiting for a preempted worker costs
   // more than it gains. The node's `~threads` and the benchmark's `--opt threads=N` set it.
   int threads = 1;
-  static constexpr int kMaxThreads = 256;
+  static constexpr int kMaxThreads = 256;  // more is a typo: OpenMP would start them all
 };
 
 // "" when the World can simulate with these settings, else what is wrong with the first field
