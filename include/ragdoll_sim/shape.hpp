@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "ragdoll_sim/math.hpp"
@@ -52,6 +53,12 @@ struct Geometry {
   // Inertia about the shape origin, in the shape frame, for unit density.
   Mat3 unitInertia() const;
 };
+
+// "" when the World can collide the geometry, else what is wrong, naming the shape and the
+// field ("cylinder radius must be a finite number > 0, got -0.05"): sizes finite and > 0 (a
+// capsule's half_height may be 0: a sphere), a unit plane normal with a finite offset, a hull
+// that was built (convexHull of degenerate points has none) with finite vertices.
+std::string geometryError(const Geometry& g);
 
 // Contact coefficients of one surface. A pair of surfaces uses the coefficients listed for
 // the pair of material ids in WorldDef::materials, else combines the two (material.hpp).

@@ -163,7 +163,8 @@ class World {
 
   // --- building -------------------------------------------------------------------------
   BodyId createBody(const BodyDef& def);
-  // Throws std::invalid_argument for a material that materialError refuses.
+  // Throws std::invalid_argument, adding nothing, for a geometry that geometryError refuses, a
+  // non-finite local pose, or a material that materialError refuses.
   void addShape(BodyId body, const ShapeDef& def);
   JointId createBallJoint(const BallJointDef& def);
   JointId createHingeJoint(const HingeJointDef& def);

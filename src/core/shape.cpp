@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "narrowphase.hpp"
+#include "ragdoll_sim/range_check.hpp"
 #include "ragdoll_sim/shape.hpp"
 
 namespace ragdoll_sim {
@@ -66,6 +67,40 @@ Geometry Geometry::convexHull(const std::vector<Vec3>& points) {
   g.type = ShapeType::ConvexHull;
   g.hull = HullData::build(points);
   return g;
+}
+
+std::string geometryError(const Geometry& g) {
+  const std::string type = shapeTypeName(g.type);
+  std::string e;
+  switch (g.type) {
+    case ShapeType::Sphere: e = positiveError(type + " radius", g.radius); break;
+    case ShapeType::Capsule:
+      if ((e = positiveError(type + " radius", g.radius)).empty())
+        e = nonNegativeError(type + " half_height", g.half_height);
+      break;
+    case ShapeType::Cylinder:
+      if ((e = positiveError(type + " radius", g.radius)).empty())
+        e = positiveError(type + " half_height", g.half_height);
+      break;
+    case ShapeType::Box:
+      for (int i = 0; i < 3 && e.empty(); ++i)
+        e = positiveError(type + " half_extents." + "xyz"[i], g.half_extents[i]);
+      break;
+    case ShapeType::Plane:
+      if (!g.normal.allFinite() || std::abs(g.normal.norm() - 1.0) > 1e-9)
+        e = "plane normal must be a finite unit vector";
+      else if (!std::isfinite(g.offset))
+        e = "plane offset must be finite";
+      break;
+    case ShapeType::ConvexHull:
+      if (!g.hull)
+        e = "convex_hull has no hull (its points were degenerate: fewer than 4 not in a plane)";
+      else
+        for (const Vec3& v : g.hull->vertices)
+          if (!v.allFinite()) e = "convex_hull vertices must be finite";
+      break;
+  }
+  return e;
 }
 
 namespace {

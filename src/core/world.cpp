@@ -1057,10 +1057,14 @@ BodyId World::createBody(const BodyDef& def) {
 
 void World::addShape(BodyId id, const ShapeDef& def) {
   impl_->checkBody(id);
-  const std::string e = materialError(def.material);
+  std::string e = geometryError(def.geometry);
+  if (e.empty() && !(def.local.p.allFinite() && def.local.q.coeffs().allFinite() &&
+                     def.local.q.norm() > 0.0))
+    e = "local pose must be finite";
+  if (e.empty() && !(e = materialError(def.material)).empty()) e = "material " + e;
   if (!e.empty())
     throw std::invalid_argument("ragdoll_sim: a shape of body '" + impl_->bodies[id.index].def.name +
-                                "': material " + e);
+                                "': " + e);
   Body& b = impl_->bodies[id.index];
   b.shapes.push_back(def);
   b.shape_ids.push_back(int(impl_->shapes.size()));

@@ -359,10 +359,14 @@ class Loader {
       }
       const double v = s.geometry.volume();
       if (!std::isfinite(v)) throw LoadError(ln + ": " + what + " geometry has a non-finite size");
-      if (!(v > 0)) {
+      if (v == 0) {
         def_.warnings.push_back(ln + ": " + what + " geometry of zero size ignored");
         continue;
       }
+      // A negative size (a cylinder's radius, two of a box's sizes) can still give a positive
+      // volume: the core's rule refuses it, and the file with it.
+      const std::string bad = geometryError(s.geometry);
+      if (!bad.empty()) throw LoadError(ln + ": " + what + " " + bad);
       // Hulls: the vertex mean stands in for the volume centroid (only used without <inertial>).
       const Vec3 c = s.geometry.hull ? s.geometry.hull->centroid : Vec3::Zero();
       const Mat3 Ic = kDensity * (s.geometry.unitInertia() - pointInertia(v, c));

@@ -1,6 +1,6 @@
 // WorldDef's ranges (src/core/world_def.cpp): every field out of range is refused by
 // worldDefError with its name, World's constructor throws with that message, a shape with a bad
-// material is refused without being added, and the defaults pass.
+// material, geometry or pose is refused without being added, and the defaults pass.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -158,5 +158,57 @@ TEST(WorldDefRanges, ShapeWithBadMaterialIsRefusedAndNotAdded) {
   w.addShape(b, sd);
   EXPECT_EQ(w.bodyShapes(b).size(), 1u);
   w.step(1e-3);  // the world goes on
+  EXPECT_TRUE(w.bodyState(b).pose.p.allFinite());
+}
+
+TEST(GeometryRanges, BadGeometryOrPoseIsRefusedAndNotAdded) {
+  EXPECT_EQ(geometryError(Geometry()), "");
+  EXPECT_EQ(geometryError(Geometry::capsule(0.05, 0.0)), "");  // a sphere
+  EXPECT_EQ(geometryError(Geometry::plane(Vec3(0, 0, 2), 1.0)), "");  // normalised
+  const std::vector<std::pair<Geometry, std::string>> bad = {
+      {Geometry::sphere(0.0), "sphere radius must be a finite number > 0, got 0"},
+      {Geometry::sphere(kNaN), "sphere radius"},
+      {Geometry::capsule(-0.05, 0.1), "capsule radius"},
+      {Geometry::capsule(0.05, -0.1), "capsule half_height must be a finite number >= 0"},
+      {Geometry::cylinder(-0.05, 0.15), "cylinder radius must be a finite number > 0, got -0.05"},
+      {Geometry::cylinder(0.05, 0.0), "cylinder half_height"},
+      {Geometry::box(Vec3(-0.1, -0.1, 0.1)), "box half_extents.x"},
+      {Geometry::box(Vec3(0.1, 0.1, kInf)), "box half_extents.z"},
+      {Geometry::plane(Vec3(0, 0, 1), kNaN), "plane offset"},
+      {[] {  // the factory normalises; a normal set by hand is checked
+         Geometry g = Geometry::plane(Vec3::UnitZ(), 0.0);
+         g.normal = Vec3(0, 0, 2);
+         return g;
+       }(),
+       "plane normal"},
+      // four points in a plane: no hull data for the narrowphase to read
+      {Geometry::convexHull({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)}),
+       "convex_hull has no hull"},
+  };
+  World w;
+  BodyDef bd;
+  bd.name = "link";
+  const BodyId b = w.createBody(bd);
+  for (const auto& [g, words] : bad) {
+    EXPECT_TRUE(contains(geometryError(g), words)) << geometryError(g);
+    ShapeDef sd;
+    sd.geometry = g;
+    try {
+      w.addShape(b, sd);
+      ADD_FAILURE() << words << ": addShape took it";
+    } catch (const std::invalid_argument& ex) {
+      EXPECT_TRUE(contains(ex.what(), "'link'")) << ex.what();
+      EXPECT_TRUE(contains(ex.what(), words)) << ex.what();
+    }
+  }
+  ShapeDef sd;
+  sd.local.p.y() = kNaN;
+  EXPECT_THROW(w.addShape(b, sd), std::invalid_argument);
+  sd.local = Transform(Vec3::Zero(), Quat(0, 0, 0, 0));
+  EXPECT_THROW(w.addShape(b, sd), std::invalid_argument);
+  EXPECT_TRUE(w.bodyShapes(b).empty());
+  w.addShape(b, ShapeDef());
+  for (int i = 0; i < 10; ++i) w.step(1e-3);  // the world goes on with the good shape
+  EXPECT_EQ(w.bodyShapes(b).size(), 1u);
   EXPECT_TRUE(w.bodyState(b).pose.p.allFinite());
 }

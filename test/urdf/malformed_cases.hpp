@@ -30,6 +30,8 @@ inline const std::vector<BadCase>& badCases() {
       {"bad_missing_parent.urdf", {"joint 'elbow'", "<parent"}},
       {"bad_missing_child.urdf", {"joint 'elbow'", "'ghost'"}},
       {"bad_nan_origin.urdf", {"joint 'elbow'", "<origin>", "nan"}},
+      {"bad_negative_radius.urdf", {"link 'upper_arm'", "<collision>", "cylinder radius", "-0.05"}},
+      {"bad_negative_box.urdf", {"link 'forearm'", "<collision>", "box half_extents.x", "-0.04"}},
   };
   return cases;
 }
