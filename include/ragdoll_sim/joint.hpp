@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <string>
 
 #include "ragdoll_sim/body.hpp"
 
@@ -112,5 +113,18 @@ struct PrismaticJointDef {
   JointSpring spring;
   bool collide_connected = false;
 };
+
+// "" when the World can simulate the def, else what is wrong with the first field that it
+// cannot, named as in the struct ("spring.break_force must be > 0 (or inf), got nan"): frames
+// finite, axes finite and not zero, enabled limits with lower <= upper (infinite ends allowed),
+// springs and motors with finite gains >= 0 (max_torque and break forces may be infinite).
+// The World's create*Joint and setJointMotor throw std::invalid_argument with it
+// (src/core/joint_def.cpp).
+std::string jointSpringError(const JointSpring& spring);
+std::string jointMotorError(const JointMotor& motor);
+std::string jointDefError(const BallJointDef& def);
+std::string jointDefError(const HingeJointDef& def);
+std::string jointDefError(const FixedJointDef& def);
+std::string jointDefError(const PrismaticJointDef& def);
 
 }  // namespace ragdoll_sim

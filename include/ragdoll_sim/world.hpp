@@ -166,6 +166,8 @@ class World {
   // Throws std::invalid_argument, adding nothing, for a geometry that geometryError refuses, a
   // non-finite local pose, or a material that materialError refuses.
   void addShape(BodyId body, const ShapeDef& def);
+  // The joints throw std::invalid_argument, creating nothing, for a def that jointDefError
+  // refuses (joint.hpp), naming the two bodies and the field.
   JointId createBallJoint(const BallJointDef& def);
   JointId createHingeJoint(const HingeJointDef& def);
   JointId createFixedJoint(const FixedJointDef& def);
@@ -235,6 +237,7 @@ class World {
   // event: for rebuilding a world that carries broken joints over.
   void breakJoint(JointId joint);
   // Motor of one joint angle (hinge: axis 0; ball: Euler axes 0..2; prismatic: axis 0, linear).
+  // Throws std::invalid_argument, changing nothing, for a motor that jointMotorError refuses.
   void setJointMotor(JointId joint, int axis, const JointMotor& motor);
 
   Vec3 linearMomentum() const;

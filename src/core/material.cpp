@@ -27,13 +27,10 @@ double combine(CombineRule rule, double a, double b) {
 }
 
 std::string materialError(const Material& m) {
-  for (const std::string& e :
-       {nonNegativeError("static_friction", m.static_friction),
-        nonNegativeError("kinetic_friction", m.kinetic_friction),
-        rangeError("restitution", m.restitution, 0.0, 1.0),
-        nonNegativeError("rolling_resistance", m.rolling_resistance)})
-    if (!e.empty()) return e;
-  return "";
+  return firstError({nonNegativeError("static_friction", m.static_friction),
+                     nonNegativeError("kinetic_friction", m.kinetic_friction),
+                     rangeError("restitution", m.restitution, 0.0, 1.0),
+                     nonNegativeError("rolling_resistance", m.rolling_resistance)});
 }
 
 std::string MaterialTable::error() const {

@@ -37,4 +37,30 @@ std::string intRangeError(const std::string& name, int v, int lo, int hi, const 
   return s.str();
 }
 
+std::string finiteError(const std::string& name, double v) {
+  return std::isfinite(v) ? "" : must(name, "finite", v);
+}
+
+std::string positiveOrInfError(const std::string& name, double v) {
+  return v > 0.0 ? "" : must(name, "> 0 (or inf)", v);
+}
+
+std::string nonNegativeOrInfError(const std::string& name, double v) {
+  return v >= 0.0 ? "" : must(name, ">= 0 (or inf)", v);
+}
+
+std::string orderError(const std::string& lo_name, double lo, const std::string& hi_name,
+                       double hi) {
+  if (lo <= hi) return "";
+  std::ostringstream s;
+  s << lo_name << " must be <= " << hi_name << ", got " << lo << " > " << hi;
+  return s.str();
+}
+
+std::string firstError(std::initializer_list<std::string> errors) {
+  for (const std::string& e : errors)
+    if (!e.empty()) return e;
+  return "";
+}
+
 }  // namespace ragdoll_sim

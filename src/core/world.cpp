@@ -269,6 +269,17 @@ struct World::Impl {
     if (id.index < 0 || id.index >= int(bodies.size()))
       throw std::out_of_range("ragdoll_sim: invalid body id");
   }
+  // Throws std::invalid_argument with jointDefError's message e (if any), naming the bodies.
+  template <class Def>
+  void checkJointDef(const char* type, const Def& def) const {
+    checkBody(def.body_a);
+    checkBody(def.body_b);
+    const std::string e = jointDefError(def);
+    if (!e.empty())
+      throw std::invalid_argument(std::string("ragdoll_sim: ") + type + " joint between '" +
+                                  bodies[def.body_a.index].def.name + "' and '" +
+                                  bodies[def.body_b.index].def.name + "': " + e);
+  }
   bool isDynamic(int b) const { return bodies[b].def.type == BodyType::Dynamic; }
   void wake(int b) {
     settled = false;  // also for a static body: setBodyState moves it through here
@@ -1063,8 +1074,8 @@ void World::addShape(BodyId id, const ShapeDef& def) {
     e = "local pose must be finite";
   if (e.empty() && !(e = materialError(def.material)).empty()) e = "material " + e;
   if (!e.empty())
-    throw std::invalid_argument("ragdoll_sim: a shape of body '" + impl_->bodies[id.index].def.name +
-                                "': " + e);
+    throw std::invalid_argument("ragdoll_sim: a shape of body '" +
+                                impl_->bodies[id.index].def.name + "': " + e);
   Body& b = impl_->bodies[id.index];
   b.shapes.push_back(def);
   b.shape_ids.push_back(int(impl_->shapes.size()));
@@ -1076,6 +1087,7 @@ void World::addShape(BodyId id, const ShapeDef& def) {
 }
 
 JointId World::createBallJoint(const BallJointDef& def) {
+  impl_->checkJointDef("ball", def);
   Joint& j = impl_->addJoint(JointType::Ball, def.body_a, def.body_b, def.frame_a, def.frame_b,
                              def.collide_connected);
   j.euler = EulerBasis(def.axes);
@@ -1094,10 +1106,12 @@ JointId World::createBallJoint(const BallJointDef& def) {
 }
 
 JointId World::createHingeJoint(const HingeJointDef& def) {
+  impl_->checkJointDef("hinge", def);
   return impl_->addAxisJoint(JointType::Hinge, def);
 }
 
 JointId World::createFixedJoint(const FixedJointDef& def) {
+  impl_->checkJointDef("fixed", def);
   Joint& j = impl_->addJoint(JointType::Fixed, def.body_a, def.body_b, def.frame_a, def.frame_b,
                              def.collide_connected);
   j.spring = def.spring;
@@ -1105,8 +1119,7 @@ JointId World::createFixedJoint(const FixedJointDef& def) {
 }
 
 JointId World::createPrismaticJoint(const PrismaticJointDef& def) {
-  if (def.spring.stiffness > 0.0 || !(def.axis.norm() > 0.0))
-    throw std::invalid_argument("ragdoll_sim: a prismatic joint needs an axis and no stiffness");
+  impl_->checkJointDef("prismatic", def);
   return impl_->addAxisJoint(JointType::Prismatic, def);
 }
 
@@ -1473,6 +1486,11 @@ void World::breakJoint(JointId id) {
 
 void World::setJointMotor(JointId id, int axis, const JointMotor& motor) {
   Joint& j = impl_->joints.at(id.index);
+  const std::string e = jointMotorError(motor);
+  if (!e.empty())
+    throw std::invalid_argument("ragdoll_sim: setJointMotor, axis " + std::to_string(axis) +
+                                " of the joint between '" + impl_->bodies[j.a].def.name +
+                                "' and '" + impl_->bodies[j.b].def.name + "': motor." + e);
   j.motors.at(axis) = motor;
   impl_->wake(j.a);
   impl_->wake(j.b);

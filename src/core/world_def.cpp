@@ -8,14 +8,6 @@
 
 namespace ragdoll_sim {
 
-namespace {
-std::string firstError(std::initializer_list<std::string> errors) {
-  for (const std::string& e : errors)
-    if (!e.empty()) return e;
-  return "";
-}
-}  // namespace
-
 std::string sleepDefError(const SleepDef& s) {
   return firstError({nonNegativeError("time", s.time), nonNegativeError("speed", s.speed),
                      nonNegativeError("rest_time", s.rest_time),

@@ -1,6 +1,8 @@
 // WorldDef's ranges (src/core/world_def.cpp): every field out of range is refused by
 // worldDefError with its name, World's constructor throws with that message, a shape with a bad
-// material, geometry or pose is refused without being added, and the defaults pass.
+// material, geometry or pose is refused without being added, and so is a joint def out of range
+// (src/core/joint_def.cpp) or a bad motor at run time; the defaults and the ends of each range
+// pass.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -45,6 +47,19 @@ TEST(RangeCheck, Boundaries) {
   EXPECT_EQ(intRangeError("n", -1, 0, INT_MAX, " (0 = off)"), "n must be >= 0 (0 = off), got -1");
   EXPECT_EQ(intRangeError("n", 9, 1, 8), "n must be >= 1 and <= 8, got 9");
   EXPECT_EQ(intRangeError("n", 8, 1, 8), "");
+  EXPECT_EQ(finiteError("t", -1e300), "");
+  EXPECT_EQ(finiteError("t", kInf), "t must be finite, got inf");
+  EXPECT_EQ(positiveOrInfError("f", kInf), "");
+  EXPECT_EQ(positiveOrInfError("f", 0.0), "f must be > 0 (or inf), got 0");
+  EXPECT_EQ(nonNegativeOrInfError("c", 0.0), "");
+  EXPECT_EQ(nonNegativeOrInfError("c", kInf), "");
+  EXPECT_NE(nonNegativeOrInfError("c", kNaN), "");
+  EXPECT_EQ(orderError("lo", -kInf, "hi", kInf), "");
+  EXPECT_EQ(orderError("lo", 1.0, "hi", 1.0), "");
+  EXPECT_EQ(orderError("lo", 2.0, "hi", 1.0), "lo must be <= hi, got 2 > 1");
+  EXPECT_NE(orderError("lo", kNaN, "hi", 1.0), "");
+  EXPECT_EQ(firstError({"", "b", "c"}), "b");
+  EXPECT_EQ(firstError({"", ""}), "");
 }
 
 TEST(WorldDefRanges, DefaultsPass) {
@@ -211,4 +226,130 @@ TEST(GeometryRanges, BadGeometryOrPoseIsRefusedAndNotAdded) {
   for (int i = 0; i < 10; ++i) w.step(1e-3);  // the world goes on with the good shape
   EXPECT_EQ(w.bodyShapes(b).size(), 1u);
   EXPECT_TRUE(w.bodyState(b).pose.p.allFinite());
+}
+
+namespace {
+using MakeJoint = std::function<void(World&, BodyId, BodyId)>;
+
+struct JointCase {
+  std::string words;  // the message must hold these
+  MakeJoint create;   // creates the bad joint
+};
+
+// `base` between bodies a and b, with `spoil` applied, passed to `create`.
+template <class Def>
+MakeJoint spoiled(JointId (World::*create)(const Def&), const Def& base,
+                  std::function<void(Def&)> spoil) {
+  return [=](World& w, BodyId a, BodyId b) {
+    Def d = base;
+    d.body_a = a, d.body_b = b;
+    spoil(d);
+    (w.*create)(d);
+  };
+}
+}  // namespace
+
+TEST(JointDefRanges, BadDefsAreRefusedAndNothingIsCreated) {
+  // Each maker creates a valid def spoiled by one field.
+  BallJointDef euler;
+  euler.enable_limits = true;
+  euler.lower = {-1, -1, -1};
+  euler.upper = {1, 1, 1};
+  BallJointDef swing = euler;
+  swing.limit_mode = BallLimitMode::SwingTwist;
+  swing.swing_cone_angle = 0.5;
+  swing.twist_lower = -0.5, swing.twist_upper = 0.5;
+  const auto ball = [&](std::function<void(BallJointDef&)> f) {
+    return spoiled(&World::createBallJoint, euler, f);
+  };
+  const auto twist = [&](std::function<void(BallJointDef&)> f) {
+    return spoiled(&World::createBallJoint, swing, f);
+  };
+  const auto hinge = [](std::function<void(HingeJointDef&)> f) {
+    return spoiled(&World::createHingeJoint, HingeJointDef(), f);
+  };
+  const auto fixed = [](std::function<void(FixedJointDef&)> f) {
+    return spoiled(&World::createFixedJoint, FixedJointDef(), f);
+  };
+  const auto prismatic = [](std::function<void(PrismaticJointDef&)> f) {
+    return spoiled(&World::createPrismaticJoint, PrismaticJointDef(), f);
+  };
+  const std::vector<JointCase> cases = {
+      {"ball joint between 'a' and 'b': frame_a", ball([](auto& d) { d.frame_a.p.x() = kNaN; })},
+      {"axes[1] must be a finite, non-zero vector", ball([](auto& d) { d.axes[1].setZero(); })},
+      {"lower[2] must be <= upper[2], got 0.5 > 0.25",
+       ball([](auto& d) { d.lower[2] = 0.5, d.upper[2] = 0.25; })},
+      {"lower[0] must be <= upper[0], got nan", ball([](auto& d) { d.lower[0] = kNaN; })},
+      {"swing_cone_angle must be > 0", twist([](auto& d) { d.swing_cone_angle = 0; })},
+      {"twist_lower must be <= twist_upper", twist([](auto& d) { d.twist_lower = 0.6; })},
+      {"motors[1].target must be finite, got nan",
+       ball([](auto& d) { d.motors[1].target = kNaN; })},
+      {"spring.break_force must be > 0 (or inf), got nan",
+       ball([](auto& d) { d.spring.break_force = kNaN; })},
+      {"spring.stiffness must be a finite number >= 0, got -1",
+       ball([](auto& d) { d.spring.stiffness = -1; })},
+      {"hinge joint between 'a' and 'b': axis", hinge([](auto& d) { d.axis = Vec3(kInf, 0, 0); })},
+      {"lower must be <= upper, got 1 > -1",
+       hinge([](auto& d) { d.enable_limit = true, d.lower = 1, d.upper = -1; })},
+      {"motor.hertz must be a finite number >= 0, got -1",
+       hinge([](auto& d) { d.motor.hertz = -1; })},
+      {"motor.max_torque must be >= 0 (or inf), got nan",
+       hinge([](auto& d) { d.motor.max_torque = kNaN; })},
+      {"fixed joint between 'a' and 'b': frame_b must be a finite pose",
+       fixed([](auto& d) { d.frame_b.q = Quat(0, 0, 0, 0); })},
+      {"spring.break_torque must be > 0 (or inf), got 0",
+       fixed([](auto& d) { d.spring.break_torque = 0; })},
+      {"prismatic joint between 'a' and 'b': spring.stiffness must be 0",
+       prismatic([](auto& d) { d.spring.stiffness = 100; })},
+      {"prismatic joint between 'a' and 'b': axis", prismatic([](auto& d) { d.axis.setZero(); })},
+  };
+  WorldDef wd;
+  wd.gravity.setZero();
+  World w(wd);
+  BodyDef bd;
+  bd.name = "a";
+  const BodyId a = w.createBody(bd);
+  bd.name = "b";
+  bd.pose.p = Vec3(0, 0, -0.5);
+  const BodyId b = w.createBody(bd);
+  for (const JointCase& c : cases) {
+    try {
+      c.create(w, a, b);
+      ADD_FAILURE() << c.words << ": the joint was created";
+    } catch (const std::invalid_argument& ex) {
+      EXPECT_TRUE(contains(ex.what(), c.words)) << c.words << "\n  got: " << ex.what();
+    }
+  }
+  EXPECT_EQ(w.jointCount(), 0);
+  // The ends that are allowed: infinite limits and motor torque, a reversed but unused limit.
+  BallJointDef open;
+  open.body_a = a, open.body_b = b;
+  open.enable_limits = true;
+  open.lower = {-kInf, -1, -1};
+  open.upper = {kInf, 1, 1};
+  open.motors[0].max_torque = kInf;
+  const JointId j = w.createBallJoint(open);
+  HingeJointDef unused;
+  unused.body_a = a, unused.body_b = b;
+  unused.lower = 1, unused.upper = -1;  // enable_limit false
+  w.createHingeJoint(unused);
+  EXPECT_EQ(w.jointCount(), 2);
+  // A NaN motor target at run time is refused; the joint keeps its motor and nothing faults.
+  JointMotor m;
+  m.enabled = true;
+  m.hertz = 5;
+  m.max_torque = 10;
+  m.target = kNaN;
+  try {
+    w.setJointMotor(j, 1, m);
+    ADD_FAILURE() << "setJointMotor took a NaN target";
+  } catch (const std::invalid_argument& ex) {
+    EXPECT_TRUE(contains(ex.what(), "axis 1 of the joint between 'a' and 'b': motor.target"))
+        << ex.what();
+  }
+  m.target = 0.3;
+  w.setJointMotor(j, 1, m);
+  for (int i = 0; i < 100; ++i) w.step(1e-3);
+  EXPECT_EQ(w.bodyFaultCount(), 0);
+  EXPECT_TRUE(std::isfinite(w.ballAngles(j)[1]));
 }
