@@ -162,6 +162,9 @@ class World {
   World& operator=(const World&) = delete;
 
   // --- building -------------------------------------------------------------------------
+  // Throws std::invalid_argument, creating nothing, for a non-finite pose, velocity, centre of
+  // mass or gravity_scale, a negative or non-finite damping, or a dynamic body without a
+  // positive mass and a positive definite inertia.
   BodyId createBody(const BodyDef& def);
   // Throws std::invalid_argument, adding nothing, for a geometry that geometryError refuses, a
   // non-finite local pose, or a material that materialError refuses.

@@ -1,5 +1,7 @@
 #include "ragdoll_sim/balance.hpp"
 
+#include <cmath>
+
 namespace ragdoll_sim {
 
 BalanceController::BalanceController(World& world, const Ragdoll& ragdoll, const RagdollDef& def,
@@ -63,6 +65,7 @@ void BalanceController::update(World& world) {
     forward.normalize();
     JointMotor m = ankle_motors_[i];
     m.target = ankle_motors_[i].target + balance_.kp * (c - s).dot(forward) + balance_.kd * v.dot(forward);
+    if (!std::isfinite(m.target)) continue;  // gains so large that the law overflows: keep the last
     world.setJointMotor(ragdoll_.joints[ankles_[i]], 0, m);
   }
 }

@@ -43,6 +43,8 @@
 // rotation, q += h/2 (0,w) q, renormalised, with the gyroscopic update in integratePositions).
 #include "ragdoll_sim/world.hpp"
 
+#include "ragdoll_sim/range_check.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -1042,6 +1044,10 @@ BodyId World::createBody(const BodyDef& def) {
   if (!m.x.allFinite() || !def.com.allFinite())
     throw std::invalid_argument("ragdoll_sim: body '" + def.name +
                                 "' has a non-finite centre of mass position");
+  const std::string e = firstError({nonNegativeError("linear_damping", def.linear_damping),
+                                    nonNegativeError("angular_damping", def.angular_damping),
+                                    finiteError("gravity_scale", def.gravity_scale)});
+  if (!e.empty()) throw std::invalid_argument("ragdoll_sim: body '" + def.name + "': " + e);
   m.inertia_local = def.inertia;
   m.linear_damping = def.linear_damping;
   m.angular_damping = def.angular_damping;

@@ -146,6 +146,16 @@ void SimNode::applyAxisMotor(RagdollInstance& r, int i) {
   JointMotor m = passive;
   if (t.active) {
     m = targetMotor(t, a, r.gains[static_cast<size_t>(i)], passive, simTime());
+    const std::string bad = jointMotorError(m);
+    if (!bad.empty()) {
+      // Finite inputs that overflow on the way (1e308 rad moving at 1e308 rad/s on an
+      // unlimited axis): the World would refuse the motor, so the target is dropped.
+      warn("target/overflow", "ragdoll '" + r.name + "', joint '" + a.name + "': motor " + bad +
+                                  "; the target is dropped");
+      r.targets[static_cast<size_t>(i)].active = false;
+      applyAxisMotor(r, i);
+      return;
+    }
     // The controller keeps its own ankle targets (its balance law adds to them).
     if (r.balance && t.has_position) r.balance->setTarget(*world_, a.name, m);
   } else if (r.balance) {

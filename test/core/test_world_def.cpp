@@ -353,3 +353,27 @@ TEST(JointDefRanges, BadDefsAreRefusedAndNothingIsCreated) {
   EXPECT_EQ(w.bodyFaultCount(), 0);
   EXPECT_TRUE(std::isfinite(w.ballAngles(j)[1]));
 }
+
+TEST(BodyDefRanges, BadDampingOrGravityScaleIsRefused) {
+  World w;
+  for (const auto& [field, spoil] :
+       std::vector<std::pair<std::string, std::function<void(BodyDef&)>>>{
+           {"linear_damping", [](BodyDef& d) { d.linear_damping = -0.1; }},
+           {"angular_damping", [](BodyDef& d) { d.angular_damping = kNaN; }},
+           {"gravity_scale", [](BodyDef& d) { d.gravity_scale = kInf; }}}) {
+    BodyDef d;
+    d.name = "limb";
+    spoil(d);
+    try {
+      w.createBody(d);
+      ADD_FAILURE() << field << ": the body was created";
+    } catch (const std::invalid_argument& ex) {
+      EXPECT_TRUE(contains(ex.what(), "body 'limb': " + field)) << ex.what();
+    }
+  }
+  EXPECT_EQ(w.bodyCount(), 0);
+  BodyDef d;
+  d.gravity_scale = -1.0;  // allowed: a body that falls up
+  w.createBody(d);
+  EXPECT_EQ(w.bodyCount(), 1);
+}

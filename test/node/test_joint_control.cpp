@@ -284,6 +284,25 @@ TEST(TargetPose, PositionVelocityAndClamp) {
   EXPECT_DOUBLE_EQ(m.damping, 0.5);
 }
 
+// Finite inputs can overflow on an unlimited axis; the core refuses the motor (jointMotorError),
+// which is why the node drops such a target instead of handing it to World::setJointMotor.
+TEST(TargetPose, OverflowOnAnUnlimitedAxisIsCaughtByTheCoreRule) {
+  AxisInfo free_axis;
+  free_axis.name = "wheel";
+  AxisTarget t;
+  t.active = t.has_position = true;
+  t.position = 1e308;
+  t.velocity = 1e308;
+  const JointMotor m = targetMotor(t, free_axis, MotorGains{60.0, 1.0, 80.0}, JointMotor(), 10.0);
+  EXPECT_FALSE(std::isfinite(m.target));
+  EXPECT_NE(jointMotorError(m).find("target must be finite"), std::string::npos)
+      << jointMotorError(m);
+  free_axis.limited = true, free_axis.upper = 1.0;
+  EXPECT_EQ(jointMotorError(targetMotor(t, free_axis, MotorGains{60.0, 1.0, 80.0}, JointMotor(),
+                                        10.0)),
+            "");  // a limited axis clamps it
+}
+
 TEST(TargetPose, VelocityOnlyMakesAVelocityMotor) {
   const RagdollDef def = model();
   const AxisTable t(def);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "ragdoll_sim/balance.hpp"
 #include "ragdoll_sim/urdf_loader.hpp"
@@ -21,14 +22,23 @@ double tilt(const Transform& p) {
 
 // Stands the bundled ragdoll for 2 s, shoves the torso with 20 N s, runs 4 s more. With
 // `ankle_torque` > 0 the ankles get their own motor gains capped at that torque.
-ShoveResult standAndShove(double ankle_torque) {
-  const UrdfLoadResult r = loadUrdfFile(std::string(RAGDOLL_SIM_SOURCE_DIR) + "/urdf/ragdoll.urdf");
-  EXPECT_TRUE(r.ok) << r.error;
-  World w;
+UrdfLoadResult bundled() {
+  return loadUrdfFile(std::string(RAGDOLL_SIM_SOURCE_DIR) + "/urdf/ragdoll.urdf");
+}
+
+// The ragdoll standing with its feet on a ground plane.
+Ragdoll standOnGround(World& w, const RagdollDef& def) {
   BodyDef g;
   g.type = BodyType::Static;
   w.addShape(w.createBody(g), {Geometry::plane(Vec3::UnitZ(), 0.0), Transform(), Material()});
-  const Ragdoll rd = spawnRagdoll(w, r.def, Transform(Vec3(0, 0, 1.0005), Quat::Identity()));
+  return spawnRagdoll(w, def, Transform(Vec3(0, 0, 1.0005), Quat::Identity()));
+}
+
+ShoveResult standAndShove(double ankle_torque) {
+  const UrdfLoadResult r = bundled();
+  EXPECT_TRUE(r.ok) << r.error;
+  World w;
+  const Ragdoll rd = standOnGround(w, r.def);
   BalanceController balance(w, rd, r.def);
   EXPECT_TRUE(balance.missing().empty());
   if (ankle_torque > 0.0) {
@@ -75,4 +85,22 @@ TEST(ActiveRagdoll, AnklesKeepTheirOwnGains) {
   EXPECT_LT(s.min_after, 0.9) << "weak ankles held the shove: their gains were not used";
   std::printf("[ active   ] ankles capped at 3 N m: after the shove min z %.3f, max tilt %.3f rad\n",
               s.min_after, s.max_tilt);
+}
+
+// A balance law whose gains overflow (kp = inf) leaves the ankles' last motors in place instead
+// of handing a non-finite target to the World (which refuses it): no throw, no body fault.
+TEST(ActiveRagdoll, OverflowingBalanceLawKeepsTheLastMotor) {
+  const UrdfLoadResult r = bundled();
+  ASSERT_TRUE(r.ok) << r.error;
+  World w;
+  const Ragdoll rd = standOnGround(w, r.def);
+  BalanceDef def;
+  def.kp = std::numeric_limits<double>::infinity();
+  BalanceController balance(w, rd, r.def, def);
+  for (int i = 0; i < 200; ++i) {
+    ASSERT_NO_THROW(balance.update(w)) << "step " << i;
+    w.step(1e-3);
+  }
+  EXPECT_EQ(w.bodyFaultCount(), 0);
+  EXPECT_GT(w.bodyPose(rd.bodies[r.def.findLink("pelvis")]).p.z(), 0.9);
 }
