@@ -66,8 +66,7 @@ std::string jointDefError(const BallJointDef& d) {
       }
     } else {
       e = firstError({positiveOrInfError("swing_cone_angle", d.swing_cone_angle),
-                      orderError("twist_lower", d.twist_lower, "twist_upper",
-                                      d.twist_upper)});
+                      orderError("twist_lower", d.twist_lower, "twist_upper", d.twist_upper)});
     }
   }
   for (int k = 0; k < 3 && e.empty(); ++k)
