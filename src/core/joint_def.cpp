@@ -9,11 +9,6 @@ namespace ragdoll_sim {
 
 namespace {
 
-std::string frameError(const char* name, const Transform& t) {
-  if (t.p.allFinite() && t.q.coeffs().allFinite() && t.q.norm() > 0.0) return "";
-  return std::string(name) + " must be a finite pose";
-}
-
 std::string axisError(const std::string& name, const Vec3& a) {
   if (a.allFinite() && a.norm() > 0.0) return "";
   return name + " must be a finite, non-zero vector";
@@ -21,7 +16,7 @@ std::string axisError(const std::string& name, const Vec3& a) {
 
 std::string commonError(const Transform& frame_a, const Transform& frame_b,
                         const JointSpring& spring) {
-  std::string e = firstError({frameError("frame_a", frame_a), frameError("frame_b", frame_b)});
+  std::string e = firstError({poseError("frame_a", frame_a), poseError("frame_b", frame_b)});
   if (!e.empty()) return e;
   if (!(e = jointSpringError(spring)).empty()) return "spring." + e;
   return "";

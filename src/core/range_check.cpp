@@ -6,29 +6,29 @@
 namespace ragdoll_sim {
 
 namespace {
-std::string must(const std::string& name, const std::string& what, double v) {
+std::string must(std::string_view name, std::string_view what, double v) {
   std::ostringstream s;
   s << name << " must be " << what << ", got " << v;
   return s.str();
 }
 }  // namespace
 
-std::string positiveError(const std::string& name, double v) {
+std::string positiveError(std::string_view name, double v) {
   return std::isfinite(v) && v > 0.0 ? "" : must(name, "a finite number > 0", v);
 }
 
-std::string nonNegativeError(const std::string& name, double v) {
+std::string nonNegativeError(std::string_view name, double v) {
   return std::isfinite(v) && v >= 0.0 ? "" : must(name, "a finite number >= 0", v);
 }
 
-std::string rangeError(const std::string& name, double v, double lo, double hi) {
+std::string rangeError(std::string_view name, double v, double lo, double hi) {
   if (std::isfinite(v) && v >= lo && v <= hi) return "";
   std::ostringstream what;
   what << "a finite number in [" << lo << ", " << hi << "]";
   return must(name, what.str(), v);
 }
 
-std::string intRangeError(const std::string& name, int v, int lo, int hi, const char* note) {
+std::string intRangeError(std::string_view name, int v, int lo, int hi, const char* note) {
   if (v >= lo && v <= hi) return "";
   std::ostringstream s;
   s << name << " must be >= " << lo;
@@ -37,24 +37,29 @@ std::string intRangeError(const std::string& name, int v, int lo, int hi, const 
   return s.str();
 }
 
-std::string finiteError(const std::string& name, double v) {
+std::string finiteError(std::string_view name, double v) {
   return std::isfinite(v) ? "" : must(name, "finite", v);
 }
 
-std::string positiveOrInfError(const std::string& name, double v) {
+std::string positiveOrInfError(std::string_view name, double v) {
   return v > 0.0 ? "" : must(name, "> 0 (or inf)", v);
 }
 
-std::string nonNegativeOrInfError(const std::string& name, double v) {
+std::string nonNegativeOrInfError(std::string_view name, double v) {
   return v >= 0.0 ? "" : must(name, ">= 0 (or inf)", v);
 }
 
-std::string orderError(const std::string& lo_name, double lo, const std::string& hi_name,
+std::string orderError(std::string_view lo_name, double lo, std::string_view hi_name,
                        double hi) {
   if (lo <= hi) return "";
   std::ostringstream s;
   s << lo_name << " must be <= " << hi_name << ", got " << lo << " > " << hi;
   return s.str();
+}
+
+std::string poseError(std::string_view name, const Transform& t) {
+  if (t.p.allFinite() && t.q.coeffs().allFinite() && t.q.norm() > 0.0) return "";
+  return std::string(name) + " must be a finite pose";
 }
 
 std::string firstError(std::initializer_list<std::string> errors) {

@@ -97,7 +97,10 @@ std::string geometryError(const Geometry& g) {
         e = "convex_hull has no hull (its points were degenerate: fewer than 4 not in a plane)";
       else
         for (const Vec3& v : g.hull->vertices)
-          if (!v.allFinite()) e = "convex_hull vertices must be finite";
+          if (!v.allFinite()) {
+            e = "convex_hull vertices must be finite";
+            break;
+          }
       break;
   }
   return e;

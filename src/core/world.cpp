@@ -1074,10 +1074,7 @@ BodyId World::createBody(const BodyDef& def) {
 
 void World::addShape(BodyId id, const ShapeDef& def) {
   impl_->checkBody(id);
-  std::string e = geometryError(def.geometry);
-  if (e.empty() && !(def.local.p.allFinite() && def.local.q.coeffs().allFinite() &&
-                     def.local.q.norm() > 0.0))
-    e = "local pose must be finite";
+  std::string e = firstError({geometryError(def.geometry), poseError("local", def.local)});
   if (e.empty() && !(e = materialError(def.material)).empty()) e = "material " + e;
   if (!e.empty())
     throw std::invalid_argument("ragdoll_sim: a shape of body '" +

@@ -193,6 +193,10 @@ void SimNode::stepOnce() {
       if (!f.torque.isZero(0.0)) world_->applyTorque(body, f.torque);
     }
     for (int i : r.moving_targets) applyAxisMotor(r, i);  // targets that move with their velocity
+    // applyAxisMotor drops a target that overflowed: it moves no more.
+    r.moving_targets.erase(std::remove_if(r.moving_targets.begin(), r.moving_targets.end(),
+                                          [&](int i) { return !r.targets[size_t(i)].active; }),
+                           r.moving_targets.end());
     if (r.balance) r.balance->update(*world_);
   }
   world_->step(dt_);
