@@ -31,7 +31,11 @@ std::string nonNegativeOrInfError(std::string_view name, double v);
 // "<lo_name> must be <= <hi_name>, got <lo> > <hi>": NaN fails, infinite ends pass
 std::string orderError(std::string_view lo_name, double lo, std::string_view hi_name,
                        double hi);
-// "<name> must be a finite pose": p finite, q finite and not zero
+// "<name> must be a finite number > 0 and <= 1048576 (m, kWorldRange), got <v>"; with
+// zero_allowed, >= 0: a size the World can hold
+std::string lengthError(std::string_view name, double v, bool zero_allowed = false);
+// "<name> must be a finite pose within 1048576 m (kWorldRange)": q finite and not zero, p
+// finite with no component beyond kWorldRange (an offset within a body: shapes, joint frames)
 std::string poseError(std::string_view name, const Transform& t);
 // The first non-empty message, or "".
 std::string firstError(std::initializer_list<std::string> errors);

@@ -55,9 +55,10 @@ struct Geometry {
 };
 
 // "" when the World can collide the geometry, else what is wrong, naming the shape and the
-// field ("cylinder radius must be a finite number > 0, got -0.05"): sizes finite and > 0 (a
-// capsule's half_height may be 0: a sphere), a unit plane normal with a finite offset, a hull
-// that was built (convexHull of degenerate points has none) with finite vertices.
+// field ("cylinder radius must be a finite number > 0 and <= 1048576 (m, kWorldRange), got
+// -0.05"): sizes finite, > 0 and within kWorldRange (a capsule's half_height may be 0: a
+// sphere), a unit plane normal with an offset within kWorldRange, a hull that was built
+// (convexHull of degenerate points has none) with finite vertices within kWorldRange.
 std::string geometryError(const Geometry& g);
 
 // Contact coefficients of one surface. A pair of surfaces uses the coefficients listed for

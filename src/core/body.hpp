@@ -37,7 +37,7 @@ struct Body {
 // peers' scene b) went apart within 1 s: round-off decided how each one landed.
 inline double snapPosition(double x) {
   constexpr double kGrid = 4294967296.0;  // 2^32 steps per metre
-  return std::abs(x) < 1048576.0 ? std::nearbyint(x * kGrid) / kGrid : x;
+  return std::abs(x) < kWorldRange ? std::nearbyint(x * kGrid) / kGrid : x;
 }
 inline Vec3 snapPosition(const Vec3& x) {
   return {snapPosition(x.x()), snapPosition(x.y()), snapPosition(x.z())};

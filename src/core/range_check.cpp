@@ -8,6 +8,7 @@ namespace ragdoll_sim {
 namespace {
 std::string must(std::string_view name, std::string_view what, double v) {
   std::ostringstream s;
+  s.precision(10);  // 1048576.5 must not read as 1.04858e+06
   s << name << " must be " << what << ", got " << v;
   return s.str();
 }
@@ -57,9 +58,17 @@ std::string orderError(std::string_view lo_name, double lo, std::string_view hi_
   return s.str();
 }
 
+std::string lengthError(std::string_view name, double v, bool zero_allowed) {
+  if (std::isfinite(v) && (v > 0.0 || (zero_allowed && v == 0.0)) && v <= kWorldRange) return "";
+  return must(name, zero_allowed ? "a finite number >= 0 and <= 1048576 (m, kWorldRange)"
+                                 : "a finite number > 0 and <= 1048576 (m, kWorldRange)",
+              v);
+}
+
 std::string poseError(std::string_view name, const Transform& t) {
-  if (t.p.allFinite() && t.q.coeffs().allFinite() && t.q.norm() > 0.0) return "";
-  return std::string(name) + " must be a finite pose";
+  if (t.p.allFinite() && t.p.cwiseAbs().maxCoeff() <= kWorldRange && t.q.coeffs().allFinite() && t.q.norm() > 0.0)
+    return "";
+  return std::string(name) + " must be a finite pose within 1048576 m (kWorldRange)";
 }
 
 std::string firstError(std::initializer_list<std::string> errors) {

@@ -73,32 +73,32 @@ std::string geometryError(const Geometry& g) {
   const std::string type = shapeTypeName(g.type);
   std::string e;
   switch (g.type) {
-    case ShapeType::Sphere: e = positiveError(type + " radius", g.radius); break;
+    case ShapeType::Sphere: e = lengthError(type + " radius", g.radius); break;
     case ShapeType::Capsule:
-      if ((e = positiveError(type + " radius", g.radius)).empty())
-        e = nonNegativeError(type + " half_height", g.half_height);
+      if ((e = lengthError(type + " radius", g.radius)).empty())
+        e = lengthError(type + " half_height", g.half_height, true);
       break;
     case ShapeType::Cylinder:
-      if ((e = positiveError(type + " radius", g.radius)).empty())
-        e = positiveError(type + " half_height", g.half_height);
+      if ((e = lengthError(type + " radius", g.radius)).empty())
+        e = lengthError(type + " half_height", g.half_height);
       break;
     case ShapeType::Box:
       for (int i = 0; i < 3 && e.empty(); ++i)
-        e = positiveError(type + " half_extents." + "xyz"[i], g.half_extents[i]);
+        e = lengthError(type + " half_extents." + "xyz"[i], g.half_extents[i]);
       break;
     case ShapeType::Plane:
       if (!g.normal.allFinite() || std::abs(g.normal.norm() - 1.0) > 1e-9)
         e = "plane normal must be a finite unit vector";
-      else if (!std::isfinite(g.offset))
-        e = "plane offset must be finite";
+      else
+        e = lengthError("plane offset's magnitude", std::abs(g.offset), true);
       break;
     case ShapeType::ConvexHull:
       if (!g.hull)
         e = "convex_hull has no hull (its points were degenerate: fewer than 4 not in a plane)";
       else
         for (const Vec3& v : g.hull->vertices)
-          if (!v.allFinite()) {
-            e = "convex_hull vertices must be finite";
+          if (!v.allFinite() || v.cwiseAbs().maxCoeff() > kWorldRange) {
+            e = "convex_hull vertices must be finite and within 1048576 m (kWorldRange)";
             break;
           }
       break;

@@ -180,16 +180,28 @@ TEST(GeometryRanges, BadGeometryOrPoseIsRefusedAndNotAdded) {
   EXPECT_EQ(geometryError(Geometry()), "");
   EXPECT_EQ(geometryError(Geometry::capsule(0.05, 0.0)), "");  // a sphere
   EXPECT_EQ(geometryError(Geometry::plane(Vec3(0, 0, 2), 1.0)), "");  // normalised
+  // the ends of the World's range (kWorldRange, 2^20 m)
+  EXPECT_EQ(geometryError(Geometry::box(Vec3(kWorldRange, 1e-9, kWorldRange))), "");
+  EXPECT_EQ(geometryError(Geometry::plane(Vec3::UnitZ(), -kWorldRange)), "");
+  Transform far;
+  far.p = Vec3(-kWorldRange, 0, kWorldRange);
+  EXPECT_EQ(poseError("local", far), "");
   const std::vector<std::pair<Geometry, std::string>> bad = {
-      {Geometry::sphere(0.0), "sphere radius must be a finite number > 0, got 0"},
+      {Geometry::sphere(0.0), "sphere radius must be a finite number > 0 and <= 1048576"},
       {Geometry::sphere(kNaN), "sphere radius"},
       {Geometry::capsule(-0.05, 0.1), "capsule radius"},
-      {Geometry::capsule(0.05, -0.1), "capsule half_height must be a finite number >= 0"},
-      {Geometry::cylinder(-0.05, 0.15), "cylinder radius must be a finite number > 0, got -0.05"},
+      {Geometry::capsule(0.05, -0.1), "capsule half_height must be a finite number >= 0 and"},
+      {Geometry::cylinder(-0.05, 0.15), "cylinder radius must be a finite number > 0 and"},
+      {Geometry::cylinder(0.05, 1048576.5), "cylinder half_height must be a finite number > 0 "
+                                            "and <= 1048576 (m, kWorldRange), got 1048576.5"},
+      {Geometry::sphere(1e100), "sphere radius"},  // loaded from a URDF and dropped from 5e99 m
       {Geometry::cylinder(0.05, 0.0), "cylinder half_height"},
       {Geometry::box(Vec3(-0.1, -0.1, 0.1)), "box half_extents.x"},
       {Geometry::box(Vec3(0.1, 0.1, kInf)), "box half_extents.z"},
+      {Geometry::box(Vec3(0.1, 2e6, 0.1)), "box half_extents.y"},
       {Geometry::plane(Vec3(0, 0, 1), kNaN), "plane offset"},
+      {Geometry::plane(Vec3(0, 0, 1), -2e6),
+       "plane offset's magnitude must be a finite number >= 0 and <= 1048576"},
       {[] {  // the factory normalises; a normal set by hand is checked
          Geometry g = Geometry::plane(Vec3::UnitZ(), 0.0);
          g.normal = Vec3(0, 0, 2);
@@ -199,6 +211,8 @@ TEST(GeometryRanges, BadGeometryOrPoseIsRefusedAndNotAdded) {
       // four points in a plane: no hull data for the narrowphase to read
       {Geometry::convexHull({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)}),
        "convex_hull has no hull"},
+      {Geometry::convexHull({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 3e6)}),
+       "convex_hull vertices must be finite and within 1048576 m"},
   };
   World w;
   BodyDef bd;
@@ -221,6 +235,13 @@ TEST(GeometryRanges, BadGeometryOrPoseIsRefusedAndNotAdded) {
   EXPECT_THROW(w.addShape(b, sd), std::invalid_argument);
   sd.local = Transform(Vec3::Zero(), Quat(0, 0, 0, 0));
   EXPECT_THROW(w.addShape(b, sd), std::invalid_argument);
+  sd.local = Transform(Vec3(0, 1048577.0, 0), Quat::Identity());  // beyond kWorldRange
+  try {
+    w.addShape(b, sd);
+    ADD_FAILURE() << "addShape took a shape 1048577 m from its body";
+  } catch (const std::invalid_argument& ex) {
+    EXPECT_TRUE(contains(ex.what(), "local must be a finite pose within 1048576 m")) << ex.what();
+  }
   EXPECT_TRUE(w.bodyShapes(b).empty());
   w.addShape(b, ShapeDef());
   for (int i = 0; i < 10; ++i) w.step(1e-3);  // the world goes on with the good shape
@@ -295,6 +316,8 @@ TEST(JointDefRanges, BadDefsAreRefusedAndNothingIsCreated) {
        hinge([](auto& d) { d.motor.hertz = -1; })},
       {"motor.max_torque must be >= 0 (or inf), got nan",
        hinge([](auto& d) { d.motor.max_torque = kNaN; })},
+      {"frame_a must be a finite pose within 1048576 m",
+       hinge([](auto& d) { d.frame_a.p.z() = 1e7; })},
       {"fixed joint between 'a' and 'b': frame_b must be a finite pose",
        fixed([](auto& d) { d.frame_b.q = Quat(0, 0, 0, 0); })},
       {"spring.break_torque must be > 0 (or inf), got 0",

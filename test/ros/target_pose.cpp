@@ -1,7 +1,9 @@
 // rostest: joint targets on ~target_pose (sensor_msgs/JointState). A target for the left elbow
 // (a hinge) and the left shoulder's y joint (a source joint of a ball chain) is reached within
 // 0.05 rad, read back from /joint_states; commands naming an unknown joint or holding NaN are
-// dropped with a warning and leave the pose alone. Tests run in order and share one node.
+// dropped with a warning and leave the pose alone. A target whose motion overflows on an
+// unlimited axis (a spawned wheel's continuous joint) is dropped with a warning, the node goes
+// on and takes the next target. Tests run in order and share one node.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +12,7 @@
 #include <memory>
 #include <mutex>
 
+#include <ragdoll_sim/SpawnRagdoll.h>
 #include <sensor_msgs/JointState.h>
 
 #include "node_log.hpp"
@@ -22,14 +25,19 @@ const std::string kNode = "/ragdoll_sim";
 
 struct Fixture {
   ros::NodeHandle nh;
-  ros::Subscriber states_sub;
+  ros::Subscriber states_sub, wheel_sub;
   ros::Publisher target_pub;
   std::unique_ptr<NodeWarnings> warnings;
   std::mutex mutex;
-  sensor_msgs::JointState last;
+  sensor_msgs::JointState last, wheel;  // /joint_states, /wheel/joint_states
 
   void init() {
     states_sub = nh.subscribe("/joint_states", 50, &Fixture::onStates, this);
+    wheel_sub = nh.subscribe<sensor_msgs::JointState>(
+        "/wheel/joint_states", 50, [this](const sensor_msgs::JointState::ConstPtr& m) {
+          std::lock_guard<std::mutex> lock(mutex);
+          wheel = *m;
+        });
     target_pub = nh.advertise<sensor_msgs::JointState>(kNode + "/target_pose", 10);
     warnings = std::make_unique<NodeWarnings>(nh, kNode);
   }
@@ -40,6 +48,10 @@ struct Fixture {
   sensor_msgs::JointState latest() {
     std::lock_guard<std::mutex> lock(mutex);
     return last;
+  }
+  sensor_msgs::JointState latestWheel() {
+    std::lock_guard<std::mutex> lock(mutex);
+    return wheel;
   }
   // Position of `joint` in a joint_states message (NaN when absent).
   static double position(const sensor_msgs::JointState& s, const std::string& joint) {
@@ -131,6 +143,69 @@ TEST(TargetPose, B_BadNamesAndNaNAreDropped) {
   const sensor_msgs::JointState s = fx->waitStamp(fx->latest().header.stamp + ros::Duration(0.5));
   ASSERT_FALSE(s.name.empty());
   EXPECT_NEAR(Fixture::position(s, "elbow_l"), 1.2, 0.05) << "a dropped command moved the elbow";
+}
+
+// A hub and a wheel on a continuous joint (no limits: its target is not clamped to a range).
+const char* kWheelUrdf = R"(<robot name="wheel">
+  <link name="hub"><inertial><mass value="2"/><inertia ixx="0.02" iyy="0.02" izz="0.02" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.1 0.1 0.1"/></geometry></collision></link>
+  <link name="rim"><inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.02" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><origin xyz="0 0 0.15"/><geometry><cylinder radius="0.2" length="0.05"/></geometry></collision></link>
+  <joint name="spin" type="continuous"><parent link="hub"/><child link="rim"/><axis xyz="0 0 1"/></joint>
+</robot>)";
+
+TEST(TargetPose, C_OverflowingTargetIsDroppedAndTheNodeGoesOn) {
+  ragdoll_sim::SpawnRagdoll spawn;
+  spawn.request.name = "wheel";
+  spawn.request.urdf = kWheelUrdf;
+  spawn.request.pose.position.x = 3.0;  // away from the first ragdoll, gravity off
+  spawn.request.pose.position.z = 5.0;
+  ASSERT_TRUE(ros::service::call(kNode + "/spawn", spawn));
+  ASSERT_TRUE(spawn.response.success) << spawn.response.message;
+  // Finite inputs that pass the command checks: 1e308 rad moving at 1e308 rad/s passes the
+  // largest double (1.8e308) after ~0.8 s of sim time, where the motor target is inf.
+  sensor_msgs::JointState cmd;
+  cmd.name = {"wheel/spin"};
+  cmd.position = {1e308};
+  cmd.velocity = {1e308};
+  fx->target_pub.publish(cmd);
+  EXPECT_TRUE(fx->warnings->wait({"'wheel'", "'spin'", "the target is dropped"}, 10.0))
+      << "no WARN about the overflowing target";
+
+  // The node goes on: both ragdolls publish finite joint states, and the wheel takes a new target.
+  const ros::Time after = fx->latest().header.stamp + ros::Duration(0.3);
+  const sensor_msgs::JointState first = fx->waitStamp(after);
+  ASSERT_FALSE(first.name.empty()) << "joint_states stopped";
+  EXPECT_NEAR(Fixture::position(first, "elbow_l"), 1.2, 0.05);
+  cmd.position = {0.5};
+  cmd.velocity.clear();
+  fx->target_pub.publish(cmd);
+  // Reached (the hinge angle is read in (-pi, pi]) and held for 1 s of sim time.
+  const auto wheelAfter = [&](const ros::Time& stamp) {
+    for (const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(20.0);
+         ros::ok() && ros::WallTime::now() < deadline; ros::WallDuration(0.02).sleep()) {
+      const sensor_msgs::JointState w = fx->latestWheel();
+      if (w.header.stamp >= stamp) return w;
+    }
+    return sensor_msgs::JointState();
+  };
+  double spin = std::numeric_limits<double>::quiet_NaN();
+  ros::Time reached;
+  for (ros::Time t = after; reached.isZero();) {
+    const sensor_msgs::JointState w = wheelAfter(t);
+    ASSERT_FALSE(w.name.empty()) << "/wheel/joint_states stopped";
+    spin = Fixture::position(w, "spin");
+    ASSERT_TRUE(std::isfinite(spin)) << "spin " << spin;
+    if (std::abs(spin - 0.5) < 0.05) reached = w.header.stamp;
+    ASSERT_LT((w.header.stamp - after).toSec(), 10.0) << "the wheel did not take the new target: spin " << spin;
+    t = w.header.stamp + ros::Duration(0.001);
+  }
+  const sensor_msgs::JointState held = wheelAfter(reached + ros::Duration(1.0));
+  ASSERT_FALSE(held.name.empty());
+  EXPECT_NEAR(Fixture::position(held, "spin"), 0.5, 0.05) << "the new target is not held";
+  std::printf("[ target   ] overflowing target dropped with a WARN; the next one (0.5) reached after "
+              "%.3f s sim, 1 s later spin %.4f\n",
+              (reached - after).toSec(), Fixture::position(held, "spin"));
 }
 
 int main(int argc, char** argv) {

@@ -32,6 +32,8 @@ inline const std::vector<BadCase>& badCases() {
       {"bad_nan_origin.urdf", {"joint 'elbow'", "<origin>", "nan"}},
       {"bad_negative_radius.urdf", {"link 'upper_arm'", "<collision>", "cylinder radius", "-0.05"}},
       {"bad_negative_box.urdf", {"link 'forearm'", "<collision>", "box half_extents.x", "-0.04"}},
+      {"bad_huge_box.urdf", {"link 'upper_arm'", "<collision>", "box half_extents.x", "5e+99"}},
+      {"bad_far_origin.urdf", {"joint 'elbow'", "<origin>", "-1e+07", "1048576 m"}},
   };
   return cases;
 }
