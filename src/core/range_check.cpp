@@ -25,6 +25,7 @@ std::string nonNegativeError(std::string_view name, double v) {
 std::string rangeError(std::string_view name, double v, double lo, double hi) {
   if (std::isfinite(v) && v >= lo && v <= hi) return "";
   std::ostringstream what;
+  what.precision(10);
   what << "a finite number in [" << lo << ", " << hi << "]";
   return must(name, what.str(), v);
 }
@@ -66,7 +67,8 @@ std::string lengthError(std::string_view name, double v, bool zero_allowed) {
 }
 
 std::string poseError(std::string_view name, const Transform& t) {
-  if (t.p.allFinite() && t.p.cwiseAbs().maxCoeff() <= kWorldRange && t.q.coeffs().allFinite() && t.q.norm() > 0.0)
+  if (t.p.allFinite() && t.p.cwiseAbs().maxCoeff() <= kWorldRange && t.q.coeffs().allFinite() &&
+      t.q.norm() > 0.0)
     return "";
   return std::string(name) + " must be a finite pose within 1048576 m (kWorldRange)";
 }

@@ -90,7 +90,7 @@ std::string geometryError(const Geometry& g) {
       if (!g.normal.allFinite() || std::abs(g.normal.norm() - 1.0) > 1e-9)
         e = "plane normal must be a finite unit vector";
       else
-        e = lengthError("plane offset's magnitude", std::abs(g.offset), true);
+        e = rangeError("plane offset", g.offset, -kWorldRange, kWorldRange);
       break;
     case ShapeType::ConvexHull:
       if (!g.hull)

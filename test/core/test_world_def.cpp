@@ -201,7 +201,7 @@ TEST(GeometryRanges, BadGeometryOrPoseIsRefusedAndNotAdded) {
       {Geometry::box(Vec3(0.1, 2e6, 0.1)), "box half_extents.y"},
       {Geometry::plane(Vec3(0, 0, 1), kNaN), "plane offset"},
       {Geometry::plane(Vec3(0, 0, 1), -2e6),
-       "plane offset's magnitude must be a finite number >= 0 and <= 1048576"},
+       "plane offset must be a finite number in [-1048576, 1048576], got -2000000"},
       {[] {  // the factory normalises; a normal set by hand is checked
          Geometry g = Geometry::plane(Vec3::UnitZ(), 0.0);
          g.normal = Vec3(0, 0, 2);
