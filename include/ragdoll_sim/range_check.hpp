@@ -34,8 +34,11 @@ std::string orderError(std::string_view lo_name, double lo, std::string_view hi_
 // "<name> must be a finite number > 0 and <= 1048576 (m, kWorldRange), got <v>"; with
 // zero_allowed, >= 0: a size the World can hold
 std::string lengthError(std::string_view name, double v, bool zero_allowed = false);
-// "<name> must be a finite pose within 1048576 m (kWorldRange)": q finite and not zero, p
-// finite with no component beyond kWorldRange (an offset within a body: shapes, joint frames)
+// "<name> must be finite and within 1048576 m (kWorldRange), got <x y z>": a point or an offset
+// the World can hold (hull vertices, the URDF loader's <origin>s, poseError's offset)
+std::string worldPointError(std::string_view name, const Vec3& p);
+// "<name> must be a finite pose within 1048576 m (kWorldRange)": q finite and not zero, p as
+// worldPointError's (an offset within a body: shapes, joint frames)
 std::string poseError(std::string_view name, const Transform& t);
 // The first non-empty message, or "".
 std::string firstError(std::initializer_list<std::string> errors);

@@ -59,18 +59,42 @@ std::string orderError(std::string_view lo_name, double lo, std::string_view hi_
   return s.str();
 }
 
+namespace {
+// kWorldRange as the messages print it ("1048576")
+const std::string& worldRangeText() {
+  static const std::string text = [] {
+    std::ostringstream s;
+    s.precision(10);
+    s << kWorldRange;
+    return s.str();
+  }();
+  return text;
+}
+bool withinWorldRange(const Vec3& p) {
+  return p.allFinite() && p.cwiseAbs().maxCoeff() <= kWorldRange;
+}
+}  // namespace
+
 std::string lengthError(std::string_view name, double v, bool zero_allowed) {
   if (std::isfinite(v) && (v > 0.0 || (zero_allowed && v == 0.0)) && v <= kWorldRange) return "";
-  return must(name, zero_allowed ? "a finite number >= 0 and <= 1048576 (m, kWorldRange)"
-                                 : "a finite number > 0 and <= 1048576 (m, kWorldRange)",
+  return must(name,
+              std::string("a finite number ") + (zero_allowed ? ">= 0" : "> 0") + " and <= " +
+                  worldRangeText() + " (m, kWorldRange)",
               v);
 }
 
+std::string worldPointError(std::string_view name, const Vec3& p) {
+  if (withinWorldRange(p)) return "";
+  std::ostringstream s;  // the coordinates at 6 digits, as the URDF loader prints numbers
+  s << name << " must be finite and within " << worldRangeText() << " m (kWorldRange), got "
+    << p.x() << " " << p.y() << " " << p.z();
+  return s.str();
+}
+
 std::string poseError(std::string_view name, const Transform& t) {
-  if (t.p.allFinite() && t.p.cwiseAbs().maxCoeff() <= kWorldRange && t.q.coeffs().allFinite() &&
-      t.q.norm() > 0.0)
-    return "";
-  return std::string(name) + " must be a finite pose within 1048576 m (kWorldRange)";
+  if (withinWorldRange(t.p) && t.q.coeffs().allFinite() && t.q.norm() > 0.0) return "";
+  return std::string(name) + " must be a finite pose within " + worldRangeText() +
+         " m (kWorldRange)";
 }
 
 std::string firstError(std::initializer_list<std::string> errors) {

@@ -97,10 +97,7 @@ std::string geometryError(const Geometry& g) {
         e = "convex_hull has no hull (its points were degenerate: fewer than 4 not in a plane)";
       else
         for (const Vec3& v : g.hull->vertices)
-          if (!v.allFinite() || v.cwiseAbs().maxCoeff() > kWorldRange) {
-            e = "convex_hull vertices must be finite and within 1048576 m (kWorldRange)";
-            break;
-          }
+          if (!(e = worldPointError("convex_hull vertices", v)).empty()) break;
       break;
   }
   return e;

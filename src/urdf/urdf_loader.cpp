@@ -34,6 +34,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "ragdoll_sim/range_check.hpp"
 #include "mesh_loader.hpp"
 #include "urdf_xml.hpp"
 
@@ -85,9 +86,8 @@ Vec3 toVec(const urdf::Vector3& v) { return {v.x, v.y, v.z}; }
 Transform toTransform(const urdf::Pose& p, const std::string& where) {
   Transform t(toVec(p.position), Quat(p.rotation.w, p.rotation.x, p.rotation.y, p.rotation.z));
   if (!t.p.allFinite() || !t.q.coeffs().allFinite()) throw LoadError(where + ": non-finite <origin>");
-  if (t.p.cwiseAbs().maxCoeff() > kWorldRange)  // as the World's poseError
-    throw LoadError(where + ": <origin> xyz " + num(t.p.x()) + " " + num(t.p.y()) + " " +
-                    num(t.p.z()) + " is beyond 1048576 m (kWorldRange), the World's range");
+  const std::string far = worldPointError("<origin> xyz", t.p);  // the World's rule
+  if (!far.empty()) throw LoadError(where + ": " + far);
   t.q.normalize();
   return t;
 }
