@@ -14,6 +14,7 @@
 // ground penetration of the analytic shapes, joint angles vs limits, rest state at 3 s).
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -176,6 +177,21 @@ struct Metrics {
   }
 };
 
+// FNV-1a over the bits of every body's pose and velocities, folded into h.
+uint64_t hashStates(const World& world, uint64_t h) {
+  for (int i = 0; i < world.bodyCount(); ++i) {
+    const BodyState st = world.bodyState(BodyId{i});
+    const double v[13] = {st.pose.p.x(), st.pose.p.y(), st.pose.p.z(), st.pose.q.w(),
+                          st.pose.q.x(), st.pose.q.y(), st.pose.q.z(), st.linear_velocity.x(),
+                          st.linear_velocity.y(), st.linear_velocity.z(),
+                          st.angular_velocity.x(), st.angular_velocity.y(),
+                          st.angular_velocity.z()};
+    const auto* bytes = reinterpret_cast<const unsigned char*>(v);
+    for (size_t k = 0; k < sizeof v; ++k) h = (h ^ bytes[k]) * 1099511628211ull;
+  }
+  return h;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -185,6 +201,10 @@ int main(int argc, char** argv) {
   bool metrics = true;
   double rolling = 0.0;
   double yaw = 0.0;  // --opt yaw=R: every root turned R rad about z (round-off variants of a scene)
+  // --opt hash=1: the line ends with state_hash, an FNV-1a hash of every body's pose and
+  // velocity bits after every step, so that a change meant to keep the results can be checked
+  // bit for bit.
+  bool hash = false;
   int trace = 0;  // --opt trace=N: every N steps, awake bodies, islands, mean step time (stderr)
   // --opt joint_damping=D,joint_friction=F: every joint axis gets viscous damping D (N m s/rad)
   // and Coulomb friction F (N m), as a URDF <dynamics> on every joint would give (ragdoll15 has
@@ -230,6 +250,7 @@ int main(int argc, char** argv) {
         else if (k == "rolling") rolling = v;
         else if (k == "yaw") yaw = v;
         else if (k == "trace") trace = int(v);
+        else if (k == "hash") hash = v != 0.0;
         else if (k == "joint_damping") joint_damping = v;
         else if (k == "joint_friction") joint_friction = v;
         else {
@@ -308,6 +329,7 @@ int main(int argc, char** argv) {
   // from one that changes the cost of a step.
   long awake_body_steps = 0;
   long resting_body_steps = 0;  // of those, in islands on the rest substeps (SleepDef::rest_substeps)
+  uint64_t state_hash = 14695981039346656037ull;
   const int window = std::min(1000, steps);
   const auto loop0 = std::chrono::steady_clock::now();
   for (int step = 1; step <= steps; ++step) {
@@ -318,6 +340,7 @@ int main(int argc, char** argv) {
     if (step <= window) wall_first += dt_wall;
     if (step > steps - window) wall_last += dt_wall;
     wall_trace += dt_wall;
+    if (hash) state_hash = hashStates(world, state_hash);
     awake_body_steps += world.awakeBodyCount();
     resting_body_steps += world.islandCounters().resting_bodies;
     if (trace > 0 && step % trace == 0) {
@@ -372,6 +395,11 @@ int main(int argc, char** argv) {
     char buf[96];
     std::snprintf(buf, sizeof buf, " joint_damping=%g joint_friction=%g", joint_damping,
                   joint_friction);
+    extra += buf;
+  }
+  if (hash) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, " state_hash=%016llx", (unsigned long long)state_hash);
     extra += buf;
   }
   const double sps = steps / wall;
