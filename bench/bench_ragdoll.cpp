@@ -325,7 +325,7 @@ int main(int argc, char** argv) {
   double wall = 0.0, wall_first = 0.0, wall_last = 0.0, wall_trace = 0.0;
   // Bodies awake after each step, summed over the run (outside the timed calls): what sleeping
   // left to solve. Deterministic for a given binary and scene, unlike the wall time, it tells a
-  // change that only moves when the ragdolls sleep (a change of round-off can: bench/HISTORY.md)
+  // change that only moves when the ragdolls sleep (a change of round-off can: docs/benchmarks.md)
   // from one that changes the cost of a step.
   long awake_body_steps = 0;
   long resting_body_steps = 0;  // of those, in islands on the rest substeps (SleepDef::rest_substeps)

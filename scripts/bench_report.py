@@ -319,7 +319,7 @@ def report(meta, runs, failures, png_name):
                  "sleeping bodies cost nothing), contact count at the end, bodies awake at the "
                  "end and awake bodies summed over the steps (what sleeping left to solve: the "
                  "same for every run of one binary, while a change of round-off alone can move "
-                 "it, in b by ~20 %, bench/HISTORY.md); scene p: ragdolls whose pelvis ended "
+                 "it, in b by ~20 %: docs/benchmarks.md); scene p: ragdolls whose pelvis ended "
                  "outside the pit, and the highest pelvis at the end (m).")
         L.append("")
         rows = []
