@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds and runs all tests (gtests and rostests) of the workspace, the sanitizer build of the
-# ROS-free gtests (sanitize.sh) and a short fuzz run (fuzz.sh), prints the results and a final
+# ROS-free gtests (sanitize.sh), a short fuzz run (fuzz.sh) and the journal check of the
+# documents (check_journal.py), prints the results and a final
 # line "tests: N passed, M failed, K skipped". Exits non-zero on any failure or error.
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
@@ -16,6 +17,8 @@ scripts_rc=0
 "$ROOT/scripts/sanitize.sh" "$WS/build/test_results/sanitize" || scripts_rc=1
 "$ROOT/scripts/fuzz.sh" --runs "${FUZZ_TEST_RUNS:-2000}" --junit "$WS/build/test_results/fuzz" ||
   scripts_rc=1
+# The user documents and the sources must not read like a lab journal (commit hashes, "session").
+"$ROOT/scripts/check_journal.py" --junit "$WS/build/test_results/journal" || scripts_rc=1
 results="$(catkin_test_results --all "$WS/build/test_results")"
 rc=$?
 [[ $scripts_rc -ne 0 ]] && rc=1
