@@ -54,7 +54,7 @@ def main(argv):
     if junit:
         os.makedirs(junit, exist_ok=True)
         with open(os.path.join(junit, "journal.xml"), "w") as f:
-            f.write(f'<testsuite name="journal" tests="{len(cases)}" failures="{failed}">\n')
+            f.write(f'<testsuite name="journal" tests="{len(cases)}" failures="{failed}" errors="0" skipped="0">\n')
             for name, lines in cases:
                 f.write(f'  <testcase classname="journal" name={quoteattr(name)}>')
                 if lines:
