@@ -1,0 +1,181 @@
+// The collide phase: broadphase pairs -> narrowphase manifolds at the poses of the step start
+// (boxes, the sweep's pair loop with the pair filter, and the pairs in parallel). Data:
+// collide.hpp.
+#include <algorithm>
+#include <cmath>
+
+#include "constants.hpp"
+#include "gjk.hpp"
+#include "group_by.hpp"
+#include "world_impl.hpp"
+
+namespace ragdoll_sim {
+
+void World::Impl::collide(double dt) {
+  const int n = int(shapes.size());
+  aabbs.resize(n);
+  aabb_kept.resize(n, 0);
+  shape_frames.resize(n);
+  unbounded.resize(n);
+  frozen.resize(n);
+  const bool carry = def.carry_sleeping_pairs && !pairs_dirty;
+  const double spec = def.speculative_distance;
+  // Boxes in parallel (each shape its own slot), the few planes after.
+#pragma omp parallel for schedule(static) num_threads(threadCount()) if (n >= kParallelMin)
+  for (int s = 0; s < n; ++s) {
+    const Geometry& g = shapeDef(s).geometry;
+    const BodyMotion& m = motions[shapes[s].body];
+    unbounded[s] = isUnbounded(g);
+    frozen[s] = carry && !unbounded[s] && !m.awake && aabb_kept[s];
+    if (unbounded[s] || (!m.awake && aabb_kept[s])) continue;
+    aabb_kept[s] = !m.awake;
+    const Transform& f = shape_frames[s] = shapeFrame(s);
+    Aabb box = computeAabb(g, {m.x + f.p, f.q});
+    const Vec3 grow = Vec3::Constant(spec) + (m.v * dt).cwiseAbs();
+    box.lo -= grow;
+    box.hi += grow;
+    aabbs[s] = box;
+  }
+  planes.swap(last_planes);
+  planes.clear();
+  for (int s = 0; s < n; ++s) {
+    if (!unbounded[s]) continue;
+    const Transform& f = shape_frames[s] = shapeFrame(s);
+    const Vec3 nw = f.q * shapeDef(s).geometry.normal;
+    const Vec3 p = motions[shapes[s].body].x + f.p;  // world
+    planes.push_back({s, nw, shapeDef(s).geometry.offset + nw.dot(p)});
+    const size_t k = planes.size() - 1;  // frozen: the same plane as in the last step
+    const PlaneProxy* last = k < last_planes.size() ? &last_planes[k] : nullptr;
+    frozen[s] = carry && last && last->shape == s && last->normal == nw &&
+                last->offset == planes.back().offset;
+  }
+  // Keep pairs between different bodies, at least one dynamic, not disabled (checked inside
+  // the broadphase, on its threads); sort by key to merge with last step's contacts (also
+  // sorted by key). The keys are sorted, not the contacts (a Contact is ~400 bytes).
+  // A pair of two frozen shapes (boxes and planes as in the last step, which sleeping bodies
+  // keep) overlaps now iff it did then, and the filter has not changed since (pairs_dirty):
+  // such pairs are carried over from the last step's keys instead of found and filtered again.
+  // With few frozen shapes (every ragdoll awake, static walls) the broadphase's frozen test
+  // costs more than it saves: then nothing is carried.
+  const bool carry_now = carry && 4 * std::count(frozen.begin(), frozen.end(), char(1)) >= n;
+  if (carry && !carry_now) std::fill(frozen.begin(), frozen.end(), char(0));
+  const auto accept = [this](int sa, int sb) {
+    const int ba = shapes[sa].body, bb = shapes[sb].body;
+    return ba != bb && (isDynamic(ba) || isDynamic(bb)) && !neverCollide(ba, bb);
+  };
+  broadphase.findPairs(aabbs, unbounded, planes, spec, pairs, accept, threadCount(),
+                       carry_now ? &frozen : nullptr);
+  pairs_dirty = false;
+  pair_keys.clear();
+  for (const auto& [sa, sb] : pairs) pair_keys.push_back(pairKey(sa, sb));
+  sortPairKeys(pair_keys, n, merged_keys, sort_offsets, sort_cursor);  // scratch: merged_keys
+  carried_keys.clear();
+  if (carry_now)
+    for (const uint64_t key : contact_keys)
+      if (frozen[int(key >> 32)] && frozen[int(uint32_t(key))]) carried_keys.push_back(key);
+  if (!carried_keys.empty()) {
+    merged_keys.resize(pair_keys.size() + carried_keys.size());
+    std::merge(pair_keys.begin(), pair_keys.end(), carried_keys.begin(), carried_keys.end(),
+               merged_keys.begin());
+    pair_keys.swap(merged_keys);
+  }
+  // Sized only: every contact is reset in the parallel loop below (a Contact is ~400 bytes, too
+  // many to construct serially).
+  next_contacts.resize(pair_keys.size());
+  next_manifold_caches.resize(pair_keys.size());
+
+  // Merge with last step's contacts (both sorted by key), then run the narrowphase on each
+  // pair independently (in parallel; each writes only its own contact).
+  old_contact.assign(pair_keys.size(), -1);
+  size_t old = 0;
+  const size_t old_count = contact_keys.size();  // contacts[k].key: 8 bytes apart, not ~400
+  for (size_t i = 0; i < pair_keys.size(); ++i) {
+    while (old < old_count && contact_keys[old] < pair_keys[i]) ++old;
+    if (old < old_count && contact_keys[old] == pair_keys[i]) old_contact[i] = int(old);
+  }
+  const int count = int(next_contacts.size());
+  // Manifold cache (manifold_cache.hpp): a feature a kept manifold lacks is at least
+  // (speculative - cache distance) away, so both bodies must move less than that in the step,
+  // (|v| + extent |w|) dt, for it not to be reached unseen. (Separated pairs need no such
+  // check: the collision at the step start decides the step's contacts.)
+  const double cache_distance = def.manifold_cache_distance;
+  const bool cache_on = cache_distance > 0.0 && cache_distance < spec;
+  const double cache_speed = (spec - cache_distance) / dt;
+  const auto slow = [&](int b) {
+    const BodyMotion& m = motions[b];
+    return m.v.norm() + m.extent * m.w.norm() <= cache_speed;
+  };
+#pragma omp parallel for schedule(static) num_threads(threadCount()) if (count >= kParallelMin)
+  for (int i = 0; i < count; ++i) {
+    Contact& c = next_contacts[i];
+    ManifoldCache& cache = next_manifold_caches[i];
+    const int o = old_contact[i];
+    const int sa = int(pair_keys[i] >> 32), sb = int(uint32_t(pair_keys[i]));
+    const int ba = shapes[sa].body, bb = shapes[sb].body;
+    const bool asleep = !motions[ba].awake && !motions[bb].awake;
+    if (o >= 0 && asleep) {  // the manifold and impulses stay as they were
+      c = contacts[o];
+      cache = manifold_caches[o];
+      continue;
+    }
+    // The pair is collided in a frame at the centre of its (first) dynamic body: the
+    // manifold's points are relative to it (Contact::origin).
+    const Vec3 origin = motions[isDynamic(ba) ? ba : bb].x;
+    const Transform xa = shapePoseFrom(sa, origin), xb = shapePoseFrom(sb, origin);
+    // Kept (manifold_cache.hpp): a separated pair still beyond the band, or a touching pair
+    // whose manifold moves along with the shapes (ids and impulses stay).
+    if (o >= 0 && manifold_caches[o].valid &&
+        (manifold_caches[o].separated() || (slow(ba) && slow(bb))) &&
+        manifold_caches[o].holds(xa, xb, cache_distance)) {
+      c = contacts[o];
+      cache = manifold_caches[o];
+      if (!cache.separated()) {
+        c.origin = origin;
+        cache.apply(shapeDef(sa).geometry, xa, shapeDef(sb).geometry, xb, c.manifold);
+        c.sep_axis = c.manifold.normal;
+      }
+      continue;
+    }
+    c = Contact();
+    c.key = pair_keys[i];
+    c.shape_a = sa;
+    c.shape_b = sb;
+    c.body_a = ba;
+    c.body_b = bb;
+    c.origin = origin;
+    cache.valid = false;
+    if (asleep) continue;
+    const ShapeDef &da = shapeDef(sa), &db = shapeDef(sb);
+    if (o >= 0 && contacts[o].sep_valid) {
+      const np::ConvexCore ca{&da.geometry, xa}, cb{&db.geometry, xb};
+      const Vec3& n = contacts[o].sep_axis;
+      const double gap = n.dot(cb.support(-n)) - cb.radius() - n.dot(ca.support(n)) - ca.radius();
+      if (gap > spec) {
+        c.sep_axis = n;
+        c.sep_valid = true;
+        c.manifold.count = 0;
+        continue;
+      }
+    }
+    // Last step's normal of the pair (kept as sep_axis) starts GJK near its answer.
+    const Vec3* guess = o >= 0 ? &contacts[o].sep_axis : nullptr;
+    ragdoll_sim::collide(da.geometry, xa, db.geometry, xb, spec, c.manifold, guess);
+    cache.store(c.manifold, da.geometry, xa, db.geometry, xb, spec, cache_on);
+    // Cache the normal of a separated pair as its axis (not for planes: they are cheap).
+    c.sep_valid = c.manifold.count == 0 && !unbounded[sa] && !unbounded[sb];
+    c.sep_axis = c.manifold.normal;
+    const Material pair = def.materials.resolve(da.material, db.material);
+    c.static_friction = pair.static_friction;
+    c.kinetic_friction = pair.kinetic_friction;
+    c.restitution = pair.restitution;
+    c.rolling = pair.rolling_resistance > 0.0
+                    ? pair.rolling_resistance * std::max(rollingRadius(da.geometry), rollingRadius(db.geometry))
+                    : 0.0;
+    matchImpulses(o >= 0 ? contacts[o] : Contact(), c);
+  }
+  manifold_caches.swap(next_manifold_caches);
+  contacts.swap(next_contacts);
+  contact_keys.swap(pair_keys);
+}
+
+}  // namespace ragdoll_sim

@@ -1,0 +1,51 @@
+// The collide phase's data (collide.cpp): per shape its box and frame, the broadphase pairs,
+// and the contacts kept from step to step, sorted by pair key.
+//
+// Each pair is collided at the poses of the step start, in a frame at its dynamic body's centre
+// (translation invariance, body.hpp). Separated pairs are skipped by their cached axis; touching
+// pairs that barely moved keep their manifold (manifold_cache.hpp); impulses are carried over by
+// feature id (warm starting, scaled where the substep changed: warmStartScale). Pairs of two
+// shapes that keep last step's box (sleeping or static bodies) or plane are carried over instead
+// of found again: their overlap cannot have changed.
+#pragma once
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "broadphase.hpp"
+#include "contact.hpp"
+#include "manifold_cache.hpp"
+
+namespace ragdoll_sim {
+
+struct CollideData {
+  Broadphase broadphase;
+  std::vector<Contact> contacts, next_contacts;
+  std::vector<uint64_t> contact_keys;  // contacts[k].key, sorted
+  std::vector<uint64_t> carried_keys, merged_keys;
+  std::vector<char> frozen;  // per shape: box or plane as in the last step
+  std::vector<PlaneProxy> last_planes;
+  // The broadphase filter changed (pairs enabled or disabled): the next collide finds every
+  // pair again instead of carrying sleeping ones over.
+  bool pairs_dirty = true;
+  // Per contact (same index): its manifold in the shapes' frames (manifold_cache.hpp).
+  std::vector<ManifoldCache> manifold_caches, next_manifold_caches;
+  std::vector<Aabb> aabbs;
+  // Per shape: its box in aabbs is that of the current pose, kept while the body is static or
+  // asleep (such a body has zero velocity and does not move, so the box is recomputed only
+  // after the body woke, was set or was reset).
+  std::vector<char> aabb_kept;
+  // Per shape: its shapeFrame, formed in collide (a bounded shape's with its box, and kept with
+  // it; a plane's every step) and read by each pair's narrowphase frame (shapePoseFrom), which
+  // only adds the centre's offset from the pair's origin.
+  std::vector<Transform> shape_frames;
+  std::vector<char> unbounded;
+  std::vector<PlaneProxy> planes;
+  std::vector<std::pair<int, int>> pairs;
+  std::vector<uint64_t> pair_keys;
+  std::vector<int> old_contact;
+  std::vector<int> sort_offsets, sort_cursor;  // sortPairKeys' scratch
+};
+
+}  // namespace ragdoll_sim

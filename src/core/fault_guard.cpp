@@ -1,0 +1,137 @@
+// The fault guard around the step: inputs checked and clamped before it, bodies the solver left
+// non-finite reset after it, and their warm starts cleared. Data: fault_guard.hpp.
+#include "world_impl.hpp"
+
+namespace ragdoll_sim {
+
+namespace {
+// prepareJoint rebuilds everything else in the parts each step, so fresh parts lose only the
+// impulses.
+void clearJointWarmStart(Joint& j) {
+  j.point = PointPart();
+  j.hinge_axis = HingeAxisPart();
+  j.limits = {};
+  j.motor_parts = {};
+  j.swing_twist = SwingTwistPart();
+  j.angle_lock = AngleLockPart();
+  j.line = PointOnLinePart();
+  j.linear_limit = LinearLimitPart();
+  j.linear_motor = LinearMotorPart();
+  j.force = 0.0;
+  j.torque = 0.0;
+  j.overloaded = false;
+}
+
+void clearContactWarmStart(Contact& c) {
+  for (int i = 0; i < Manifold::kMaxPoints; ++i) {
+    c.normal_impulse[i] = 0.0;
+    c.friction_impulse[i].setZero();
+  }
+  c.rolling_impulse.setZero();
+  c.sep_valid = false;
+}
+}  // namespace
+
+
+// Before the step: what was set since the last one (impulses, forces, setBodyState) must be
+// finite, and velocities are clamped. A finite pose is the body's last finite one (it may come
+// from setBodyState); a body with a bad velocity, force or torque keeps it.
+void World::Impl::guardInputs() {
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    BodyMotion& m = motions[i];
+    if (inputsFinite(m)) {
+      clampNorm(m.v, def.max_linear_speed);
+      clampNorm(m.w, def.max_angular_speed);
+      last_finite[i] = {m.x, m.q};
+      continue;
+    }
+    if (m.x.allFinite() && m.q.coeffs().allFinite()) last_finite[i] = {m.x, m.q};
+    resetBody(int(i), BodyFaultCause::Input);
+  }
+}
+
+void World::Impl::resetBody(int b, BodyFaultCause cause) {
+  settled = false;
+  forgetBoxes(b);
+  BodyMotion& m = motions[b];
+  m.x = last_finite[b].x;
+  m.x_carry.setZero();
+  m.q = last_finite[b].q;
+  m.v.setZero();
+  m.w.setZero();
+  m.force.setZero();
+  m.torque.setZero();
+  ++fault_count;
+  if (faults.size() < World::kMaxPendingFaults) faults.push_back({BodyId{b}, cause, time});
+  if (cause == BodyFaultCause::Solver) {
+    solver_reset[b] = 1;
+    any_solver_reset = true;
+  }
+}
+
+
+// An awake body takes the step's deltas and velocities; forces are cleared. A body the
+// solver left non-finite is only marked here (islands finish on their own threads):
+// resetFaulted resets the marked ones, in body order.
+void World::Impl::finishBody(int i) {
+  BodyMotion& m = motions[i];
+  const SolverBody& s = solver[i];
+  if (m.awake) {
+    const Vec3 d = s.dp + m.x_carry;
+    const Vec3 on_grid = snapPosition(d);
+    m.x_carry = d - on_grid;  // exact
+    m.x += on_grid;           // exact: both on the grid
+    m.q = (s.dq * m.q).normalized();
+    m.v = s.v;
+    m.w = s.w;
+    if (motionFinite(m)) {
+      clampNorm(m.v, def.max_linear_speed);
+      clampNorm(m.w, def.max_angular_speed);
+      last_finite[i] = {m.x, m.q};
+    } else {
+      solver_fault[i] = 1;
+    }
+  }
+  m.force.setZero();
+  m.torque.setZero();
+}
+
+void World::Impl::resetFaulted() {
+  for (size_t i = 0; i < bodies.size(); ++i)
+    if (solver_fault[i]) {
+      solver_fault[i] = 0;
+      resetBody(int(i), BodyFaultCause::Solver);
+    }
+}
+
+void World::Impl::finishStep() {
+  for (size_t i = 0; i < bodies.size(); ++i) finishBody(int(i));
+  resetFaulted();
+}
+
+void World::Impl::finishOutsideBodies() {
+  const int body_count = int(bodies.size());
+  for (int i = 0; i < body_count; ++i)
+    if (island_of_body[i] < 0) finishBody(i);
+}
+
+// After a solver fault the impulses accumulated by the reset bodies' joints and contacts are
+// garbage (NaN) and would poison the next warm start.
+void World::Impl::clearWarmStart() {
+  for (Joint& j : joints)
+    if (solver_reset[j.a] || solver_reset[j.b]) clearJointWarmStart(j);
+  for (Contact& c : contacts)
+    if (solver_reset[c.body_a] || solver_reset[c.body_b]) clearContactWarmStart(c);
+  std::fill(solver_reset.begin(), solver_reset.end(), 0);
+  any_solver_reset = false;
+}
+
+std::vector<BodyFault> World::takeBodyFaults() {
+  std::vector<BodyFault> out;
+  out.swap(impl_->faults);
+  return out;
+}
+
+int64_t World::bodyFaultCount() const { return impl_->fault_count; }
+
+}  // namespace ragdoll_sim

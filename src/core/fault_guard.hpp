@@ -1,0 +1,54 @@
+// The fault guard's data (fault_guard.cpp). Before the step every body whose state, force or
+// torque is not finite goes back to its last finite pose (kept per body, no allocation) with
+// zero velocity, and every velocity is clamped to the caps (a huge impulse never reaches the
+// solver); after the solve a body the solver left non-finite is reset the same way, and the
+// warm-start impulses of its joints and contacts are cleared. Each reset is a BodyFault.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "body.hpp"
+#include "ragdoll_sim/world.hpp"
+
+namespace ragdoll_sim {
+
+struct FaultGuardData {
+  // Per body its last finite pose (saved before and after each step; a reset zeroes the
+  // velocity, so none is kept).
+  struct FinitePose {
+    Vec3 x;
+    Quat q;
+  };
+  std::vector<FinitePose> last_finite;
+  std::vector<BodyFault> faults;  // not yet taken
+  int64_t fault_count = 0;
+  std::vector<char> solver_reset;  // per body: reset by this step's solver
+  bool any_solver_reset = false;
+  std::vector<char> solver_fault;  // finishBody left it non-finite: resetFaulted resets it
+};
+
+// One test instead of one per component: NaN or inf anywhere makes the sum non-finite. Finite
+// values whose sum overflows fall through to the exact check.
+inline bool motionFinite(const BodyMotion& m) {
+  if (std::isfinite(m.x.sum() + m.q.coeffs().sum() + m.v.sum() + m.w.sum())) return true;
+  return m.x.allFinite() && m.q.coeffs().allFinite() && m.v.allFinite() && m.w.allFinite();
+}
+
+inline bool inputsFinite(const BodyMotion& m) {
+  if (std::isfinite(m.force.sum() + m.torque.sum())) return motionFinite(m);
+  return m.force.allFinite() && m.torque.allFinite() && motionFinite(m);
+}
+
+// Scales a finite v down to length `max` when longer (also when its norm overflows). The
+// squared test first: it spares the square root for nearly every call.
+inline void clampNorm(Vec3& v, double max) {
+  if (v.squaredNorm() <= max * max) return;
+  double n = v.norm();
+  if (n <= max) return;
+  if (!std::isfinite(n)) n = v.stableNorm();
+  v *= max / n;
+}
+
+}  // namespace ragdoll_sim

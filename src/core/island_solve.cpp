@@ -1,0 +1,375 @@
+// The island solve: solver bodies, the substep sequence of one island (IslandPass), and the
+// islands spread over the threads. Data and the sequence in words: island_solve.hpp.
+#include <algorithm>
+#include <utility>
+
+#include "constants.hpp"
+#include "world_impl.hpp"
+
+namespace ragdoll_sim {
+
+namespace {
+// This thread's number and the team's size in the enclosing parallel region ({0, 1} outside).
+std::pair<int, int> teamSlot() {
+#ifdef _OPENMP
+  return {omp_get_thread_num(), omp_get_num_threads()};
+#else
+  return {0, 1};
+#endif
+}
+}  // namespace
+
+StepContexts World::Impl::makeContexts(double dt) {
+  const int substeps = std::max(1, def.substeps);
+  const auto makeContext = [&](int n, int relax) {
+    StepContext c;
+    c.dt = dt;
+    c.h = dt / n;
+    c.inv_h = 1.0 / c.h;
+    c.substeps = n;
+    c.relax = std::max(0, relax);
+    c.def = &def;
+    c.bodies = &solver;
+    c.motions = &motions;
+    c.contact_softness = Softness::make(std::min(def.contact_hertz, 0.25 * c.inv_h),
+                                        def.contact_damping_ratio, c.h);
+    c.joint_softness = Softness::make(std::min(def.joint_hertz, 0.25 * c.inv_h),
+                                      def.joint_damping_ratio, c.h);
+    return c;
+  };
+  StepContexts s;
+  s.full = makeContext(substeps, def.contact_relax_iterations);
+  s.rest_mode = def.sleep.restOn(substeps);
+  s.rest = s.rest_mode
+               ? makeContext(def.sleep.rest_substeps, def.sleep.rest_relax_iterations)
+               : s.full;
+  return s;
+}
+
+// The solver body of body i at the step start: an awake body's velocities, inverse mass
+// and world inverse inertia, an identity state for the others.
+void World::Impl::prepareSolverBody(int i) {
+  const BodyMotion& m = motions[i];
+  SolverBody& s = solver[i];
+  if (!m.awake) {
+    s = SolverBody();
+    return;
+  }
+  const Mat3& R = rotations[i] = m.q.toRotationMatrix();
+  s.dp.setZero();
+  s.dq = Quat::Identity();
+  s.moved_sweep = 0;
+  s.v = m.v;
+  s.w = m.w;
+  s.inv_mass = m.inv_mass;
+  s.inv_inertia = R * m.inv_inertia_local * R.transpose();
+}
+
+// Solver bodies outside the islands (static, asleep) here; an island's bodies, joints and
+// contacts are prepared by the thread that solves it, right before it does, so they are in
+// its core's cache.
+void World::Impl::prepareOutsideBodies() {
+  const int body_count = int(bodies.size());
+  for (int i = 0; i < body_count; ++i)
+    if (island_of_body[i] < 0) prepareSolverBody(i);
+}
+
+void World::Impl::prepareIsland(const IslandRange& p, const StepContext& c) {
+  for (int k = p.body_begin; k < p.body_end; ++k) prepareSolverBody(island_bodies[k]);
+  for (int k = p.joint_begin; k < p.joint_end; ++k) prepareJoint(*active_joints[k], c);
+  contact_solver.prepare(contacts, c, p.contact_begin, p.contact_end);
+}
+
+void World::Impl::integrateVelocities(double h, int begin, int end) {
+  for (int k = begin; k < end; ++k) {
+    const int i = island_bodies[k];
+    const BodyMotion& m = motions[i];
+    SolverBody& s = solver[i];
+    const Vec3 a = m.gravity_scale * def.gravity + m.inv_mass * m.force;
+    s.v = (s.v + h * a) / (1.0 + h * m.linear_damping);
+    s.w = (s.w + h * (s.inv_inertia * m.torque)) / (1.0 + h * m.angular_damping);
+    // Clamped per substep as well as at the step end (as Box2D v3 does): a torque at the
+    // command cap on a light link otherwise spins it so fast within one step that the joints
+    // fling their neighbours away.
+    clampNorm(s.v, def.max_linear_speed);
+    clampNorm(s.w, def.max_angular_speed);
+  }
+}
+
+// The rotation advances with w; then w is recomputed from the world angular momentum
+// L = R I R^T w, which free rotation conserves: w' = R' I^-1 R'^T L. This is the gyroscopic
+// term (precession, the middle-axis flip) and keeps L exact in free flight. Two loops: the
+// first parks L in w, the second turns it back; each body's chain (a square root and a division
+// in the middle) is then short enough for the core to overlap bodies.
+void World::Impl::integratePositions(double h, int begin, int end) {
+  for (int k = begin; k < end; ++k) {
+    const int i = island_bodies[k];
+    const BodyMotion& m = motions[i];
+    SolverBody& s = solver[i];
+    Mat3& R = rotations[i];
+    s.dp += h * s.v;
+    const Vec3 L = R * (m.inertia_local * (R.transpose() * s.w));
+    const Vec3 hw = 0.5 * h * s.w;
+    Quat dq = s.dq;
+    dq.coeffs() += (Quat(0, hw.x(), hw.y(), hw.z()) * s.dq).coeffs();
+    s.dq = dq.normalized();
+    R = (s.dq * m.q).toRotationMatrix();
+    s.w = L;  // parked
+  }
+  for (int k = begin; k < end; ++k) {
+    const int i = island_bodies[k];
+    SolverBody& s = solver[i];
+    const Mat3& R = rotations[i];
+    s.w = R * (motions[i].inv_inertia_local * (R.transpose() * s.w));
+  }
+}
+
+// The substep sequence of one island on this thread; touches only the island's bodies and
+// constraints. A split island is solved by the team of the enclosing parallel region. Each
+// sweep first solves the boundary contacts, its two groups at once (they share no body), then
+// the threads take the halves (with one thread: the same work in the same order); the halves'
+// joints thus follow the boundary's impulses in every sweep, as they follow the contacts in a
+// sweep of a whole island. Work on the halves alone needs no barrier: they touch disjoint
+// bodies. Thread k always takes half k and boundary group k, so their constraints stay in its
+// core's cache.
+class World::Impl::IslandPass {
+ public:
+  IslandPass(World::Impl& w, const IslandRange& r, const StepContext& ctx)
+      : w(w), r(r), ctx(ctx), halves{r.half(0), r.half(1)}, js(w.active_joints.data()) {
+    const std::pair<int, int> slot = teamSlot();  // read by a split island's sweeps only
+    t = slot.first;
+    nt = slot.second;
+  }
+
+  // Velocities take gravity, forces and damping; joints and contacts apply last step's impulses.
+  // moved: the deltas changed since the separations were last computed.
+  void integrateAndWarmStart(int sub, bool moved) {
+    parts([&](const IslandRange& p) {
+      w.integrateVelocities(ctx.h, p.body_begin, p.body_end);
+      joints(p, [&](Joint& j) { warmStartJoint(j, ctx, sub == 0); });
+      w.contact_solver.warmStart(ctx, p.contact_begin, p.contact_end, moved);
+    });
+    boundary([&](int b, int e) {
+      w.contact_solver.warmStart(ctx, b, e, moved);
+      w.contact_solver.solve(ctx, true, b, e, false);
+    });
+  }
+
+  // The soft solve with bias (the boundary's was solved with its warm start), then the
+  // positions advance.
+  void solveBiasedAndIntegrate() {
+    parts([&](const IslandRange& p) {
+      joints(p, [&](Joint& j) { solveJoint(j, ctx, true); });
+      w.contact_solver.solve(ctx, true, p.contact_begin, p.contact_end, false);
+      w.integratePositions(ctx.h, p.body_begin, p.body_end);
+      joints(p, [&](Joint& j) { advanceJoint(j, ctx); });
+    });
+  }
+
+  // Relax sweep `it` without bias: contacts every sweep, joints in the first
+  // joint_relax_iterations (Gauss-Seidel over a manifold's points and along a limb needs them
+  // to take back the push-out velocity and to carry a landing's load up the chain).
+  void relax(int it) {
+    boundary([&](int b, int e) { w.contact_solver.solve(ctx, false, b, e, it == 0); });
+    parts([&](const IslandRange& p) {
+      if (it < w.def.joint_relax_iterations)
+        joints(p, [&](Joint& j) { solveJoint(j, ctx, false); });
+      w.contact_solver.solve(ctx, false, p.contact_begin, p.contact_end, it == 0);
+    });
+  }
+
+  // Joints whose anchor reached its break force are marked (breakJoints acts after the solve).
+  void markBreaks() {
+    parts([&](const IslandRange& p) {  // reads only the joint
+      for (int k = p.joint_begin; k < p.joint_end; ++k)
+        if (breaksAfterSubstep(*js[k], ctx)) js[k]->broken = true;
+    });
+  }
+
+  void projectPositions();
+
+ private:
+  // f(the island), or for a split island f(each of this thread's halves and the islands
+  // attached to it).
+  template <class F>
+  void parts(F&& part) {
+    if (!r.split) return part(r);
+    for (int k = t; k < 2; k += nt) w.withAttached(r, halves[k], k, part);
+  }
+  // A split island's boundary contacts, this thread's group, between two barriers.
+  template <class F>
+  void boundary(F&& contacts) {
+    if (!r.split) return;
+    w.team_barrier.wait(t, nt);
+    for (int k = t; k < 2; k += nt) contacts(r.boundaryBegin(k), r.boundaryEnd(k));
+    w.team_barrier.wait(t, nt);
+  }
+  template <class F>
+  void joints(const IslandRange& p, F&& f) {
+    for (int k = p.joint_begin; k < p.joint_end; ++k)
+      if (!js[k]->broken) f(*js[k]);
+  }
+
+  World::Impl& w;
+  const IslandRange& r;
+  const StepContext& ctx;
+  const IslandRange halves[2];
+  Joint* const* js;
+  int t = 0, nt = 1;
+};
+
+// Position sweeps. A sweep that moved no body leaves the next ones nothing to do: they see
+// the same poses and recompute the same angles, so the projection stops there, the anchor
+// sweeps too (the result is the same bit for bit). A split island's threads decide together:
+// each notes whether it moved anything (by the sweep's parity, so that the next sweep's note
+// does not overwrite one still being read) and reads both notes after the barrier that starts
+// the next sweep's boundary.
+// Within a sweep, a projection whose bodies have not moved since its last look, when it
+// moved nothing, is skipped too (unchangedSince, solver_context.hpp). Those marks alone would
+// skip every projection after an idle sweep; the stop also saves the pass over the constraints
+// and, on a split island, the sweep's two barriers.
+void World::Impl::IslandPass::projectPositions() {
+  const WorldDef& def = w.def;
+  bool mine = false;  // this thread moved a body in the current sweep
+  // f(j): projectJointLimits or projectJointAnchor, as a lambda so that each is called directly
+  const auto project = [&](Joint& j, int sweep, auto&& f) {
+    SolverBody &A = w.solver[j.a], &B = w.solver[j.b];
+    if (unchangedSince(sweep, j.moved_sweep, A, B) || !f(j)) return;
+    markMoved(sweep, j.moved_sweep, A, B);
+    mine = true;
+  };
+  const auto limitsOf = [&](Joint& j) { return projectJointLimits(j, ctx); };
+  const auto anchorOf = [&](Joint& j) { return projectJointAnchor(j, ctx); };
+  int sweep = 0;  // numbered from 1 in the step
+  const auto anchors = [&](const IslandRange& p) {
+    for (int k = p.joint_begin; k < p.joint_end; ++k) project(*js[k], sweep, anchorOf);
+  };
+  const auto teamMoved = [&](int sweep) {
+    const char* note = w.position_moved[sweep & 1];
+    return std::any_of(note, note + nt, [](char c) { return c != 0; });
+  };
+  bool moved = true;  // by the last sweep, on any thread
+  for (int it = 0; it < def.position_iterations && moved; ++it) {
+    mine = false;
+    sweep = it + 1;
+    if (r.split) {
+      w.team_barrier.wait(t, nt);
+      if (it > 0 && !teamMoved(it - 1)) {
+        moved = false;
+        break;
+      }
+      for (int k = t; k < 2; k += nt)
+        mine |= w.contact_solver.project(ctx, r.boundaryBegin(k), r.boundaryEnd(k), sweep);
+      w.team_barrier.wait(t, nt);
+    }
+    parts([&](const IslandRange& p) {
+      mine |= w.contact_solver.project(ctx, p.contact_begin, p.contact_end, sweep);
+      for (int k = p.joint_begin; k < p.joint_end; ++k) project(*js[k], sweep, limitsOf);
+      anchors(p);
+    });
+    if (r.split) w.position_moved[it & 1][t] = mine;
+    else moved = mine;
+  }
+  if (r.split && moved && def.position_iterations > 0 && def.anchor_iterations > 0) {
+    w.team_barrier.wait(t, nt);
+    moved = teamMoved(def.position_iterations - 1);
+  }
+  // The joints of a half touch only its bodies (halves are whole limbs): no boundary, and
+  // each thread stops when its own halves' anchors did not move.
+  for (int it = 0; it < def.anchor_iterations && moved; ++it) {
+    mine = false;
+    sweep = def.position_iterations + it + 1;
+    parts(anchors);
+    moved = mine;
+  }
+}
+
+// One island's substeps, then its position and anchor sweeps.
+void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx) {
+  IslandPass pass(*this, r, ctx);
+  for (int sub = 0; sub < ctx.substeps; ++sub) {
+    // From the second substep on, the first relax sweep of the last one (if any) already set
+    // the separations at the current deltas.
+    const bool moved = sub == 0 || ctx.relax < 1;
+    pass.integrateAndWarmStart(sub, moved);
+    pass.solveBiasedAndIntegrate();
+    for (int it = 0; it < ctx.relax; ++it) pass.relax(it);
+    pass.markBreaks();
+  }
+  pass.projectPositions();
+}
+
+// After an island's substeps, on the same thread: restitution and the impulses stored for the
+// next warm start.
+void World::Impl::restitute(int begin, int end, const StepContext& c) {
+  contact_solver.applyRestitution(c, begin, end);
+  contact_solver.storeImpulses(contacts, c.h, begin, end);
+}
+
+// The island's bodies take the step (joint breaks only mark the joints).
+void World::Impl::finishIslandBodies(const IslandRange& p) {
+  for (int k = p.body_begin; k < p.body_end; ++k) finishBody(island_bodies[k]);
+}
+
+// A split island by the whole team (two threads at most: it has two halves): each thread
+// prepares a half, then a group of the boundary contacts (their bodies are in both halves).
+void World::Impl::solveSplitIsland(const IslandRange& r, const StepContexts& ctx) {
+#pragma omp parallel num_threads(std::min(2, threadCount()))
+  {
+    const auto [t, nt] = teamSlot();
+    const StepContext& c = ctx.of(r.resting);  // for the halves and the attached islands too
+    // half k and the islands attached to it (attachToSplitHalves)
+    const auto withHalf = [&](int k, auto&& f) { withAttached(r, r.half(k), k, f); };
+    for (int k = t; k < 2; k += nt) withHalf(k, [&](const IslandRange& p) { prepareIsland(p, c); });
+    team_barrier.wait(t, nt);
+    for (int k = t; k < 2; k += nt)
+      contact_solver.prepare(contacts, c, r.boundaryBegin(k), r.boundaryEnd(k));
+    team_barrier.wait(t, nt);
+    solveIsland(r, c);
+    // Restitution reads the halves' bodies as the boundary's does: halves first, then the
+    // boundary, then the bodies take their velocities.
+    for (int k = t; k < 2; k += nt)
+      withHalf(k, [&](const IslandRange& p) { restitute(p.contact_begin, p.contact_end, c); });
+    team_barrier.wait(t, nt);
+    for (int k = t; k < 2; k += nt) restitute(r.boundaryBegin(k), r.boundaryEnd(k), c);
+    team_barrier.wait(t, nt);
+    for (int k = t; k < 2; k += nt)
+      withHalf(k, [&](const IslandRange& p) { finishIslandBodies(p); });
+  }
+}
+
+// Split islands one after another, each by the whole team; then the others, each thread its
+// run of islands first, then what is left of the others' (run_queue.hpp).
+void World::Impl::solveIslands(const StepContexts& ctx) {
+  contact_solver.resize();
+  const int count = int(island_ranges.size());
+  for (const IslandRange& r : island_ranges)
+    if (r.split) solveSplitIsland(r, ctx);
+  const auto solveOne = [&](int k) {
+    const IslandRange& r = island_ranges[k];
+    if (r.split || r.attached) return;
+    const StepContext& c = ctx.of(r.resting);
+    prepareIsland(r, c);
+    solveIsland(r, c);
+    restitute(r.contact_begin, r.contact_end, c);
+    finishIslandBodies(r);
+  };
+  run_queue.reset(island_runs);
+  const auto solveRun = [&](int t) {
+    for (int k; (k = run_queue.take(t)) >= 0;) solveOne(k);
+    for (int k; (k = run_queue.steal(t)) >= 0;) solveOne(k);
+  };
+  // (no runs when every island is split or goes along with a split one's half)
+  if (run_work > 0 && count > 1 && int(island_bodies.size()) >= kParallelMin) {
+#ifdef _OPENMP
+#pragma omp parallel num_threads(threadCount())
+    solveRun(omp_get_thread_num());
+#else
+    solveRun(0);  // threadCount() is 1
+#endif
+  } else if (run_work > 0) {
+    solveRun(0);  // its own run, then the others' (stolen from the back)
+  }
+}
+
+}  // namespace ragdoll_sim

@@ -1,0 +1,45 @@
+// The island solve's data (island_solve.cpp): per body its solver body, the contact constraints,
+// and what the two threads of a split island share.
+//
+// Per island (islands in parallel, each on the thread that prepares it), per substep:
+// integrate velocities (gravity, forces, damping), warm start, solve with bias (soft),
+// integrate positions, relax without bias (contacts several sweeps, the joints in the first
+// ones), mark the joints that break; then position sweeps (contacts, joint limits and angular
+// rows, joint anchors) remove the error beyond the slops without touching velocities, and
+// anchor sweeps go over the joint anchors alone. Then restitution, the impulses kept for the
+// next warm start, and the bodies take the step. Static bodies are shared by all islands and
+// are never written (movable(), solver_context.hpp).
+// Semi-implicit Euler: v += h a first, then x += h v with the new v (and the same for the
+// rotation, q += h/2 (0,w) q, renormalised, with the gyroscopic update in integratePositions).
+#pragma once
+
+#include <vector>
+
+#include "body.hpp"
+#include "contact_solver.hpp"
+#include "solver_context.hpp"
+#include "team_barrier.hpp"
+
+namespace ragdoll_sim {
+
+// The step's two substep sequences: the full one, and the rest substeps of islands whose bodies
+// have all been slow for SleepDef::rest_time (full again when rest_mode is off).
+struct StepContexts {
+  StepContext full, rest;
+  bool rest_mode = false;
+  const StepContext& of(bool resting) const { return resting ? rest : full; }
+};
+
+struct SolveData {
+  std::vector<SolverBody> solver;
+  // Per body: the rotation matrix of dq q, its world rotation at the current substep (set with
+  // the solver body, advanced by integratePositions; only that reads it).
+  std::vector<Mat3> rotations;
+  ContactSolver contact_solver;
+  TeamBarrier team_barrier;  // the two threads of a split island
+  // Whether each thread of a split island moved a body in a position sweep, by the sweep's
+  // parity (IslandPass::projectPositions).
+  char position_moved[2][2] = {};
+};
+
+}  // namespace ragdoll_sim

@@ -1,0 +1,68 @@
+// Sleep: the rest substeps of slow islands, islands going to sleep, and World::setSleep.
+// Data: sleep.hpp.
+#include <algorithm>
+
+#include "world_impl.hpp"
+
+namespace ragdoll_sim {
+
+// Every body of r has been slow for rest_time (SleepDef::rest_substeps).
+bool World::Impl::islandResting(const IslandRange& r) const {
+  for (int k = r.body_begin; k < r.body_end; ++k)
+    if (!(motions[island_bodies[k]].sleep_time >= def.sleep.rest_time)) return false;
+  return true;
+}
+
+// A split island's halves and the islands attached to them share one substep loop: they rest
+// together or not at all, as the split island decides.
+void World::Impl::markResting(bool rest_mode) {
+  const int* const attached = attached_islands.data();
+  for (IslandRange& r : island_ranges) {
+    if (r.attached) continue;
+    r.resting = rest_mode && islandResting(r);
+    if (!r.split) continue;
+    for (int a = r.attach[0]; a < r.attach[2]; ++a)
+      r.resting = r.resting && islandResting(island_ranges[attached[a]]);
+    for (int a = r.attach[0]; a < r.attach[2]; ++a) island_ranges[attached[a]].resting = r.resting;
+  }
+}
+
+void World::Impl::updateSleep(double dt) {
+  if (!def.sleep.enabled) return;
+  const int n = int(bodies.size());
+  // island root's sleep_time becomes the island minimum (roots have the smallest index)
+  std::vector<double>& slow = island_slow;
+  slow.assign(n, 1e300);
+  for (int i = 0; i < n; ++i) {
+    BodyMotion& m = motions[i];
+    if (!m.awake) continue;
+    const double speed = std::max(m.v.norm(), m.extent * m.w.norm());  // as Box2D v3
+    m.sleep_time = speed < def.sleep.speed ? m.sleep_time + dt : 0.0;
+    double& r = slow[islands.find(i)];
+    r = std::min(r, m.sleep_time);
+  }
+  for (int i = 0; i < n; ++i) {
+    BodyMotion& m = motions[i];
+    if (!m.awake || slow[islands.find(i)] < def.sleep.time) continue;
+    m.awake = false;
+    m.v.setZero();
+    m.w.setZero();
+  }
+}
+
+void World::setSleep(const SleepDef& sleep) {
+  const std::string e = sleepDefError(sleep);
+  if (!e.empty()) throw std::invalid_argument("ragdoll_sim: setSleep: " + e);
+  Impl& w = *impl_;
+  if (sleep.enabled != w.def.sleep.enabled) {
+    // Slow times stood still while sleep was off (updateSleep); a body asleep when it is
+    // turned off must move again.
+    for (size_t i = 0; i < w.bodies.size(); ++i) {
+      if (!sleep.enabled && !w.motions[i].awake && w.isDynamic(int(i))) w.wake(int(i));
+      w.motions[i].sleep_time = 0.0;
+    }
+  }
+  w.def.sleep = sleep;
+}
+
+}  // namespace ragdoll_sim

@@ -1,0 +1,192 @@
+// World::Impl: the storage every phase reads (bodies, motions, shapes, joints) and, as its
+// bases, the data each phase owns. Each phase's functions live in the phase's file:
+//   collide.cpp          collide (broadphase, narrowphase, manifold cache, carried pairs)
+//   island_schedule.cpp  buildIslands, partitionIslands, attachToSplitHalves
+//   island_solve.cpp     the solver bodies, the substep sequence, solveIslands
+//   fault_guard.cpp      guardInputs, finishBody, resetFaulted, clearWarmStart
+//   sleep.cpp            markResting, updateSleep, World::setSleep
+//   world_create.cpp     the create API, breakJoints
+//   world_query.cpp      commands and queries
+//   world.cpp            the constructor, World::step (the phase list) and the settings
+#pragma once
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "ragdoll_sim/world.hpp"
+
+#include "body.hpp"
+#include "collide.hpp"
+#include "fault_guard.hpp"
+#include "island_schedule.hpp"
+#include "island_solve.hpp"
+#include "joint.hpp"
+#include "sleep.hpp"
+
+namespace ragdoll_sim {
+
+struct ShapeRef {
+  int body;
+  int index;  // in Body::shapes
+};
+
+struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, SleepData {
+  WorldDef def;
+  double time = 0.0;
+  std::vector<Body> bodies;
+  std::vector<BodyMotion> motions;
+  std::vector<ShapeRef> shapes;
+  std::vector<Joint> joints;
+  std::vector<JointId> broken_events;
+  // The last step found no body awake and ran the whole pipeline, and nothing has been built,
+  // woken, set or reset since: the next step would give the same contacts and move nothing,
+  // so it only advances the time (a world whose ragdolls all sleep costs almost nothing).
+  bool settled = false;
+
+  int threadCount() const {
+#ifdef _OPENMP
+    return def.threads > 0 ? def.threads : omp_get_max_threads();
+#else
+    return 1;
+#endif
+  }
+  const ShapeDef& shapeDef(int s) const { return bodies[shapes[s].body].shapes[shapes[s].index]; }
+  // The shape's pose relative to its body's centre of mass, in world axes: x + f.p, f.q is
+  // its world pose.
+  Transform shapeFrame(int s) const {
+    const BodyMotion& m = motions[shapes[s].body];
+    const Transform& local = shapeDef(s).local;
+    return {m.q * (local.p - m.local_com), m.q * local.q};
+  }
+  // The shape's pose in a frame at world point o (a centre of mass, on the grid): from the
+  // exact difference x - o, so it does not depend on where the pair is (body.hpp). A plane is
+  // kept at its distance along the normal from o: moving it within itself changes nothing, and
+  // its x and y would carry o's magnitude into the manifold cache's points. (The cache thus
+  // sees a shape sliding on a plane as not moving, and keeps its manifold: right for a plane,
+  // whose features are the same everywhere; tilting or lifting it still counts.)
+  Transform shapePoseFrom(int s, const Vec3& o) const {
+    const Transform& f = shape_frames[s];
+    const Vec3 p = (motions[shapes[s].body].x - o) + f.p;
+    const Geometry& g = shapeDef(s).geometry;
+    if (isUnbounded(g)) {
+      const Vec3 n = f.q * g.normal;
+      return {n * n.dot(p), f.q};
+    }
+    return {p, f.q};
+  }
+  void checkBody(BodyId id) const {
+    if (id.index < 0 || id.index >= int(bodies.size()))
+      throw std::out_of_range("ragdoll_sim: invalid body id");
+  }
+  // Throws std::invalid_argument with jointDefError's message e (if any), naming the bodies.
+  template <class Def>
+  void checkJointDef(const char* type, const Def& def) const {
+    checkBody(def.body_a);
+    checkBody(def.body_b);
+    const std::string e = jointDefError(def);
+    if (!e.empty())
+      throw std::invalid_argument(std::string("ragdoll_sim: ") + type + " joint between '" +
+                                  bodies[def.body_a.index].def.name + "' and '" +
+                                  bodies[def.body_b.index].def.name + "': " + e);
+  }
+  bool isDynamic(int b) const { return bodies[b].def.type == BodyType::Dynamic; }
+  void wake(int b) {
+    settled = false;  // also for a static body: setBodyState moves it through here
+    if (!isDynamic(b)) return;
+    motions[b].awake = true;
+    motions[b].sleep_time = 0.0;
+  }
+  bool anyAwake() const {
+    return std::any_of(motions.begin(), motions.end(), [](const BodyMotion& m) { return m.awake; });
+  }
+
+  // The one way to change Body::no_collide: the broadphase filter changes with it, so the next
+  // collide finds every pair again instead of carrying sleeping ones over (pairs_dirty).
+  void setCollides(int a, int b, bool collides) {
+    const int hi = std::max(a, b);
+    std::vector<int>& v = bodies[std::min(a, b)].no_collide;
+    const auto it = std::lower_bound(v.begin(), v.end(), hi);
+    const bool listed = it != v.end() && *it == hi;
+    if (collides && listed) v.erase(it);
+    else if (!collides && !listed) v.insert(it, hi);
+    pairs_dirty = true;
+  }
+  bool neverCollide(int a, int b) const {
+    const std::vector<int>& v = bodies[std::min(a, b)].no_collide;
+    return std::find(v.begin(), v.end(), std::max(a, b)) != v.end();
+  }
+  void forgetBoxes(int b) {
+    for (int s : bodies[b].shape_ids)
+      if (s < int(aabb_kept.size())) aabb_kept[s] = 0;
+  }
+
+  // collide.cpp
+  void collide(double dt);
+
+  // island_schedule.cpp
+  void buildIslands();
+  void collectActiveJoints();
+  void partitionIslands();
+  void attachToSplitHalves();
+  void assignThreadRuns();
+  // f(half k of split island r), then f(each island attached to that half).
+  template <class F>
+  void withAttached(const IslandRange& r, const IslandRange& half, int k, F&& f) {
+    f(half);
+    for (int a = r.attach[k]; a < r.attach[k + 1]; ++a) f(island_ranges[attached_islands[a]]);
+  }
+
+  // island_solve.cpp
+  StepContexts makeContexts(double dt);
+  class IslandPass;  // one island's substep sequence on this thread (island_solve.cpp)
+  void prepareSolverBody(int i);
+  void prepareOutsideBodies();
+  void prepareIsland(const IslandRange& p, const StepContext& c);
+  void integrateVelocities(double h, int begin, int end);
+  void integratePositions(double h, int begin, int end);
+  void solveIsland(const IslandRange& r, const StepContext& ctx);
+  void restitute(int begin, int end, const StepContext& c);
+  void finishIslandBodies(const IslandRange& p);
+  void solveSplitIsland(const IslandRange& r, const StepContexts& ctx);
+  void solveIslands(const StepContexts& ctx);
+
+  // fault_guard.cpp
+  void guardInputs();
+  void finishBody(int i);
+  void finishOutsideBodies();
+  void resetFaulted();
+  void finishStep();
+  void resetBody(int b, BodyFaultCause cause);
+  void clearWarmStart();
+
+  // sleep.cpp
+  bool islandResting(const IslandRange& r) const;
+  void markResting(bool rest_mode);
+  void updateSleep(double dt);
+
+  // world_create.cpp
+  void breakJoints();
+  Joint& addJoint(JointType type, BodyId a, BodyId b, const Transform& fa, const Transform& fb,
+                  bool collide_connected);
+  // Hinge and prismatic: one axis with its limit, motor and spring.
+  template <class Def>
+  JointId addAxisJoint(JointType type, const Def& def) {
+    Joint& j = addJoint(type, def.body_a, def.body_b, def.frame_a, def.frame_b,
+                        def.collide_connected);
+    j.axis = def.axis.normalized();
+    j.limits_enabled = def.enable_limit;
+    j.lower[0] = def.lower;
+    j.upper[0] = def.upper;
+    j.motors[0] = def.motor;
+    j.spring = def.spring;
+    return JointId{int32_t(joints.size() - 1)};
+  }
+};
+
+}  // namespace ragdoll_sim
