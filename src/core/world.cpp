@@ -356,19 +356,18 @@ struct World::Impl {
   void buildIslands();
   void breakJoints();
   void updateSleep(double dt);
-  Joint& addJoint(JointType type, BodyId a, BodyId b, const Transform& fa, const Transform& fb,
-                  bool collide_connected);
-  // Hinge and prismatic: one axis with its limit, motor and spring.
+  // The joint's type struct takes its own fields from the def (joint_<type>.cpp).
   template <class Def>
-  JointId addAxisJoint(JointType type, const Def& def) {
-    Joint& j = addJoint(type, def.body_a, def.body_b, def.frame_a, def.frame_b,
-                        def.collide_connected);
-    j.axis = def.axis.normalized();
-    j.limits_enabled = def.enable_limit;
-    j.lower[0] = def.lower;
-    j.upper[0] = def.upper;
-    j.motors[0] = def.motor;
-    j.spring = def.spring;
+  JointId addJoint(const char* type, const Def& def) {
+    checkJointDef(type, def);
+    checkBody(def.body_a);
+    checkBody(def.body_b);
+    if (def.body_a == def.body_b)
+      throw std::invalid_argument("ragdoll_sim: a joint needs two different bodies");
+    wake(def.body_a.index);
+    wake(def.body_b.index);
+    if (!def.collide_connected) setCollides(def.body_a.index, def.body_b.index, false);
+    joints.push_back(Joint(def));
     return JointId{int32_t(joints.size() - 1)};
   }
 };
@@ -665,21 +664,8 @@ void World::Impl::resetBody(int b, BodyFaultCause cause) {
 // garbage (NaN) and would poison the next warm start. prepareJoint rebuilds everything else in
 // the parts each step, so fresh parts lose only the impulses.
 void World::Impl::clearWarmStart() {
-  for (Joint& j : joints) {
-    if (!solver_reset[j.a] && !solver_reset[j.b]) continue;
-    j.point = PointPart();
-    j.hinge_axis = HingeAxisPart();
-    j.limits = {};
-    j.motor_parts = {};
-    j.swing_twist = SwingTwistPart();
-    j.angle_lock = AngleLockPart();
-    j.line = PointOnLinePart();
-    j.linear_limit = LinearLimitPart();
-    j.linear_motor = LinearMotorPart();
-    j.force = 0.0;
-    j.torque = 0.0;
-    j.overloaded = false;
-  }
+  for (Joint& j : joints)
+    if (solver_reset[j.a] || solver_reset[j.b]) j.clearWarmStart();
   for (Contact& c : contacts) {
     if (!solver_reset[c.body_a] && !solver_reset[c.body_b]) continue;
     for (int i = 0; i < Manifold::kMaxPoints; ++i) {
@@ -1004,24 +990,6 @@ void World::Impl::updateSleep(double dt) {
   }
 }
 
-Joint& World::Impl::addJoint(JointType type, BodyId a, BodyId b, const Transform& fa,
-                             const Transform& fb, bool collide_connected) {
-  checkBody(a);
-  checkBody(b);
-  if (a == b) throw std::invalid_argument("ragdoll_sim: a joint needs two different bodies");
-  wake(a.index);
-  wake(b.index);
-  Joint j;
-  j.type = type;
-  j.a = a.index;
-  j.b = b.index;
-  j.frame_a = fa;
-  j.frame_b = fb;
-  if (!collide_connected) setCollides(a.index, b.index, false);
-  joints.push_back(j);
-  return joints.back();
-}
-
 World::World(const WorldDef& def) : impl_(new Impl) {
   const std::string e = worldDefError(def);
   if (!e.empty()) throw std::invalid_argument("ragdoll_sim: WorldDef: " + e);
@@ -1089,41 +1057,18 @@ void World::addShape(BodyId id, const ShapeDef& def) {
   m.extent = std::max(m.extent, maxExtent(def.geometry, def.local, m.local_com));
 }
 
-JointId World::createBallJoint(const BallJointDef& def) {
-  impl_->checkJointDef("ball", def);
-  Joint& j = impl_->addJoint(JointType::Ball, def.body_a, def.body_b, def.frame_a, def.frame_b,
-                             def.collide_connected);
-  j.euler = EulerBasis(def.axes);
-  const bool swing_twist = def.limit_mode == BallLimitMode::SwingTwist;
-  j.limits_enabled = def.enable_limits && !swing_twist;
-  j.swing_twist_limits = def.enable_limits && swing_twist;
-  j.twist_axis = def.axes[0].normalized();
-  j.swing_cone = def.swing_cone_angle;
-  j.twist_lower = def.twist_lower;
-  j.twist_upper = def.twist_upper;
-  j.lower = def.lower;
-  j.upper = def.upper;
-  j.motors = def.motors;
-  j.spring = def.spring;
-  return JointId{int32_t(impl_->joints.size() - 1)};
-}
+JointId World::createBallJoint(const BallJointDef& def) { return impl_->addJoint("ball", def); }
 
 JointId World::createHingeJoint(const HingeJointDef& def) {
-  impl_->checkJointDef("hinge", def);
-  return impl_->addAxisJoint(JointType::Hinge, def);
+  return impl_->addJoint("hinge", def);
 }
 
 JointId World::createFixedJoint(const FixedJointDef& def) {
-  impl_->checkJointDef("fixed", def);
-  Joint& j = impl_->addJoint(JointType::Fixed, def.body_a, def.body_b, def.frame_a, def.frame_b,
-                             def.collide_connected);
-  j.spring = def.spring;
-  return JointId{int32_t(impl_->joints.size() - 1)};
+  return impl_->addJoint("fixed", def);
 }
 
 JointId World::createPrismaticJoint(const PrismaticJointDef& def) {
-  impl_->checkJointDef("prismatic", def);
-  return impl_->addAxisJoint(JointType::Prismatic, def);
+  return impl_->addJoint("prismatic", def);
 }
 
 void World::disableCollision(BodyId a, BodyId b) {
@@ -1426,46 +1371,38 @@ Vec3 World::pointVelocity(BodyId id, const Vec3& p) const {
   return m.v + m.w.cross(p - m.x);
 }
 
-JointType World::jointType(JointId id) const { return impl_->joints.at(id.index).type; }
+JointType World::jointType(JointId id) const { return impl_->joints.at(id.index).type(); }
 
 double World::hingeAngle(JointId id) const {
   const Joint& j = impl_->joints.at(id.index);
-  if (j.type != JointType::Hinge) return 0.0;
-  return ragdoll_sim::hingeAngle(j.frameRotationA(impl_->motions[j.a].q),
-                                 j.frameRotationB(impl_->motions[j.b].q), j.axis);
+  const HingeJoint* h = j.as<HingeJoint>();
+  return h ? h->angle(j, impl_->motions) : 0.0;
 }
 
 std::array<double, 3> World::ballAngles(JointId id) const {
   const Joint& j = impl_->joints.at(id.index);
-  if (j.type != JointType::Ball) return {0, 0, 0};
-  const Vec3 t = j.euler.angles(j.frameRotationA(impl_->motions[j.a].q),
-                                j.frameRotationB(impl_->motions[j.b].q));
-  return {t[0], t[1], t[2]};
+  const BallJoint* b = j.as<BallJoint>();
+  return b ? b->eulerAngles(j, impl_->motions) : std::array<double, 3>{0, 0, 0};
 }
 
 std::array<double, 2> World::ballSwingTwist(JointId id) const {
   const Joint& j = impl_->joints.at(id.index);
-  if (j.type != JointType::Ball) return {0, 0};
-  const SwingTwist st = swingTwist(j.frameRotationA(impl_->motions[j.a].q),
-                                   j.frameRotationB(impl_->motions[j.b].q), j.twist_axis);
-  return {st.swing, st.twist};
+  const BallJoint* b = j.as<BallJoint>();
+  return b ? b->swingTwistAngles(j, impl_->motions) : std::array<double, 2>{0, 0};
 }
 
 double World::prismaticPosition(JointId id) const {
   const Joint& j = impl_->joints.at(id.index);
-  if (j.type != JointType::Prismatic) return 0.0;
-  const auto& m = impl_->motions;
-  const Vec3 d = m[j.b].linkPose().apply(j.frame_b.p) - m[j.a].linkPose().apply(j.frame_a.p);
-  return (j.frameRotationA(m[j.a].q) * j.axis).dot(d);
+  const PrismaticJoint* p = j.as<PrismaticJoint>();
+  return p ? p->position(j, impl_->motions) : 0.0;
 }
 
 Vec3 World::jointAnchorError(JointId id) const {
   const Joint& j = impl_->joints.at(id.index);
   const auto& m = impl_->motions;
   const Vec3 e = m[j.b].linkPose().apply(j.frame_b.p) - m[j.a].linkPose().apply(j.frame_a.p);
-  if (j.type != JointType::Prismatic) return e;
-  const Vec3 a = j.frameRotationA(m[j.a].q) * j.axis;
-  return e - a.dot(e) * a;
+  const PrismaticJoint* p = j.as<PrismaticJoint>();
+  return p ? p->offAxis(j, m, e) : e;
 }
 
 double World::jointForce(JointId id) const { return impl_->joints.at(id.index).force; }
@@ -1494,7 +1431,7 @@ void World::setJointMotor(JointId id, int axis, const JointMotor& motor) {
     throw std::invalid_argument("ragdoll_sim: setJointMotor, axis " + std::to_string(axis) +
                                 " of the joint between '" + impl_->bodies[j.a].def.name +
                                 "' and '" + impl_->bodies[j.b].def.name + "': motor." + e);
-  j.motors.at(axis) = motor;
+  j.motorAt(axis) = motor;
   impl_->wake(j.a);
   impl_->wake(j.b);
 }
