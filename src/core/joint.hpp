@@ -71,65 +71,27 @@ static_assert(std::is_same_v<std::variant_alternative_t<size_t(JointType::Prisma
                              PrismaticJoint>,
               "JointKind in the order of JointType");
 
-inline void prepareJoint(Joint& j, const StepContext& ctx) {
-  j.moved_sweep = 0;
-  if (j.impulse_h != ctx.h) {
-    j.scaleImpulses(warmStartScale(j.impulse_h, ctx.h));
-    j.impulse_h = ctx.h;
-  }
-  j.visit([&](auto& t) { t.prepare(j, ctx); });
-}
-
+// The step functions (joint.cpp) dispatch to the joint's type. They are not inline: the
+// solver's loops stay small, and each dispatch ends in a jump to the type's function.
+void prepareJoint(Joint& j, const StepContext& ctx);
 // first_substep: the angles and rows are recomputed exactly, and the anchors and hinge axes
 // refreshed; later substeps keep the advanced angles of joints whose limits stay open
 // (AngleAxes::limitsOpen) and the anchors and axes advanceJoint refreshed.
-inline void warmStartJoint(Joint& j, const StepContext& ctx, bool first_substep) {
-  auto& s = *ctx.bodies;
-  SolverBody &A = s[j.a], &B = s[j.b];
-  j.visit([&](auto& t) { t.warmStart(j, A, B, ctx, first_substep); });
-}
-
-inline void solveJoint(Joint& j, const StepContext& ctx, bool use_bias) {
-  auto& s = *ctx.bodies;
-  SolverBody &A = s[j.a], &B = s[j.b];
-  j.visit([&](auto& t) { t.solve(j, A, B, ctx, use_bias); });
-}
-
+void warmStartJoint(Joint& j, const StepContext& ctx, bool first_substep);
+void solveJoint(Joint& j, const StepContext& ctx, bool use_bias);
 // After a substep's last sweep: sets a rigid anchor's force (N, from its accumulated impulse)
 // and says whether the joint breaks (break force or torque passed, or the anchor capped).
-inline bool breaksAfterSubstep(Joint& j, const StepContext& ctx) {
-  if (j.broken) return false;
-  j.visit([&](auto& t) { t.finishSubstep(j, ctx); });
-  return j.overloaded || j.force > j.spring.break_force ||
-         j.torque >= (1.0 - 1e-9) * j.spring.break_torque;
-}
-
+bool breaksAfterSubstep(Joint& j, const StepContext& ctx);
 // After the position update of a substep, before the relax sweeps: angles advance by h rate,
 // anchors and axes follow the moved bodies.
-inline void advanceJoint(Joint& j, const StepContext& ctx) {
-  auto& s = *ctx.bodies;
-  const SolverBody &A = s[j.a], &B = s[j.b];
-  j.visit([&](auto& t) { t.advance(j, A, B, ctx); });
-}
-
+void advanceJoint(Joint& j, const StepContext& ctx);
 // Position projection after the substeps (the error beyond the slops, no velocity added):
 // projectJointLimits turns the bodies (rotation lock of fixed and prismatic joints, hinge axis,
 // angle limits, swing-twist) and moves a prismatic joint back into its slide range;
 // projectJointAnchor moves the rigid anchor (part_point.hpp) or a slider back onto its line. A
 // sweep projects every joint's limits before any anchor: a limit turns its bodies about their
 // centres, which moves the neighbours' anchors. Both return true when they moved a body.
-inline bool projectJointLimits(Joint& j, const StepContext& ctx) {
-  if (j.broken) return false;
-  auto& s = *ctx.bodies;
-  SolverBody &A = s[j.a], &B = s[j.b];
-  return j.visit([&](auto& t) { return t.projectLimits(j, A, B, ctx); });
-}
-
-inline bool projectJointAnchor(Joint& j, const StepContext& ctx) {
-  if (j.broken) return false;
-  auto& s = *ctx.bodies;
-  SolverBody &A = s[j.a], &B = s[j.b];
-  return j.visit([&](auto& t) { return t.projectAnchor(j, A, B, ctx); });
-}
+bool projectJointLimits(Joint& j, const StepContext& ctx);
+bool projectJointAnchor(Joint& j, const StepContext& ctx);
 
 }  // namespace ragdoll_sim
