@@ -5,23 +5,6 @@
 namespace ragdoll_sim {
 
 namespace {
-// prepareJoint rebuilds everything else in the parts each step, so fresh parts lose only the
-// impulses.
-void clearJointWarmStart(Joint& j) {
-  j.point = PointPart();
-  j.hinge_axis = HingeAxisPart();
-  j.limits = {};
-  j.motor_parts = {};
-  j.swing_twist = SwingTwistPart();
-  j.angle_lock = AngleLockPart();
-  j.line = PointOnLinePart();
-  j.linear_limit = LinearLimitPart();
-  j.linear_motor = LinearMotorPart();
-  j.force = 0.0;
-  j.torque = 0.0;
-  j.overloaded = false;
-}
-
 void clearContactWarmStart(Contact& c) {
   for (int i = 0; i < Manifold::kMaxPoints; ++i) {
     c.normal_impulse[i] = 0.0;
@@ -119,7 +102,7 @@ void World::Impl::finishOutsideBodies() {
 // garbage (NaN) and would poison the next warm start.
 void World::Impl::clearWarmStart() {
   for (Joint& j : joints)
-    if (solver_reset[j.a] || solver_reset[j.b]) clearJointWarmStart(j);
+    if (solver_reset[j.a] || solver_reset[j.b]) j.clearWarmStart();
   for (Contact& c : contacts)
     if (solver_reset[c.body_a] || solver_reset[c.body_b]) clearContactWarmStart(c);
   std::fill(solver_reset.begin(), solver_reset.end(), 0);

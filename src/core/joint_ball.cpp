@@ -1,33 +1,114 @@
-// Ball joint: anchor + one motor / limit per Euler angle (joint.cpp), or swing-twist limits
-// (part_swing_twist.hpp); this file gives the angles and their Jacobian rows (derivations in
-// joint_angles.hpp).
-#include "joint.hpp"
+#include "joint_ball.hpp"
+
+#include <limits>
 
 namespace ragdoll_sim {
 
-void prepareBallJoint(Joint& j, const StepContext& ctx) {
-  const auto& m = *ctx.motions;
-  j.point.prepare(m[j.a], m[j.b], j.frame_a.p, j.frame_b.p);
+BallJoint::BallJoint(const BallJointDef& def) : euler(def.axes) {
+  const bool swing_twist_mode = def.limit_mode == BallLimitMode::SwingTwist;
+  axes.limits_enabled = def.enable_limits && !swing_twist_mode;
+  swing_twist_limits = def.enable_limits && swing_twist_mode;
+  twist_axis = def.axes[0].normalized();
+  swing_cone = def.swing_cone_angle;
+  twist_lower = def.twist_lower;
+  twist_upper = def.twist_upper;
+  axes.lower = def.lower;
+  axes.upper = def.upper;
+  axes.motors = def.motors;
 }
 
-void updateBallAngles(Joint& j, const StepContext& ctx) {
-  const bool euler = j.angleRowsNeeded();
-  if (!euler && !j.swing_twist_limits) {
-    j.angle_count = 0;
-    return;
-  }
+void BallJoint::prepare(JointBase& j, const StepContext& ctx) { anchor.prepare(j, ctx); }
+
+void BallJoint::updateAngles(const JointBase& j, const SolverBody& A, const SolverBody& B,
+                             const StepContext& ctx) {
+  axes.count = 0;
+  const bool euler_rows = axes.rowsNeeded();
+  if (!euler_rows && !swing_twist_limits) return;
   const auto& m = *ctx.motions;
-  const auto& s = *ctx.bodies;
-  const Quat fa = j.frameRotationA(s[j.a].dq * m[j.a].q);
-  const Quat fb = j.frameRotationB(s[j.b].dq * m[j.b].q);
-  if (j.swing_twist_limits) j.swing_twist.update(fa, fb, j.twist_axis);
-  if (!euler) {
-    j.angle_count = 0;
-    return;
-  }
+  const Quat fa = j.frameRotationA(A.dq * m[j.a].q);
+  const Quat fb = j.frameRotationB(B.dq * m[j.b].q);
+  if (swing_twist_limits) swing_twist.update(fa, fb, twist_axis);
+  if (!euler_rows) return;
   Vec3 t;
-  j.angle_count = j.euler.angles(fa, fb, t, &j.angle_rows) ? 3 : 0;
-  j.angles = {t[0], t[1], t[2]};
+  axes.count = euler.angles(fa, fb, t, &axes.rows) ? 3 : 0;
+  axes.angles = {t[0], t[1], t[2]};
+  axes.updateMass(A, B);
+}
+
+// first_substep: the angles and rows are recomputed exactly and the anchors refreshed; later
+// substeps keep the advanced angles while the limits stay open (AngleAxes::limitsOpen) and the
+// anchors advance() refreshed after the last position update: only velocities changed since.
+void BallJoint::warmStart(JointBase& j, SolverBody& A, SolverBody& B, const StepContext& ctx,
+                          bool first_substep) {
+  // Swing-twist rows turn with the swing plane: always recomputed.
+  if (first_substep || swing_twist_limits || !axes.limitsOpen(A, B, ctx.h))
+    updateAngles(j, A, B, ctx);
+  axes.warmStart(A, B);
+  if (swing_twist_limits) swing_twist.warmStart(A, B);
+  anchor.warmStart(j, A, B, ctx, !first_substep);
+}
+
+void BallJoint::solve(JointBase& j, SolverBody& A, SolverBody& B, const StepContext& ctx,
+                      bool use_bias) {
+  axes.solve(A, B, ctx, use_bias);
+  if (swing_twist_limits)
+    swing_twist.solve(A, B, swing_cone, twist_lower, twist_upper, ctx, use_bias);
+  anchor.solve(j, A, B, ctx, use_bias);
+}
+
+// Swing-twist limits recompute exactly (their rows turn with the swing plane).
+void BallJoint::advance(JointBase& j, const SolverBody& A, const SolverBody& B,
+                        const StepContext& ctx) {
+  if (swing_twist_limits) updateAngles(j, A, B, ctx);
+  else axes.advance(A, B, ctx.h);
+  anchor.refresh(A, B);
+}
+
+bool BallJoint::limitsClear(double margin) const {
+  if (!axes.limitsClear(margin)) return false;
+  if (!swing_twist_limits) return true;
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const SwingTwist& st = swing_twist.angles;
+  return rangeExcess(st.swing, -kInf, swing_cone, margin) == 0.0 &&
+         rangeExcess(st.twist, twist_lower, twist_upper, margin) == 0.0;
+}
+
+bool BallJoint::projectLimits(JointBase& j, SolverBody& A, SolverBody& B,
+                              const StepContext& ctx) {
+  const double slop = ctx.def->angular_slop, max_turn = ctx.def->max_angular_correction;
+  if (!(axes.limits_enabled || swing_twist_limits) || limitsClear(0.5 * slop)) return false;
+  updateAngles(j, A, B, ctx);
+  bool moved = axes.project(A, B, slop, max_turn);
+  if (swing_twist_limits)
+    moved |= swing_twist.project(A, B, swing_cone, twist_lower, twist_upper, slop, max_turn);
+  return moved;
+}
+
+void BallJoint::scaleImpulses(double s) {
+  axes.scaleImpulses(s);
+  anchor.scaleImpulses(s);
+  swing_twist.cone_impulse *= s;
+  swing_twist.twist.lower_impulse *= s;
+  swing_twist.twist.upper_impulse *= s;
+}
+
+void BallJoint::clearWarmStart() {
+  axes.clearWarmStart();
+  anchor.clearWarmStart();
+  swing_twist = SwingTwistPart();
+}
+
+std::array<double, 3> BallJoint::eulerAngles(const JointBase& j,
+                                             const std::vector<BodyMotion>& m) const {
+  const Vec3 t = euler.angles(j.frameRotationA(m[j.a].q), j.frameRotationB(m[j.b].q));
+  return {t[0], t[1], t[2]};
+}
+
+std::array<double, 2> BallJoint::swingTwistAngles(const JointBase& j,
+                                                  const std::vector<BodyMotion>& m) const {
+  const SwingTwist st =
+      swingTwist(j.frameRotationA(m[j.a].q), j.frameRotationB(m[j.b].q), twist_axis);
+  return {st.swing, st.twist};
 }
 
 }  // namespace ragdoll_sim

@@ -1,23 +1,88 @@
-// Hinge joint: anchor + hinge-axis part (2 angular rows) + motor / limit on the hinge angle
-// (joint.cpp); this file prepares the axis part and gives the angle and its row.
-#include "joint.hpp"
+#include "joint_hinge.hpp"
 
 namespace ragdoll_sim {
 
-void prepareHingeJoint(Joint& j, const StepContext& ctx) {
-  const auto& m = *ctx.motions;
-  j.point.prepare(m[j.a], m[j.b], j.frame_a.p, j.frame_b.p);
-  j.hinge_axis.prepare(m[j.a], m[j.b], j.frame_a.q * j.axis, j.frame_b.q * j.axis);
+HingeJoint::HingeJoint(const HingeJointDef& def) : axis(def.axis.normalized()) {
+  axes.limits_enabled = def.enable_limit;
+  axes.lower[0] = def.lower;
+  axes.upper[0] = def.upper;
+  axes.motors[0] = def.motor;
 }
 
-void updateHingeAngles(Joint& j, const StepContext& ctx) {
+void HingeJoint::prepare(JointBase& j, const StepContext& ctx) {
   const auto& m = *ctx.motions;
-  const auto& s = *ctx.bodies;
-  const Quat fa = j.frameRotationA(s[j.a].dq * m[j.a].q);
-  const Quat fb = j.frameRotationB(s[j.b].dq * m[j.b].q);
-  j.angle_rows[0] = fa * j.axis;
-  j.angles[0] = hingeAngle(fa, fb, j.axis);
-  j.angle_count = 1;
+  anchor.prepare(j, ctx);
+  hinge_axis.prepare(m[j.a], m[j.b], j.frame_a.q * axis, j.frame_b.q * axis);
+}
+
+void HingeJoint::updateAngle(const JointBase& j, const SolverBody& A, const SolverBody& B,
+                             const StepContext& ctx) {
+  axes.count = 0;
+  if (!axes.rowsNeeded()) return;
+  const auto& m = *ctx.motions;
+  const Quat fa = j.frameRotationA(A.dq * m[j.a].q);
+  const Quat fb = j.frameRotationB(B.dq * m[j.b].q);
+  axes.rows[0] = fa * axis;
+  axes.angles[0] = hingeAngle(fa, fb, axis);
+  axes.count = 1;
+  axes.updateMass(A, B);
+}
+
+// first_substep: the angle and row are recomputed exactly and the anchor and axis refreshed;
+// later substeps keep the advanced angle while the limit stays open (AngleAxes::limitsOpen)
+// and the anchor and axis advance() refreshed after the last position update: only
+// velocities changed since.
+void HingeJoint::warmStart(JointBase& j, SolverBody& A, SolverBody& B, const StepContext& ctx,
+                           bool first_substep) {
+  if (first_substep || !axes.limitsOpen(A, B, ctx.h)) updateAngle(j, A, B, ctx);
+  const bool current = !first_substep;
+  axes.warmStart(A, B);
+  hinge_axis.updateMass(A, B, current);
+  hinge_axis.warmStart(A, B);
+  anchor.warmStart(j, A, B, ctx, current);
+}
+
+void HingeJoint::solve(JointBase& j, SolverBody& A, SolverBody& B, const StepContext& ctx,
+                       bool use_bias) {
+  axes.solve(A, B, ctx, use_bias);
+  hinge_axis.solve(A, B, ctx.joint_softness, use_bias);
+  anchor.solve(j, A, B, ctx, use_bias);
+}
+
+void HingeJoint::advance(JointBase& j, const SolverBody& A, const SolverBody& B,
+                         const StepContext& ctx) {
+  axes.advance(A, B, ctx.h);
+  anchor.refresh(A, B);
+  hinge_axis.refresh(A, B);
+}
+
+bool HingeJoint::projectLimits(JointBase& j, SolverBody& A, SolverBody& B,
+                               const StepContext& ctx) {
+  const double slop = ctx.def->angular_slop, max_turn = ctx.def->max_angular_correction;
+  bool moved = false;
+  // The axis error refreshed after the last position update (as for limitsClear) screens out
+  // the hinges that cannot be beyond the slop.
+  if (hinge_axis.C.norm() > 0.5 * slop) moved = hinge_axis.project(A, B, slop, max_turn);
+  if (axes.limitsClear(0.5 * slop)) return moved;
+  updateAngle(j, A, B, ctx);
+  moved |= axes.project(A, B, slop, max_turn);
+  return moved;
+}
+
+void HingeJoint::scaleImpulses(double s) {
+  axes.scaleImpulses(s);
+  anchor.scaleImpulses(s);
+  hinge_axis.impulse *= s;
+}
+
+void HingeJoint::clearWarmStart() {
+  axes.clearWarmStart();
+  anchor.clearWarmStart();
+  hinge_axis = HingeAxisPart();
+}
+
+double HingeJoint::angle(const JointBase& j, const std::vector<BodyMotion>& m) const {
+  return hingeAngle(j.frameRotationA(m[j.a].q), j.frameRotationB(m[j.b].q), axis);
 }
 
 }  // namespace ragdoll_sim

@@ -1,42 +1,89 @@
-// Prismatic joint: motor and limit along the axis (part_linear_motor.hpp,
-// part_linear_limit.hpp), rotation lock (part_angle_lock.hpp, 3 rows), then the off-axis rows
-// (part_point_on_line.hpp, 2 rows) last, as the anchor of the other joints is solved last.
-// All rows share the slider geometry of part_slider_frame.hpp, recomputed at every call from
-// the bodies' deltas. break_force caps the off-axis force; the joint also breaks when the total
-// force (off-axis + axial limit / motor) passes it.
-#include "joint.hpp"
+#include "joint_prismatic.hpp"
+
+#include <stdexcept>
 
 namespace ragdoll_sim {
 
-void preparePrismaticJoint(Joint& j, const StepContext& ctx) {
+PrismaticJoint::PrismaticJoint(const PrismaticJointDef& def)
+    : axis(def.axis.normalized()), limit_enabled(def.enable_limit), lower(def.lower),
+      upper(def.upper), motor(def.motor) {}
+
+void PrismaticJoint::prepare(JointBase& j, const StepContext& ctx) {
   const auto& m = *ctx.motions;
-  j.slider.prepare(m[j.a], m[j.b], j.frame_a.p, j.frame_b.p, j.frame_a.q * j.axis);
-  j.angle_lock.prepare(j.frameRotationA(m[j.a].q), j.frameRotationB(m[j.b].q));
+  slider.prepare(m[j.a], m[j.b], j.frame_a.p, j.frame_b.p, j.frame_a.q * axis);
+  angle_lock.prepare(j.frameRotationA(m[j.a].q), j.frameRotationB(m[j.b].q));
 }
 
-void warmStartPrismaticJoint(Joint& j, SolverBody& A, SolverBody& B) {
-  const SliderPose p = j.slider.at(A, B);
+void PrismaticJoint::warmStart(JointBase& j, SolverBody& A, SolverBody& B,
+                               const StepContext& ctx, bool first_substep) {
+  const SliderPose p = slider.at(A, B);
   const LinearRow row(p.axis, p.leverA(), p.rB, A, B);
-  j.linear_motor.warmStart(A, B, row);
-  if (j.limits_enabled) j.linear_limit.warmStart(A, B, row);
-  j.angle_lock.warmStart(A, B);
-  j.line.warmStart(A, B, p);
+  linear_motor.warmStart(A, B, row);
+  if (limit_enabled) linear_limit.warmStart(A, B, row);
+  angle_lock.warmStart(A, B);
+  line.warmStart(A, B, p);
 }
 
-void solvePrismaticJoint(Joint& j, SolverBody& A, SolverBody& B, const StepContext& ctx,
-                         bool use_bias) {
-  const SliderPose p = j.slider.at(A, B);
+void PrismaticJoint::solve(JointBase& j, SolverBody& A, SolverBody& B, const StepContext& ctx,
+                           bool use_bias) {
+  const SliderPose p = slider.at(A, B);
   const LinearRow row(p.axis, p.leverA(), p.rB, A, B);
   const double s = p.position();
-  j.linear_motor.solve(A, B, row, s, j.motors[0], ctx, use_bias);
-  if (j.limits_enabled)
-    j.linear_limit.solve(A, B, row, s, j.lower[0], j.upper[0], ctx, use_bias);
-  j.angle_lock.solve(A, B, ctx.joint_softness, use_bias);
+  linear_motor.solve(A, B, row, s, motor, ctx, use_bias);
+  if (limit_enabled) linear_limit.solve(A, B, row, s, lower, upper, ctx, use_bias);
+  angle_lock.solve(A, B, ctx.joint_softness, use_bias);
   const double max_impulse = j.spring.break_force * ctx.h;
-  if (j.line.solve(A, B, p, ctx.joint_softness, use_bias, max_impulse)) j.overloaded = true;
-  const double axial = j.linear_motor.impulse + j.linear_limit.lower_impulse -
-                       j.linear_limit.upper_impulse;
-  j.force = (j.line.force(p) + axial * p.axis).norm() * ctx.inv_h;
+  if (line.solve(A, B, p, ctx.joint_softness, use_bias, max_impulse)) j.overloaded = true;
+  const double axial = linear_motor.impulse + linear_limit.lower_impulse -
+                       linear_limit.upper_impulse;
+  j.force = (line.force(p) + axial * p.axis).norm() * ctx.inv_h;
+}
+
+bool PrismaticJoint::projectLimits(JointBase& j, SolverBody& A, SolverBody& B,
+                                   const StepContext& ctx) {
+  const WorldDef& d = *ctx.def;
+  bool moved = angle_lock.project(A, B, d.angular_slop, d.max_angular_correction);
+  if (limit_enabled)
+    moved |= LinearLimitPart::project(A, B, slider.at(A, B), lower, upper, d.joint_slop,
+                                      d.max_position_correction);
+  return moved;
+}
+
+bool PrismaticJoint::projectAnchor(JointBase& j, SolverBody& A, SolverBody& B,
+                                   const StepContext& ctx) const {
+  return line.project(A, B, slider.at(A, B), ctx.def->joint_slop,
+                      ctx.def->max_position_correction);
+}
+
+void PrismaticJoint::scaleImpulses(double s) {
+  angle_lock.impulse *= s;
+  line.impulse *= s;
+  linear_limit.lower_impulse *= s;
+  linear_limit.upper_impulse *= s;
+  linear_motor.impulse *= s;
+}
+
+void PrismaticJoint::clearWarmStart() {
+  angle_lock = AngleLockPart();
+  line = PointOnLinePart();
+  linear_limit = LinearLimitPart();
+  linear_motor = LinearMotorPart();
+}
+
+JointMotor& PrismaticJoint::motorAt(int axis) {
+  if (axis != 0) throw std::out_of_range("a prismatic joint has one motor, axis 0");
+  return motor;
+}
+
+double PrismaticJoint::position(const JointBase& j, const std::vector<BodyMotion>& m) const {
+  const Vec3 d = m[j.b].linkPose().apply(j.frame_b.p) - m[j.a].linkPose().apply(j.frame_a.p);
+  return (j.frameRotationA(m[j.a].q) * axis).dot(d);
+}
+
+Vec3 PrismaticJoint::offAxis(const JointBase& j, const std::vector<BodyMotion>& m,
+                             const Vec3& e) const {
+  const Vec3 a = j.frameRotationA(m[j.a].q) * axis;
+  return e - a.dot(e) * a;
 }
 
 }  // namespace ragdoll_sim

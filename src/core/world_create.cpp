@@ -8,24 +8,6 @@
 
 namespace ragdoll_sim {
 
-Joint& World::Impl::addJoint(JointType type, BodyId a, BodyId b, const Transform& fa,
-                             const Transform& fb, bool collide_connected) {
-  checkBody(a);
-  checkBody(b);
-  if (a == b) throw std::invalid_argument("ragdoll_sim: a joint needs two different bodies");
-  wake(a.index);
-  wake(b.index);
-  Joint j;
-  j.type = type;
-  j.a = a.index;
-  j.b = b.index;
-  j.frame_a = fa;
-  j.frame_b = fb;
-  if (!collide_connected) setCollides(a.index, b.index, false);
-  joints.push_back(j);
-  return joints.back();
-}
-
 BodyId World::createBody(const BodyDef& def) {
   Impl& w = *impl_;
   Body body;
@@ -86,41 +68,18 @@ void World::addShape(BodyId id, const ShapeDef& def) {
   m.extent = std::max(m.extent, maxExtent(def.geometry, def.local, m.local_com));
 }
 
-JointId World::createBallJoint(const BallJointDef& def) {
-  impl_->checkJointDef("ball", def);
-  Joint& j = impl_->addJoint(JointType::Ball, def.body_a, def.body_b, def.frame_a, def.frame_b,
-                             def.collide_connected);
-  j.euler = EulerBasis(def.axes);
-  const bool swing_twist = def.limit_mode == BallLimitMode::SwingTwist;
-  j.limits_enabled = def.enable_limits && !swing_twist;
-  j.swing_twist_limits = def.enable_limits && swing_twist;
-  j.twist_axis = def.axes[0].normalized();
-  j.swing_cone = def.swing_cone_angle;
-  j.twist_lower = def.twist_lower;
-  j.twist_upper = def.twist_upper;
-  j.lower = def.lower;
-  j.upper = def.upper;
-  j.motors = def.motors;
-  j.spring = def.spring;
-  return JointId{int32_t(impl_->joints.size() - 1)};
-}
+JointId World::createBallJoint(const BallJointDef& def) { return impl_->addJoint("ball", def); }
 
 JointId World::createHingeJoint(const HingeJointDef& def) {
-  impl_->checkJointDef("hinge", def);
-  return impl_->addAxisJoint(JointType::Hinge, def);
+  return impl_->addJoint("hinge", def);
 }
 
 JointId World::createFixedJoint(const FixedJointDef& def) {
-  impl_->checkJointDef("fixed", def);
-  Joint& j = impl_->addJoint(JointType::Fixed, def.body_a, def.body_b, def.frame_a, def.frame_b,
-                             def.collide_connected);
-  j.spring = def.spring;
-  return JointId{int32_t(impl_->joints.size() - 1)};
+  return impl_->addJoint("fixed", def);
 }
 
 JointId World::createPrismaticJoint(const PrismaticJointDef& def) {
-  impl_->checkJointDef("prismatic", def);
-  return impl_->addAxisJoint(JointType::Prismatic, def);
+  return impl_->addJoint("prismatic", def);
 }
 
 void World::disableCollision(BodyId a, BodyId b) {

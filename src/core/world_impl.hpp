@@ -172,19 +172,18 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
 
   // world_create.cpp
   void breakJoints();
-  Joint& addJoint(JointType type, BodyId a, BodyId b, const Transform& fa, const Transform& fb,
-                  bool collide_connected);
-  // Hinge and prismatic: one axis with its limit, motor and spring.
+  // The joint's type struct takes its own fields from the def (joint_<type>.cpp).
   template <class Def>
-  JointId addAxisJoint(JointType type, const Def& def) {
-    Joint& j = addJoint(type, def.body_a, def.body_b, def.frame_a, def.frame_b,
-                        def.collide_connected);
-    j.axis = def.axis.normalized();
-    j.limits_enabled = def.enable_limit;
-    j.lower[0] = def.lower;
-    j.upper[0] = def.upper;
-    j.motors[0] = def.motor;
-    j.spring = def.spring;
+  JointId addJoint(const char* type, const Def& def) {
+    checkJointDef(type, def);
+    checkBody(def.body_a);
+    checkBody(def.body_b);
+    if (def.body_a == def.body_b)
+      throw std::invalid_argument("ragdoll_sim: a joint needs two different bodies");
+    wake(def.body_a.index);
+    wake(def.body_b.index);
+    if (!def.collide_connected) setCollides(def.body_a.index, def.body_b.index, false);
+    joints.push_back(Joint(def));
     return JointId{int32_t(joints.size() - 1)};
   }
 };

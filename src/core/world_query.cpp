@@ -127,46 +127,38 @@ Vec3 World::pointVelocity(BodyId id, const Vec3& p) const {
   return m.v + m.w.cross(p - m.x);
 }
 
-JointType World::jointType(JointId id) const { return impl_->joints.at(id.index).type; }
+JointType World::jointType(JointId id) const { return impl_->joints.at(id.index).type(); }
 
 double World::hingeAngle(JointId id) const {
   const Joint& j = impl_->joints.at(id.index);
-  if (j.type != JointType::Hinge) return 0.0;
-  return ragdoll_sim::hingeAngle(j.frameRotationA(impl_->motions[j.a].q),
-                                 j.frameRotationB(impl_->motions[j.b].q), j.axis);
+  const HingeJoint* h = j.as<HingeJoint>();
+  return h ? h->angle(j, impl_->motions) : 0.0;
 }
 
 std::array<double, 3> World::ballAngles(JointId id) const {
   const Joint& j = impl_->joints.at(id.index);
-  if (j.type != JointType::Ball) return {0, 0, 0};
-  const Vec3 t = j.euler.angles(j.frameRotationA(impl_->motions[j.a].q),
-                                j.frameRotationB(impl_->motions[j.b].q));
-  return {t[0], t[1], t[2]};
+  const BallJoint* b = j.as<BallJoint>();
+  return b ? b->eulerAngles(j, impl_->motions) : std::array<double, 3>{0, 0, 0};
 }
 
 std::array<double, 2> World::ballSwingTwist(JointId id) const {
   const Joint& j = impl_->joints.at(id.index);
-  if (j.type != JointType::Ball) return {0, 0};
-  const SwingTwist st = swingTwist(j.frameRotationA(impl_->motions[j.a].q),
-                                   j.frameRotationB(impl_->motions[j.b].q), j.twist_axis);
-  return {st.swing, st.twist};
+  const BallJoint* b = j.as<BallJoint>();
+  return b ? b->swingTwistAngles(j, impl_->motions) : std::array<double, 2>{0, 0};
 }
 
 double World::prismaticPosition(JointId id) const {
   const Joint& j = impl_->joints.at(id.index);
-  if (j.type != JointType::Prismatic) return 0.0;
-  const auto& m = impl_->motions;
-  const Vec3 d = m[j.b].linkPose().apply(j.frame_b.p) - m[j.a].linkPose().apply(j.frame_a.p);
-  return (j.frameRotationA(m[j.a].q) * j.axis).dot(d);
+  const PrismaticJoint* p = j.as<PrismaticJoint>();
+  return p ? p->position(j, impl_->motions) : 0.0;
 }
 
 Vec3 World::jointAnchorError(JointId id) const {
   const Joint& j = impl_->joints.at(id.index);
   const auto& m = impl_->motions;
   const Vec3 e = m[j.b].linkPose().apply(j.frame_b.p) - m[j.a].linkPose().apply(j.frame_a.p);
-  if (j.type != JointType::Prismatic) return e;
-  const Vec3 a = j.frameRotationA(m[j.a].q) * j.axis;
-  return e - a.dot(e) * a;
+  const PrismaticJoint* p = j.as<PrismaticJoint>();
+  return p ? p->offAxis(j, m, e) : e;
 }
 
 double World::jointForce(JointId id) const { return impl_->joints.at(id.index).force; }
@@ -186,7 +178,7 @@ void World::setJointMotor(JointId id, int axis, const JointMotor& motor) {
     throw std::invalid_argument("ragdoll_sim: setJointMotor, axis " + std::to_string(axis) +
                                 " of the joint between '" + impl_->bodies[j.a].def.name +
                                 "' and '" + impl_->bodies[j.b].def.name + "': motor." + e);
-  j.motors.at(axis) = motor;
+  j.motorAt(axis) = motor;
   impl_->wake(j.a);
   impl_->wake(j.b);
 }

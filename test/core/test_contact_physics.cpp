@@ -151,47 +151,6 @@ TEST(FreeFlight, MomentumConservedAndMiddleAxisFlips) {
   std::printf("[ flight   ] |dL|/|L| = %.2e, min y.y = %.3f\n", (L1 - L0).norm() / L0.norm(), min_dot);
 }
 
-// A body at rest falls asleep after time_to_sleep and wakes on an impulse.
-TEST(Sleep, RestingBoxSleepsAndWakesOnImpulse) {
-  World w;
-  addGround(w);
-  const Vec3 half(0.2, 0.2, 0.1);
-  const BodyId box = addBody(w, Geometry::box(half), 2.0, boxInertia(half, 2.0),
-                             Transform(Vec3(0, 0, 0.2), Quat::Identity()), Material());
-  int asleep_at = -1;
-  for (int i = 0; i < 3000 && asleep_at < 0; ++i) {
-    w.step(kDt);
-    if (!w.isAwake(box)) asleep_at = i;
-  }
-  ASSERT_GT(asleep_at, 0) << "never slept";
-  EXPECT_EQ(w.awakeBodyCount(), 0);
-  const Vec3 rest = w.comPosition(box);
-  for (int i = 0; i < 100; ++i) w.step(kDt);
-  EXPECT_EQ((w.comPosition(box) - rest).norm(), 0.0);  // asleep: not integrated at all
-  w.applyLinearImpulse(box, Vec3(2.0, 0, 0), w.comPosition(box));
-  EXPECT_TRUE(w.isAwake(box));
-  for (int i = 0; i < 100; ++i) w.step(kDt);
-  EXPECT_GT(w.comPosition(box).x() - rest.x(), 0.01);
-  std::printf("[ sleep    ] box asleep after %.3f s\n", (asleep_at + 1) * kDt);
-}
-
-// The sleep test is Box2D v3's: max(|v|, extent |w|) below sleep_speed for time_to_sleep. A
-// sphere drifting at 0.8 sleep_speed and spinning at 0.8 sleep_speed / extent sleeps (a sum of
-// the two would keep it awake); at 1.2 sleep_speed in either it stays awake.
-TEST(Sleep, SlowestOfDriftAndSpinDecides) {
-  for (const double f : {0.8, 1.2}) {
-    WorldDef wd;
-    wd.gravity.setZero();
-    World w(wd);
-    const double r = 0.1, m = 1.0;
-    const BodyId b = addBody(w, Geometry::sphere(r), m, Mat3::Identity() * 0.4 * m * r * r,
-                             Transform(), Material());
-    w.setBodyState(b, Transform(), Vec3(f * wd.sleep.speed, 0, 0), Vec3(0, 0, f * wd.sleep.speed / r));
-    for (int i = 0; i < 1000; ++i) w.step(kDt);
-    EXPECT_EQ(w.isAwake(b), f > 1.0) << "speed factor " << f;
-  }
-}
-
 // A compound body (two spheres on a bar, offsets from the COM) rests on both spheres.
 TEST(Compound, DumbbellRestsOnBothEnds) {
   World w;

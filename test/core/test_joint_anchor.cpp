@@ -1,31 +1,16 @@
-// Joint springs (period, breaking), motors (velocity, position, torque cap) and damping.
+// The joint anchor: Hooke spring period, breaking force, and the point part's effective mass.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 
+#include "joint_test_util.hpp"
+#include "part_point.hpp"
 #include "ragdoll_sim/world.hpp"
 #include "scene_util.hpp"
 
 using namespace ragdoll_sim;
 using namespace ragdoll_sim::test;
-
-namespace {
-constexpr double kDt = 1e-3;
-
-BodyId addAnchor(World& w) {
-  BodyDef d;
-  d.type = BodyType::Static;
-  return w.createBody(d);
-}
-
-BodyId addBall(World& w, double mass, const Vec3& pos) {
-  BodyDef d;
-  d.pose.p = pos;
-  d.mass = mass;
-  d.inertia = Mat3::Identity() * 0.01 * mass;
-  return w.createBody(d);
-}
-}  // namespace
 
 // A mass on a Hooke spring oscillates with period 2 pi sqrt(m / k).
 TEST(JointSpring, PeriodMatchesClosedForm) {
@@ -109,81 +94,29 @@ TEST(JointSpring, RigidJointBreaksUnderImpulse) {
   EXPECT_NEAR(w.linearMomentum().x(), 30.3, 1e-9);
 }
 
-namespace {
-struct Arm {
-  World w;
-  BodyId bar;
-  JointId hinge;
-  explicit Arm(const WorldDef& def, const JointMotor& motor) : w(def) {
-    const BodyId anchor = addAnchor(w);
-    BodyDef d;
-    d.mass = 1.0;
-    d.com = Vec3(0.5, 0, 0);
-    d.inertia = Mat3::Identity() * 0.02;
-    bar = w.createBody(d);
-    HingeJointDef h;
-    h.body_a = anchor;
-    h.body_b = bar;
-    h.axis = Vec3::UnitY();
-    h.motor = motor;
-    hinge = w.createHingeJoint(h);
+// The point part's effective mass, formed entry by entry (part_point.hpp), equals the textbook
+// J M^-1 J^T = (1/mA + 1/mB) I - skew(rA) IA^-1 skew(rA) - skew(rB) IB^-1 skew(rB), and a
+// singular K (two immovable bodies) gives a zero inverse rather than inf.
+TEST(PointPart, EffectiveMassMatchesProductForm) {
+  std::srand(7);
+  const auto spd = [] {
+    const Mat3 R = Quat(Eigen::Vector4d(Eigen::Vector4d::Random()).normalized()).toRotationMatrix();
+    const Vec3 d = Vec3(Vec3::Random()).cwiseAbs() + Vec3::Constant(0.1);  // Random() is lazy
+    return Mat3(R * d.asDiagonal() * R.transpose());
+  };
+  for (int trial = 0; trial < 20; ++trial) {
+    SolverBody A, B;
+    A.inv_mass = 0.5 + trial;
+    B.inv_mass = trial % 3 == 0 ? 0.0 : 2.0;
+    A.inv_inertia = spd();
+    B.inv_inertia = trial % 3 == 0 ? Mat3::Zero() : spd();
+    const Vec3 rA = Vec3::Random(), rB = 0.3 * Vec3::Random();
+    const Mat3 expected = (A.inv_mass + B.inv_mass + 0.25) * Mat3::Identity() -
+                          skew(rA) * A.inv_inertia * skew(rA) - skew(rB) * B.inv_inertia * skew(rB);
+    const Mat3 K = pointMass(A, B, rA, rB, 0.25);
+    EXPECT_LT((K - expected).norm(), 1e-12 * expected.norm()) << "trial " << trial;
+    EXPECT_LT((inverseOrZero(K) * expected - Mat3::Identity()).norm(), 1e-9) << "trial " << trial;
   }
-};
-WorldDef zeroG() {
-  WorldDef d;
-  d.gravity.setZero();
-  return d;
-}
-}  // namespace
-
-TEST(JointMotor, VelocityTargetReached) {
-  JointMotor m;
-  m.enabled = true;
-  m.target_velocity = 2.0;
-  m.max_torque = 50.0;
-  Arm arm(zeroG(), m);
-  for (int i = 0; i < 200; ++i) arm.w.step(kDt);
-  EXPECT_NEAR(arm.w.bodyState(arm.bar).angular_velocity.y(), 2.0, 1e-5);
-}
-
-TEST(JointMotor, PositionTargetHeldAgainstGravity) {
-  JointMotor m;
-  m.enabled = true;
-  m.target = 0.5;
-  m.hertz = 10.0;
-  m.damping_ratio = 1.0;
-  m.max_torque = 100.0;
-  Arm arm(WorldDef(), m);
-  for (int i = 0; i < 3000; ++i) arm.w.step(kDt);
-  // gravity torque m g d cos(theta) ~ 4.3 N m; the drive's stiffness is I_com w^2 (the
-  // frequency is relative to the body's own rotational inertia, as in Box2D), so it sags by
-  // tau / (I_com w^2) ~ 0.05 rad
-  const double I = 0.02, w2 = std::pow(2 * M_PI * 10, 2);
-  const double theta = arm.w.hingeAngle(arm.hinge);
-  EXPECT_NEAR(theta, 0.5 + 9.81 * 0.5 * std::cos(theta) / (I * w2), 2e-3);
-}
-
-TEST(JointMotor, TorqueCapLimitsTheDrive) {
-  JointMotor m;
-  m.enabled = true;
-  m.target = 0.0;
-  m.hertz = 10.0;
-  m.max_torque = 2.0;  // less than m g d = 4.9 N m: the arm falls
-  Arm arm(WorldDef(), m);
-  double max_angle = 0.0;
-  for (int i = 0; i < 2000; ++i) {
-    arm.w.step(kDt);
-    max_angle = std::max(max_angle, arm.w.hingeAngle(arm.hinge));
-  }
-  EXPECT_GT(max_angle, 1.5);  // swings past the static balance acos(2 / 4.9) = 1.15 rad
-}
-
-TEST(JointMotor, DampingDecaysSwing) {
-  JointMotor m;
-  m.damping = 0.5;  // N m s/rad
-  Arm arm(zeroG(), m);
-  arm.w.setBodyState(arm.bar, Transform(), Vec3(0, 0, -2.0), Vec3(0, 4.0, 0));  // about the pivot
-  for (int i = 0; i < 1000; ++i) arm.w.step(kDt);
-  // I w' = -c w  ->  w(t) = w0 exp(-c t / I), I about the pivot = 0.27
-  EXPECT_NEAR(arm.w.bodyState(arm.bar).angular_velocity.y(), 4.0 * std::exp(-0.5 / 0.27), 0.02);
+  const Mat3 K0 = pointMass(SolverBody(), SolverBody(), Vec3(1, 2, 3), Vec3::Zero(), 0.0);
+  EXPECT_TRUE(inverseOrZero(K0).isZero(0.0));
 }

@@ -1,0 +1,85 @@
+// Joint motors: velocity and position targets, the torque cap, viscous damping.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "joint_test_util.hpp"
+#include "ragdoll_sim/world.hpp"
+#include "scene_util.hpp"
+
+using namespace ragdoll_sim;
+using namespace ragdoll_sim::test;
+
+namespace {
+struct Arm {
+  World w;
+  BodyId bar;
+  JointId hinge;
+  explicit Arm(const WorldDef& def, const JointMotor& motor) : w(def) {
+    const BodyId anchor = addAnchor(w);
+    BodyDef d;
+    d.mass = 1.0;
+    d.com = Vec3(0.5, 0, 0);
+    d.inertia = Mat3::Identity() * 0.02;
+    bar = w.createBody(d);
+    HingeJointDef h;
+    h.body_a = anchor;
+    h.body_b = bar;
+    h.axis = Vec3::UnitY();
+    h.motor = motor;
+    hinge = w.createHingeJoint(h);
+  }
+};
+}  // namespace
+
+TEST(JointMotor, VelocityTargetReached) {
+  JointMotor m;
+  m.enabled = true;
+  m.target_velocity = 2.0;
+  m.max_torque = 50.0;
+  Arm arm(zeroG(), m);
+  for (int i = 0; i < 200; ++i) arm.w.step(kDt);
+  EXPECT_NEAR(arm.w.bodyState(arm.bar).angular_velocity.y(), 2.0, 1e-5);
+}
+
+TEST(JointMotor, PositionTargetHeldAgainstGravity) {
+  JointMotor m;
+  m.enabled = true;
+  m.target = 0.5;
+  m.hertz = 10.0;
+  m.damping_ratio = 1.0;
+  m.max_torque = 100.0;
+  Arm arm(WorldDef(), m);
+  for (int i = 0; i < 3000; ++i) arm.w.step(kDt);
+  // gravity torque m g d cos(theta) ~ 4.3 N m; the drive's stiffness is I_com w^2 (the
+  // frequency is relative to the body's own rotational inertia, as in Box2D), so it sags by
+  // tau / (I_com w^2) ~ 0.05 rad
+  const double I = 0.02, w2 = std::pow(2 * M_PI * 10, 2);
+  const double theta = arm.w.hingeAngle(arm.hinge);
+  EXPECT_NEAR(theta, 0.5 + 9.81 * 0.5 * std::cos(theta) / (I * w2), 2e-3);
+}
+
+TEST(JointMotor, TorqueCapLimitsTheDrive) {
+  JointMotor m;
+  m.enabled = true;
+  m.target = 0.0;
+  m.hertz = 10.0;
+  m.max_torque = 2.0;  // less than m g d = 4.9 N m: the arm falls
+  Arm arm(WorldDef(), m);
+  double max_angle = 0.0;
+  for (int i = 0; i < 2000; ++i) {
+    arm.w.step(kDt);
+    max_angle = std::max(max_angle, arm.w.hingeAngle(arm.hinge));
+  }
+  EXPECT_GT(max_angle, 1.5);  // swings past the static balance acos(2 / 4.9) = 1.15 rad
+}
+
+TEST(JointMotor, DampingDecaysSwing) {
+  JointMotor m;
+  m.damping = 0.5;  // N m s/rad
+  Arm arm(zeroG(), m);
+  arm.w.setBodyState(arm.bar, Transform(), Vec3(0, 0, -2.0), Vec3(0, 4.0, 0));  // about the pivot
+  for (int i = 0; i < 1000; ++i) arm.w.step(kDt);
+  // I w' = -c w  ->  w(t) = w0 exp(-c t / I), I about the pivot = 0.27
+  EXPECT_NEAR(arm.w.bodyState(arm.bar).angular_velocity.y(), 4.0 * std::exp(-0.5 / 0.27), 0.02);
+}
