@@ -19,6 +19,8 @@ class NodeHandle;
 namespace ragdoll_sim {
 namespace node {
 
+using namespace scene;  // the node's ROS-free helpers moved to src/scene
+
 struct SpawnPose {
   double x = 0.0, y = 0.0, z = 1.1;  // root link origin, m (z = 1.1: feet ~0.1 m above ground)
   double roll = 0.0, pitch = 0.0, yaw = 0.0;  // rad

@@ -20,6 +20,8 @@
 namespace ragdoll_sim {
 namespace node {
 
+using namespace scene;  // the node's ROS-free helpers moved to src/scene
+
 struct RagdollInstance {
   std::string name;       // unique; commands name it in their `ragdoll` field ("" = the first)
   std::string tf_prefix;  // TF frames are "<tf_prefix>/<link>"; "" = the bare URDF link names

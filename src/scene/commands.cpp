@@ -7,7 +7,7 @@
 #include "ragdoll_sim/ragdoll.hpp"
 
 namespace ragdoll_sim {
-namespace node {
+namespace scene {
 
 LinkTable::LinkTable(const RagdollDef& def) {
   names_.reserve(def.links.size());
@@ -212,5 +212,5 @@ std::string ragdollNameError(const std::string& name) {
   return "";
 }
 
-}  // namespace node
+}  // namespace scene
 }  // namespace ragdoll_sim
