@@ -15,6 +15,7 @@
 #include <variant>
 #include <vector>
 
+#include "ragdoll_sim/balance.hpp"
 #include "ragdoll_sim/material.hpp"
 #include "ragdoll_sim/math.hpp"
 #include "ragdoll_sim/ragdoll.hpp"
@@ -47,15 +48,6 @@ struct JointSettings {
   std::optional<double> stiffness, damping, break_force, break_torque;
   // Motor gains (the entry's `motor` map).
   std::optional<double> hertz, damping_ratio, max_torque;
-};
-
-// Active ragdoll: ragdoll_sim::BalanceController (balance.hpp) with these gains.
-struct BalanceSettings {
-  bool enabled = false;  // on for the ragdolls present at start()
-  double kp = 2.0;       // rad of ankle target per m of centre-of-mass offset from the feet
-  double kd = 0.5;       // rad per m/s of centre-of-mass velocity
-  std::vector<std::string> ankles{"ankle_l", "ankle_r"};  // hinge joints
-  std::vector<std::string> feet{"foot_l", "foot_r"};      // support links
 };
 
 // An impulse on one link. frame "" or "world": point and impulse in world coordinates; "link":
@@ -103,14 +95,15 @@ struct SceneDef {
   MotorGains motor;                // every joint's target / hold motor unless `joints` say else
   JointSettings joint_defaults;    // springs and gains of every joint
   std::vector<std::pair<std::string, JointSettings>> joints;  // joint name -> settings
-  BalanceSettings balance;
+  // The balance controllers' law (their hold motors use `motor`, then the per-joint gains).
+  BalanceDef balance;
 };
 
 struct SpawnDef {
   std::string name;            // unique
   RagdollDef def;
   Transform pose;              // root link in the world (reset() goes back here)
-  bool balance = false;        // balance controller on from the start
+  bool balance = false;        // balance controller (SceneDef::balance) on from the start
   bool warn_unknown_joints = false;  // SceneDef::joints entries naming no joint of it: WARN
 };
 

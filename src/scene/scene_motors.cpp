@@ -13,12 +13,8 @@ void Scene::Impl::setBalance(RagdollInstance& r, bool on, bool log) {
   r.balance_on = on;
   r.balance.reset();
   if (on) {
-    BalanceDef bd;
+    BalanceDef bd = def.balance;
     bd.hold = scene::holdMotor(0.0, def.motor, JointMotor());
-    bd.kp = def.balance.kp;
-    bd.kd = def.balance.kd;
-    bd.ankles = def.balance.ankles;
-    bd.feet = def.balance.feet;
     r.balance = std::make_unique<BalanceController>(*world, r.ragdoll, r.def, bd);
     if (log)
       for (const std::string& m : r.balance->missing())
