@@ -27,6 +27,7 @@ struct QueuedCommand {
   uint64_t seq = 0;     // arrival order (set by push), breaks ties between equal due times
   std::string ragdoll;  // "" = the first ragdoll
   RagdollId ragdoll_id; // resolved when it was submitted
+  CommandCheck link;    // an impulse's or force's link and frame, resolved then too
   std::variant<ImpulseCommand, ForceCommand, TargetPoseCommand> command;
 };
 

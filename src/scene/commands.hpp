@@ -71,6 +71,15 @@ CommandCheck checkImpulse(const ImpulseCommand& cmd, const LinkTable& links,
 CommandCheck checkForce(const ForceCommand& cmd, const LinkTable& links,
                         const CommandLimits& limits, const LinkPoseFn& link_pose);
 
+// The same checks in two parts: the link and frame, resolved once when the command arrives
+// (ok with link and frame set, or the error), then the rest when it is applied.
+CommandCheck resolveImpulseLink(const ImpulseCommand& cmd, const LinkTable& links);
+CommandCheck resolveForceLink(const ForceCommand& cmd, const LinkTable& links);
+CommandCheck checkImpulse(const ImpulseCommand& cmd, const CommandCheck& resolved,
+                          const CommandLimits& limits, const LinkPoseFn& link_pose);
+CommandCheck checkForce(const ForceCommand& cmd, const CommandCheck& resolved,
+                        const CommandLimits& limits, const LinkPoseFn& link_pose);
+
 // A validated impulse in world coordinates.
 struct WorldImpulse {
   int link = -1;

@@ -1,7 +1,7 @@
-// Scene: the queue of stamped commands. A command names its ragdoll, resolved once when it is
-// submitted; it waits until its sim time and is then checked and applied, or rejected (a WARN
-// throttled per problem kind names it), or dropped when the queue is full. The counters keep
-// received = applied + rejected + dropped + queued.
+// Scene: the queue of stamped commands. A command names its ragdoll and link, resolved once
+// when it is submitted; it waits until its sim time and is then checked and applied, or
+// rejected (a WARN throttled per problem kind names it), or dropped when the queue is full.
+// The counters keep received = applied + rejected + dropped + queued.
 #include "scene_impl.hpp"
 
 namespace ragdoll_sim {
@@ -38,9 +38,14 @@ bool Scene::submit(const std::string& ragdoll, SceneCommandVariant command, int6
                (s.ragdolls.empty() ? " (no ragdolls left)" : "") + "; command dropped");
     return false;
   }
+  const RagdollInstance& r = s.ragdolls[static_cast<size_t>(k)];
   QueuedCommand q;
   q.ragdoll = ragdoll;
-  q.ragdoll_id = s.ragdolls[static_cast<size_t>(k)].id;
+  q.ragdoll_id = r.id;
+  if (const auto* c = std::get_if<ImpulseCommand>(&command))
+    q.link = scene::resolveImpulseLink(*c, r.links);
+  else if (const auto* f = std::get_if<ForceCommand>(&command))
+    q.link = scene::resolveForceLink(*f, r.links);
   q.command = std::move(command);
   q.due_ns = due_ns;
   if (!s.queue.push(std::move(q))) {
@@ -78,18 +83,19 @@ void Scene::Impl::applyCommand(const QueuedCommand& q) {
   } else {
     RagdollInstance& r = ragdolls[static_cast<size_t>(k)];
     if (const auto* c = std::get_if<ImpulseCommand>(&q.command))
-      ok = applyImpulse(r, *c);
+      ok = applyImpulse(r, *c, q.link);
     else if (const auto* f = std::get_if<ForceCommand>(&q.command))
-      ok = applyForce(r, *f);
+      ok = applyForce(r, *f, q.link);
     else if (const auto* t = std::get_if<TargetPoseCommand>(&q.command))
       ok = applyTargetPose(r, *t);
   }
   ++(ok ? applied : rejected);
 }
 
-bool Scene::Impl::applyImpulse(RagdollInstance& r, const ImpulseCommand& cmd) {
+bool Scene::Impl::applyImpulse(RagdollInstance& r, const ImpulseCommand& cmd,
+                               const CommandCheck& link) {
   auto pose = [&](int link) { return world->bodyPose(r.ragdoll.bodies[static_cast<size_t>(link)]); };
-  CommandCheck check = checkImpulse(cmd, r.links, def.limits, pose);
+  CommandCheck check = checkImpulse(cmd, link, def.limits, pose);
   if (!check.ok) {
     warn("impulse/" + check.problem, check.error + " (ragdoll '" + r.name + "'); command dropped");
     return false;
@@ -110,9 +116,10 @@ size_t Scene::Impl::activeForceCount() const {
   return n;
 }
 
-bool Scene::Impl::applyForce(RagdollInstance& r, const ForceCommand& cmd) {
+bool Scene::Impl::applyForce(RagdollInstance& r, const ForceCommand& cmd,
+                             const CommandCheck& link) {
   auto pose = [&](int link) { return world->bodyPose(r.ragdoll.bodies[static_cast<size_t>(link)]); };
-  CommandCheck check = checkForce(cmd, r.links, def.limits, pose);
+  CommandCheck check = checkForce(cmd, link, def.limits, pose);
   if (!check.ok) {
     warn("force/" + check.problem, check.error + " (ragdoll '" + r.name + "'); command dropped");
     return false;

@@ -60,8 +60,11 @@ struct Scene::Impl {
 
   // scene_commands.cpp
   void applyCommand(const scene::QueuedCommand& cmd);
-  bool applyImpulse(scene::RagdollInstance& r, const ImpulseCommand& cmd);
-  bool applyForce(scene::RagdollInstance& r, const ForceCommand& cmd);
+  // `link`: the command's link and frame as resolved on receipt
+  bool applyImpulse(scene::RagdollInstance& r, const ImpulseCommand& cmd,
+                    const scene::CommandCheck& link);
+  bool applyForce(scene::RagdollInstance& r, const ForceCommand& cmd,
+                  const scene::CommandCheck& link);
   size_t activeForceCount() const;
 
   // scene_step.cpp
