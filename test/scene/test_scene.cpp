@@ -223,4 +223,43 @@ TEST(Scene, SettingsChangeBetweenSteps) {
   EXPECT_EQ(scene.world().def().gravity, Vec3::Zero());
 }
 
+TEST(Scene, BrokenJointsAreReportedByName) {
+  SceneDef d;
+  JointSettings weak;
+  weak.break_force = 1.0;  // N: the torso's weight breaks it once the stick lands
+  d.joints.emplace_back("waist", weak);
+  Scene scene{d};
+  start(scene, {stick("a", 0.0)});
+  for (int i = 0; i < 1000 && scene.brokenJoints().empty(); ++i) scene.step();
+  ASSERT_EQ(scene.brokenJoints().size(), 1u);
+  const BrokenJointReport& b = scene.brokenJoints()[0];
+  EXPECT_EQ(b.ragdoll, "a");
+  EXPECT_EQ(b.joint, "waist");
+  EXPECT_EQ(b.parent_link, "pelvis");
+  EXPECT_EQ(b.child_link, "torso");
+  EXPECT_EQ(b.break_force, 1.0);
+  EXPECT_GT(b.force, 1.0);
+  scene.step();
+  EXPECT_TRUE(scene.brokenJoints().empty());
+  std::string e;
+  ASSERT_TRUE(scene.reset(&e)) << e;  // joints whole again
+  EXPECT_FALSE(scene.world().isJointBroken(scene.bodies(0).joints[0]));
+}
+
+TEST(Scene, BalanceNamesWhatTheModelLacks) {
+  Recorder rec;
+  Scene scene(SceneDef(), &rec);
+  start(scene, {stick("a", 0.0)});
+  EXPECT_FALSE(scene.balanceOn(0));
+  EXPECT_EQ(scene.balanceMissing(0), nullptr);
+  scene.setBalance(true);
+  EXPECT_TRUE(scene.balanceOn(0));
+  ASSERT_NE(scene.balanceMissing(0), nullptr);
+  EXPECT_FALSE(scene.balanceMissing(0)->empty());  // the stick has no ankles or feet
+  EXPECT_FALSE(rec.messages.empty());
+  for (int i = 0; i < 10; ++i) scene.step();
+  scene.setBalance(false);
+  EXPECT_EQ(scene.balanceMissing(0), nullptr);
+}
+
 }  // namespace
