@@ -30,6 +30,8 @@
 namespace ragdoll_sim {
 namespace node {
 
+using namespace scene;  // the node's ROS-free helpers moved to src/scene
+
 struct InteractionSettings {
   PokeSettings poke;
   DragSettings drag;

@@ -1,5 +1,6 @@
 #include "node_config.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <vector>
@@ -168,7 +169,7 @@ bool loadJointSettings(const ros::NodeHandle& pnh, NodeConfig* c, std::string* e
     XmlRpc::XmlRpcValue defaults;
     if (pnh.getParam("joint_defaults", defaults) &&
         !jointSettings(defaults, "parameter " + pnh.resolveName("joint_defaults"),
-                       &c->joint_defaults, error))
+                       &c->scene.joint_defaults, error))
       return false;
     XmlRpc::XmlRpcValue joints;
     if (!pnh.getParam("joints", joints)) return true;
@@ -181,7 +182,7 @@ bool loadJointSettings(const ros::NodeHandle& pnh, NodeConfig* c, std::string* e
     for (auto& [name, value] : joints) {
       JointSettings s;
       if (!jointSettings(value, where + "/" + name, &s, error)) return false;
-      c->joints.emplace_back(name, s);
+      c->scene.joints.emplace_back(name, s);
     }
   } catch (const XmlRpc::XmlRpcException& e) {
     *error = "parameter " + pnh.resolveName("joints") + ": " + e.getMessage();
@@ -228,16 +229,17 @@ bool surface(const MaterialTable& t, const std::string& name, const char* param,
 }  // namespace
 
 bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* c, std::string* error) {
-  std::vector<double> gravity{c->gravity.x(), c->gravity.y(), c->gravity.z()};
+  const Vec3& g = c->scene.world.gravity;
+  std::vector<double> gravity{g.x(), g.y(), g.z()};
   bool ok = read(pnh, "physics_rate", "a number (Hz)", &c->physics_rate, error) &&
             read(pnh, "real_time_factor", "a number", &c->real_time_factor, error) &&
             read(pnh, "clock_rate", "a number (Hz)", &c->clock_rate, error) &&
-            read(pnh, "position_iterations", "an integer", &c->position_iterations, error) &&
+            read(pnh, "position_iterations", "an integer", &c->scene.world.position_iterations, error) &&
             read(pnh, "ragdoll_name", "a string", &c->ragdoll_name, error) &&
             read(pnh, "tf_prefix", "a string", &c->tf_prefix, error) &&
             read(pnh, "publish_rate", "a number (Hz)", &c->publish_rate, error) &&
-            read(pnh, "substeps", "an integer", &c->substeps, error) &&
-            read(pnh, "threads", "an integer", &c->threads, error) &&
+            read(pnh, "substeps", "an integer", &c->scene.world.substeps, error) &&
+            read(pnh, "threads", "an integer", &c->scene.world.threads, error) &&
             read(pnh, "gravity", "a list of 3 numbers (m/s^2)", &gravity, error) &&
             read(pnh, "spawn/x", "a number (m)", &c->spawn.x, error) &&
             read(pnh, "spawn/y", "a number (m)", &c->spawn.y, error) &&
@@ -245,43 +247,43 @@ bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* c, std::string* erro
             read(pnh, "spawn/roll", "a number (rad)", &c->spawn.roll, error) &&
             read(pnh, "spawn/pitch", "a number (rad)", &c->spawn.pitch, error) &&
             read(pnh, "spawn/yaw", "a number (rad)", &c->spawn.yaw, error) &&
-            read(pnh, "static_friction", "a number", &c->material.static_friction, error) &&
-            read(pnh, "kinetic_friction", "a number", &c->material.kinetic_friction, error) &&
-            read(pnh, "restitution", "a number", &c->material.restitution, error) &&
-            read(pnh, "rolling_resistance", "a number", &c->material.rolling_resistance, error) &&
+            read(pnh, "static_friction", "a number", &c->scene.material.static_friction, error) &&
+            read(pnh, "kinetic_friction", "a number", &c->scene.material.kinetic_friction, error) &&
+            read(pnh, "restitution", "a number", &c->scene.material.restitution, error) &&
+            read(pnh, "rolling_resistance", "a number", &c->scene.material.rolling_resistance, error) &&
             read(pnh, "paused", "a bool", &c->paused, error) &&
             read(pnh, "urdf_file", "a string", &c->urdf_file, error) &&
             read(pnh, "world_frame", "a string", &c->world_frame, error) &&
-            read(pnh, "ground", "a bool", &c->ground, error) &&
-            read(pnh, "max_impulse", "a number (N*s)", &c->max_impulse, error) &&
-            read(pnh, "max_force", "a number (N)", &c->max_force, error) &&
-            read(pnh, "max_torque", "a number (N*m)", &c->max_torque, error) &&
-            read(pnh, "max_lever_arm", "a number (m)", &c->max_lever_arm, error) &&
+            read(pnh, "ground", "a bool", &c->scene.ground, error) &&
+            read(pnh, "max_impulse", "a number (N*s)", &c->scene.limits.max_impulse, error) &&
+            read(pnh, "max_force", "a number (N)", &c->scene.limits.max_force, error) &&
+            read(pnh, "max_torque", "a number (N*m)", &c->scene.limits.max_torque, error) &&
+            read(pnh, "max_lever_arm", "a number (m)", &c->scene.limits.max_lever_arm, error) &&
             read(pnh, "max_catchup", "a number (s)", &c->max_catchup, error) &&
-            read(pnh, "max_linear_speed", "a number (m/s)", &c->max_linear_speed, error) &&
-            read(pnh, "max_angular_speed", "a number (rad/s)", &c->max_angular_speed, error) &&
+            read(pnh, "max_linear_speed", "a number (m/s)", &c->scene.world.max_linear_speed, error) &&
+            read(pnh, "max_angular_speed", "a number (rad/s)", &c->scene.world.max_angular_speed, error) &&
             read(pnh, "max_steps_per_call", "an integer", &c->max_steps_per_call, error) &&
             read(pnh, "max_position", "a number (m)", &c->max_position, error) &&
-            read(pnh, "max_queued_commands", "an integer", &c->max_queued_commands, error) &&
+            read(pnh, "max_queued_commands", "an integer", &c->scene.max_queued_commands, error) &&
             read(pnh, "publish_markers", "a bool", &c->publish_markers, error) &&
             read(pnh, "ragdoll_material", "a string", &c->ragdoll_material, error) &&
             read(pnh, "ground_material", "a string", &c->ground_material, error) &&
-            read(pnh, "motor/hertz", "a number (Hz)", &c->motor.hertz, error) &&
-            read(pnh, "motor/damping_ratio", "a number", &c->motor.damping_ratio, error) &&
-            read(pnh, "motor/max_torque", "a number (N*m)", &c->motor.max_torque, error) &&
-            read(pnh, "balance/enabled", "a bool", &c->balance.enabled, error) &&
-            read(pnh, "balance/kp", "a number (rad/m)", &c->balance.kp, error) &&
-            read(pnh, "balance/kd", "a number (rad s/m)", &c->balance.kd, error) &&
-            read(pnh, "balance/ankles", "a list of joint names", &c->balance.ankles, error) &&
-            read(pnh, "balance/feet", "a list of link names", &c->balance.feet, error) &&
-            read(pnh, "sleep/enabled", "a bool", &c->sleep.enabled, error) &&
-            read(pnh, "sleep/time", "a number (s)", &c->sleep.time, error) &&
-            read(pnh, "sleep/speed", "a number (m/s)", &c->sleep.speed, error) &&
-            read(pnh, "sleep/rest_time", "a number (s)", &c->sleep.rest_time, error) &&
-            read(pnh, "sleep/rest_substeps", "an integer", &c->sleep.rest_substeps, error) &&
+            read(pnh, "motor/hertz", "a number (Hz)", &c->scene.motor.hertz, error) &&
+            read(pnh, "motor/damping_ratio", "a number", &c->scene.motor.damping_ratio, error) &&
+            read(pnh, "motor/max_torque", "a number (N*m)", &c->scene.motor.max_torque, error) &&
+            read(pnh, "balance/enabled", "a bool", &c->balance, error) &&
+            read(pnh, "balance/kp", "a number (rad/m)", &c->scene.balance.kp, error) &&
+            read(pnh, "balance/kd", "a number (rad s/m)", &c->scene.balance.kd, error) &&
+            read(pnh, "balance/ankles", "a list of joint names", &c->scene.balance.ankles, error) &&
+            read(pnh, "balance/feet", "a list of link names", &c->scene.balance.feet, error) &&
+            read(pnh, "sleep/enabled", "a bool", &c->scene.world.sleep.enabled, error) &&
+            read(pnh, "sleep/time", "a number (s)", &c->scene.world.sleep.time, error) &&
+            read(pnh, "sleep/speed", "a number (m/s)", &c->scene.world.sleep.speed, error) &&
+            read(pnh, "sleep/rest_time", "a number (s)", &c->scene.world.sleep.rest_time, error) &&
+            read(pnh, "sleep/rest_substeps", "an integer", &c->scene.world.sleep.rest_substeps, error) &&
             read(pnh, "sleep/rest_relax_iterations", "an integer",
-                 &c->sleep.rest_relax_iterations, error) &&
-            loadMaterials(pnh, &c->materials, error) && loadJointSettings(pnh, c, error) &&
+                 &c->scene.world.sleep.rest_relax_iterations, error) &&
+            loadMaterials(pnh, &c->scene.world.materials, error) && loadJointSettings(pnh, c, error) &&
             loadRvizSettings(pnh, c, error);
   if (!ok) return false;
   if (gravity.size() != 3) {
@@ -289,26 +291,15 @@ bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* c, std::string* erro
              std::to_string(gravity.size());
     return false;
   }
-  c->gravity = Vec3(gravity[0], gravity[1], gravity[2]);
+  c->scene.world.gravity = Vec3(gravity[0], gravity[1], gravity[2]);
   *error = validateNodeConfig(*c);
-  return error->empty() &&
-         surface(c->materials, c->ragdoll_material, "ragdoll_material", c->material,
-                 &c->ragdoll_surface, error) &&
-         surface(c->materials, c->ground_material, "ground_material", c->material,
-                 &c->ground_surface, error);
-}
-
-WorldDef worldDefOf(const NodeConfig& c) {
-  WorldDef wd;
-  wd.gravity = c.gravity;
-  wd.substeps = c.substeps;
-  wd.threads = c.threads;
-  wd.position_iterations = c.position_iterations;
-  wd.materials = c.materials;
-  wd.max_linear_speed = c.max_linear_speed;
-  wd.max_angular_speed = c.max_angular_speed;
-  wd.sleep = c.sleep;
-  return wd;
+  if (!error->empty()) return false;
+  c->scene.dt_ns = std::max<int64_t>(1, std::llround(1e9 / c->physics_rate));
+  return
+         surface(c->scene.world.materials, c->ragdoll_material, "ragdoll_material",
+                 c->scene.material, &c->scene.ragdoll_surface, error) &&
+         surface(c->scene.world.materials, c->ground_material, "ground_material",
+                 c->scene.material, &c->scene.ground_surface, error);
 }
 
 std::string validateNodeConfig(const NodeConfig& c) {
@@ -324,7 +315,7 @@ std::string validateNodeConfig(const NodeConfig& c) {
   if (!(e = param(positiveError("physics_rate", c.physics_rate))).empty()) return e;
   if (c.physics_rate > 1e6) return "parameter ~physics_rate must be <= 1e6 Hz";
   if (!(e = param(positiveError("publish_rate", c.publish_rate))).empty()) return e;
-  if (!(e = param(worldDefError(worldDefOf(c)))).empty()) return e;
+  if (!(e = param(worldDefError(c.scene.world))).empty()) return e;
   if (*realTimeFactorError(c.real_time_factor)) {
     std::ostringstream s;
     s << "parameter ~real_time_factor " << realTimeFactorError(c.real_time_factor) << ", got "
@@ -337,22 +328,22 @@ std::string validateNodeConfig(const NodeConfig& c) {
   const SpawnPose& s = c.spawn;
   for (double v : {s.x, s.y, s.z, s.roll, s.pitch, s.yaw})
     if (!std::isfinite(v)) return "parameters ~spawn/{x,y,z,roll,pitch,yaw} must be finite";
-  if (!(e = param(materialError(c.material))).empty()) return e;
+  if (!(e = param(materialError(c.scene.material))).empty()) return e;
   if (c.world_frame.empty()) return "parameter ~world_frame must not be empty";
   for (const auto& [name, v] :
-       {std::pair<const char*, double>{"max_impulse", c.max_impulse},
-        {"max_force", c.max_force},
-        {"max_torque", c.max_torque},
-        {"max_lever_arm", c.max_lever_arm},
+       {std::pair<const char*, double>{"max_impulse", c.scene.limits.max_impulse},
+        {"max_force", c.scene.limits.max_force},
+        {"max_torque", c.scene.limits.max_torque},
+        {"max_lever_arm", c.scene.limits.max_lever_arm},
         {"max_catchup", c.max_catchup},
         {"max_position", c.max_position}})
     if (!(e = param(positiveError(name, v))).empty()) return e;
   if (!(e = param(intRangeError("max_steps_per_call", c.max_steps_per_call, 1))).empty())
     return e;
-  if (!(e = param(intRangeError("max_queued_commands", c.max_queued_commands, 1))).empty())
+  if (!(e = param(intRangeError("max_queued_commands", c.scene.max_queued_commands, 1))).empty())
     return e;
-  if (!(e = validateMotorGains(c.motor, "parameter ~motor")).empty()) return e;
-  if (!std::isfinite(c.balance.kp) || !std::isfinite(c.balance.kd))
+  if (!(e = validateMotorGains(c.scene.motor, "parameter ~motor")).empty()) return e;
+  if (!std::isfinite(c.scene.balance.kp) || !std::isfinite(c.scene.balance.kd))
     return "parameters ~balance/kp and ~balance/kd must be finite";
   if (!(e = validateMarkerSettings(c.markers)).empty()) return e;
   if (!(e = validatePokeSettings(c.poke)).empty()) return e;

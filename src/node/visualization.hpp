@@ -20,6 +20,8 @@
 namespace ragdoll_sim {
 namespace node {
 
+using namespace scene;  // the node's ROS-free helpers moved to src/scene
+
 struct Rgba {
   float r = 1, g = 1, b = 1, a = 1;
 };

@@ -1,5 +1,5 @@
 // libFuzzer target: arbitrary bytes decoded into impulse / force commands (and ragdoll names)
-// for the node's ROS-free validation (src/node/commands.*), on the bundled ragdoll standing on
+// for the node's ROS-free validation (src/scene/commands.*), on the bundled ragdoll standing on
 // a ground plane. The verdict of checkImpulse / checkForce must match the README's rules
 // computed here independently; an accepted command must respect the caps after conversion and,
 // applied to the world and stepped as the node does (SimNode::stepOnce), keep the state finite
@@ -29,7 +29,7 @@
 #include "ragdoll_sim/urdf_loader.hpp"
 
 using namespace ragdoll_sim;
-using namespace ragdoll_sim::node;
+using namespace ragdoll_sim::scene;
 
 namespace {
 

@@ -7,7 +7,7 @@
 #include "ragdoll_sim/ragdoll.hpp"
 
 namespace ragdoll_sim {
-namespace node {
+namespace scene {
 
 LinkTable::LinkTable(const RagdollDef& def) {
   names_.reserve(def.links.size());
@@ -130,24 +130,45 @@ bool checkPoint(const std::string& kind, const Vec3& point, const CommandCheck& 
 
 }  // namespace
 
+CommandCheck resolveImpulseLink(const ImpulseCommand& cmd, const LinkTable& links) {
+  CommandCheck c;
+  c.ok = resolveLinkAndFrame("impulse on '" + cmd.link + "'", cmd.link, cmd.frame, links, &c);
+  return c;
+}
+
+CommandCheck resolveForceLink(const ForceCommand& cmd, const LinkTable& links) {
+  CommandCheck c;
+  c.ok = resolveLinkAndFrame("force on '" + cmd.link + "'", cmd.link, cmd.frame, links, &c);
+  return c;
+}
+
 CommandCheck checkImpulse(const ImpulseCommand& cmd, const LinkTable& links,
                           const CommandLimits& limits, const LinkPoseFn& link_pose) {
+  return checkImpulse(cmd, resolveImpulseLink(cmd, links), limits, link_pose);
+}
+
+CommandCheck checkForce(const ForceCommand& cmd, const LinkTable& links,
+                        const CommandLimits& limits, const LinkPoseFn& link_pose) {
+  return checkForce(cmd, resolveForceLink(cmd, links), limits, link_pose);
+}
+
+CommandCheck checkImpulse(const ImpulseCommand& cmd, const CommandCheck& resolved,
+                          const CommandLimits& limits, const LinkPoseFn& link_pose) {
+  if (!resolved.ok) return resolved;
   const std::string kind = "impulse on '" + cmd.link + "'";
-  CommandCheck c;
-  if (!resolveLinkAndFrame(kind, cmd.link, cmd.frame, links, &c)) return c;
+  CommandCheck c = resolved;
   if (!checkVector(kind, "impulse", cmd.impulse, limits.max_impulse, "N*s", "max_impulse", &c))
     return c;
-  CommandCheck resolved = c;
   if (!checkPoint(kind, cmd.point, resolved, limits, link_pose, &c)) return c;
   c.ok = true;
   return c;
 }
 
-CommandCheck checkForce(const ForceCommand& cmd, const LinkTable& links,
+CommandCheck checkForce(const ForceCommand& cmd, const CommandCheck& resolved,
                         const CommandLimits& limits, const LinkPoseFn& link_pose) {
+  if (!resolved.ok) return resolved;
   const std::string kind = "force on '" + cmd.link + "'";
-  CommandCheck c;
-  if (!resolveLinkAndFrame(kind, cmd.link, cmd.frame, links, &c)) return c;
+  CommandCheck c = resolved;
   if (!checkVector(kind, "force", cmd.force, limits.max_force, "N", "max_force", &c)) return c;
   if (!checkVector(kind, "torque", cmd.torque, limits.max_torque, "N*m", "max_torque", &c))
     return c;
@@ -157,7 +178,6 @@ CommandCheck checkForce(const ForceCommand& cmd, const LinkTable& links,
       << " is not finite (use a negative duration for 'until cleared')";
     return fail("duration not finite", s.str());
   }
-  CommandCheck resolved = c;
   if (!checkPoint(kind, cmd.point, resolved, limits, link_pose, &c)) return c;
   c.ok = true;
   return c;
@@ -212,5 +232,5 @@ std::string ragdollNameError(const std::string& name) {
   return "";
 }
 
-}  // namespace node
+}  // namespace scene
 }  // namespace ragdoll_sim

@@ -1,10 +1,11 @@
-// Unit tests of the queue of stamped commands (src/node/command_queue.*) and of the ragdoll
-// name helpers (src/node/commands.*).
+// Unit tests of the queue of stamped commands (src/scene/command_queue.*) and of the ragdoll
+// name helpers (src/scene/commands.*).
 #include <gtest/gtest.h>
 
 #include "command_queue.hpp"
 
-using namespace ragdoll_sim::node;
+using namespace ragdoll_sim;
+using namespace ragdoll_sim::scene;
 
 namespace {
 

@@ -20,12 +20,14 @@
 #include "joint_control.hpp"
 
 namespace ragdoll_sim {
-namespace node {
+namespace scene {
 
 struct QueuedCommand {
   int64_t due_ns = 0;   // sim time (ns since the start) at which it takes effect
   uint64_t seq = 0;     // arrival order (set by push), breaks ties between equal due times
   std::string ragdoll;  // "" = the first ragdoll
+  RagdollId ragdoll_id; // resolved when it was submitted
+  CommandCheck link;    // an impulse's or force's link and frame, resolved then too
   std::variant<ImpulseCommand, ForceCommand, TargetPoseCommand> command;
 };
 
@@ -55,5 +57,5 @@ class CommandQueue {
 // (returns now_ns), and so does a stamp at or before now_ns.
 int64_t commandDueNs(int64_t stamp_ns, int64_t origin_ns, int64_t now_ns);
 
-}  // namespace node
+}  // namespace scene
 }  // namespace ragdoll_sim

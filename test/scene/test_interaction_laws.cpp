@@ -1,5 +1,5 @@
 // Unit tests of the ROS-free laws behind poking and dragging from rviz
-// (src/node/interaction_laws.*) and of the rviz settings checks (src/node/rviz_settings.*).
+// (src/scene/interaction_laws.*) and of the rviz settings checks (src/scene/rviz_settings.*).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "scene_views.hpp"
 
 using namespace ragdoll_sim;
-using namespace ragdoll_sim::node;
+using namespace ragdoll_sim::scene;
 
 namespace {
 

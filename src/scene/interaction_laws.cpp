@@ -4,7 +4,7 @@
 #include <cmath>
 
 namespace ragdoll_sim {
-namespace node {
+namespace scene {
 
 namespace {
 
@@ -99,5 +99,5 @@ int dragLink(const RagdollDef& def, const std::string& name) {
   return def.links.empty() ? -1 : def.root;
 }
 
-}  // namespace node
+}  // namespace scene
 }  // namespace ragdoll_sim

@@ -4,7 +4,7 @@
 #include <sstream>
 
 namespace ragdoll_sim {
-namespace node {
+namespace scene {
 
 namespace {
 
@@ -47,5 +47,5 @@ std::string validateDragSettings(const DragSettings& s) {
   return e.str();
 }
 
-}  // namespace node
+}  // namespace scene
 }  // namespace ragdoll_sim

@@ -1,4 +1,4 @@
-// Unit tests of the node's ROS-free command validation and conversion (src/node/commands.*).
+// Unit tests of the node's ROS-free command validation and conversion (src/scene/commands.*).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +8,7 @@
 #include "ragdoll_sim/ragdoll.hpp"
 
 using namespace ragdoll_sim;
-using namespace ragdoll_sim::node;
+using namespace ragdoll_sim::scene;
 
 namespace {
 

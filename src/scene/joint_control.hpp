@@ -17,31 +17,13 @@
 
 #include "ragdoll_sim/joint.hpp"
 #include "ragdoll_sim/ragdoll.hpp"
+#include "ragdoll_sim/scene.hpp"
 
 namespace ragdoll_sim {
-namespace node {
-
-// Gains of the position motors that drive joints to ~target_pose (and hold the pose when the
-// balance controller is on): soft constraint of natural frequency `hertz` and damping ratio
-// `damping_ratio` (relative to the joint's effective rotational inertia, see
-// src/core/part_angle_motor.hpp), torque capped at `max_torque`.
-struct MotorGains {
-  double hertz = 120.0;         // Hz
-  double damping_ratio = 1.0;
-  double max_torque = 5000.0;   // N m
-};
+namespace scene {
 
 // Range checks of MotorGains; "" when valid, else a message starting with `where`.
 std::string validateMotorGains(const MotorGains& g, const std::string& where);
-
-// One entry of ~joints (or ~joint_defaults): only the fields that are present are set.
-struct JointSettings {
-  // Anchor (JointSpring): stiffness N/m (0 = rigid), damping N s/m, break_force N (.inf = never);
-  // break_torque N m (.inf = never), the rotation lock of a fixed joint.
-  std::optional<double> stiffness, damping, break_force, break_torque;
-  // Motor gains (the entry's `motor` map).
-  std::optional<double> hertz, damping_ratio, max_torque;
-};
 
 // Range checks of the fields present; "" when valid, else a message starting with `where`.
 std::string validateJointSettings(const JointSettings& s, const std::string& where);
@@ -97,12 +79,6 @@ struct AxisTarget {
   double since = 0.0;         // s of sim time when it was set
 };
 
-// sensor_msgs/JointState fields.
-struct TargetPoseCommand {
-  std::vector<std::string> names;
-  std::vector<double> position, velocity;
-};
-
 struct TargetPoseCheck {
   bool ok = false;
   std::string error;                 // names the problem when !ok
@@ -132,5 +108,5 @@ JointMotor targetMotor(const AxisTarget& t, const AxisInfo& axis, const MotorGai
 // The motor that holds an axis at angle `angle` (gains), with the passive damping.
 JointMotor holdMotor(double angle, const MotorGains& gains, const JointMotor& passive);
 
-}  // namespace node
+}  // namespace scene
 }  // namespace ragdoll_sim

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 namespace ragdoll_sim {
-namespace node {
+namespace scene {
 
 bool CommandQueue::push(QueuedCommand c) {
   if (items_.size() >= capacity_) {
@@ -34,5 +34,5 @@ int64_t commandDueNs(int64_t stamp_ns, int64_t origin_ns, int64_t now_ns) {
   return std::max(now_ns, stamp_ns - origin_ns);
 }
 
-}  // namespace node
+}  // namespace scene
 }  // namespace ragdoll_sim

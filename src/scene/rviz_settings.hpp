@@ -7,7 +7,7 @@
 #include <string>
 
 namespace ragdoll_sim {
-namespace node {
+namespace scene {
 
 // ~markers/*.
 struct MarkerSettings {
@@ -43,5 +43,5 @@ std::string validateMarkerSettings(const MarkerSettings& s);
 std::string validatePokeSettings(const PokeSettings& s);
 std::string validateDragSettings(const DragSettings& s);
 
-}  // namespace node
+}  // namespace scene
 }  // namespace ragdoll_sim

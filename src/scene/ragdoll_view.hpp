@@ -7,7 +7,7 @@
 #include "ragdoll_sim/ragdoll.hpp"
 
 namespace ragdoll_sim {
-namespace node {
+namespace scene {
 
 struct RagdollView {
   std::string name;          // unique per node: marker namespace, interactive marker name
@@ -17,5 +17,5 @@ struct RagdollView {
   const Ragdoll* ragdoll = nullptr;
 };
 
-}  // namespace node
+}  // namespace scene
 }  // namespace ragdoll_sim

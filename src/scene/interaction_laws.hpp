@@ -11,7 +11,7 @@
 #include "rviz_settings.hpp"
 
 namespace ragdoll_sim {
-namespace node {
+namespace scene {
 
 // Signed distance from a world point to one shape of a body at `body_pose` (negative inside).
 // Exact for spheres, capsules, boxes and cylinders; for a convex hull the largest face-plane
@@ -45,5 +45,5 @@ Vec3 dragForce(const Vec3& point, const Vec3& velocity, const Vec3& target,
 // link). -1 when a non-empty `name` is not a link of the model.
 int dragLink(const RagdollDef& def, const std::string& name);
 
-}  // namespace node
+}  // namespace scene
 }  // namespace ragdoll_sim

@@ -60,7 +60,7 @@ struct TwoRagdolls {
     b = spawnRagdoll(world, def, Transform(Vec3(0, 2, z), Quat::Identity()));
   }
 
-  std::vector<node::RagdollView> views() const {
+  std::vector<scene::RagdollView> views() const {
     return {{"first", "", &def, &a}, {"second", "b/", &def, &b}};
   }
 };

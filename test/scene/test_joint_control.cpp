@@ -1,4 +1,4 @@
-// Unit tests of the node's ROS-free joint control (src/node/joint_control.*): axis names,
+// Unit tests of the node's ROS-free joint control (src/scene/joint_control.*): axis names,
 // ~joints settings resolution, ~target_pose checks and the motors it makes.
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include "joint_control.hpp"
 
 using namespace ragdoll_sim;
-using namespace ragdoll_sim::node;
+using namespace ragdoll_sim::scene;
 
 namespace {
 

@@ -21,21 +21,15 @@
 #include <vector>
 
 #include "ragdoll_sim/math.hpp"
+#include "ragdoll_sim/scene.hpp"
 
 namespace ragdoll_sim {
 
 struct RagdollDef;
 
-namespace node {
+namespace scene {
 
 enum class CommandFrame { World, Link };
-
-struct CommandLimits {
-  double max_impulse = 1000.0;   // N*s
-  double max_force = 1e5;        // N
-  double max_torque = 1e5;       // N*m
-  double max_lever_arm = 10.0;   // m, distance of the application point from the link origin
-};
 
 // Name -> link index of a RagdollDef, built once at start-up.
 class LinkTable {
@@ -52,22 +46,6 @@ class LinkTable {
   std::vector<std::string> names_;
   std::unordered_map<std::string, int> index_;
   std::unordered_map<std::string, std::string> chain_joint_;
-};
-
-struct ImpulseCommand {
-  std::string link;
-  std::string frame;
-  Vec3 point = Vec3::Zero();
-  Vec3 impulse = Vec3::Zero();
-};
-
-struct ForceCommand {
-  std::string link;
-  std::string frame;
-  Vec3 point = Vec3::Zero();
-  Vec3 force = Vec3::Zero();
-  Vec3 torque = Vec3::Zero();
-  double duration = 0.0;  // s of sim time; < 0: until cleared; 0: one physics step
 };
 
 // Outcome of validation: ok, or an error message that names the problem.
@@ -91,6 +69,15 @@ using LinkPoseFn = std::function<Transform(int link)>;
 CommandCheck checkImpulse(const ImpulseCommand& cmd, const LinkTable& links,
                           const CommandLimits& limits, const LinkPoseFn& link_pose);
 CommandCheck checkForce(const ForceCommand& cmd, const LinkTable& links,
+                        const CommandLimits& limits, const LinkPoseFn& link_pose);
+
+// The same checks in two parts: the link and frame, resolved once when the command arrives
+// (ok with link and frame set, or the error), then the rest when it is applied.
+CommandCheck resolveImpulseLink(const ImpulseCommand& cmd, const LinkTable& links);
+CommandCheck resolveForceLink(const ForceCommand& cmd, const LinkTable& links);
+CommandCheck checkImpulse(const ImpulseCommand& cmd, const CommandCheck& resolved,
+                          const CommandLimits& limits, const LinkPoseFn& link_pose);
+CommandCheck checkForce(const ForceCommand& cmd, const CommandCheck& resolved,
                         const CommandLimits& limits, const LinkPoseFn& link_pose);
 
 // A validated impulse in world coordinates.
@@ -138,5 +125,5 @@ void splitQualifiedName(const std::string& qualified, IsRagdoll is_ragdoll, std:
   }
 }
 
-}  // namespace node
+}  // namespace scene
 }  // namespace ragdoll_sim

@@ -6,7 +6,7 @@
 #include <sstream>
 
 namespace ragdoll_sim {
-namespace node {
+namespace scene {
 
 namespace {
 
@@ -260,5 +260,5 @@ JointMotor holdMotor(double angle, const MotorGains& gains, const JointMotor& pa
   return m;
 }
 
-}  // namespace node
+}  // namespace scene
 }  // namespace ragdoll_sim

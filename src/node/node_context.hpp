@@ -1,0 +1,47 @@
+// What the node's adapters share: the parameters, the Scene, the clock, the publishers and
+// the loop's pause flag. Each adapter (command topics, services, reconfigure, publishers)
+// turns ROS input into Scene calls or Scene state into messages; none holds scene rules.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <ros/ros.h>
+
+#include "interaction.hpp"
+#include "node_config.hpp"
+#include "pacing.hpp"
+#include "publishers.hpp"
+#include "ragdoll_sim/scene.hpp"
+#include "scene_log.hpp"
+#include "sim_clock.hpp"
+#include "visualization.hpp"
+
+namespace ragdoll_sim {
+namespace node {
+
+struct NodeContext {
+  ros::NodeHandle nh, pnh;
+  NodeConfig config;
+  SceneLog log;                  // the Scene's messages and arrows; outlives the Scene
+  std::unique_ptr<Scene> scene;
+  SimClock clock;
+  std::unique_ptr<Visualizer> visualizer;     // ~markers: shapes, contacts, arrows
+  std::unique_ptr<Interaction> interaction;   // /clicked_point pokes, ~drag marker
+  std::unique_ptr<Publishers> publishers;
+  Pacer pacer;
+  bool paused = false;
+  bool pacing_dirty = false;     // restart the pacer at the next loop iteration
+
+  NodeContext(const ros::NodeHandle& n, const ros::NodeHandle& p) : nh(n), pnh(p) {}
+
+  // One Scene step, then /clock and ~joint_broken.
+  void stepOnce();
+  // Publishing buffers, markers and drag handles follow a change of the ragdolls or the World.
+  void structureChanged();
+  void restartPacing();
+  void warn(const std::string& kind, const std::string& text) { log.warn(kind, text); }
+};
+
+}  // namespace node
+}  // namespace ragdoll_sim

@@ -1,0 +1,127 @@
+#include "reconfigure.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "node_context.hpp"
+
+namespace ragdoll_sim {
+namespace node {
+
+Reconfigure::Reconfigure(NodeContext& ctx) : ctx_(ctx) {
+  server_ = std::make_unique<dynamic_reconfigure::Server<ragdoll_sim::PhysicsConfig>>(mutex_,
+                                                                                      ctx_.pnh);
+  ragdoll_sim::PhysicsConfig c = current();
+  server_->updateConfig(c);
+  server_->setCallback(
+      [this](ragdoll_sim::PhysicsConfig& cfg, uint32_t level) { onReconfigure(cfg, level); });
+  ready_ = true;
+}
+
+ragdoll_sim::PhysicsConfig Reconfigure::current() const {
+  const Scene& scene = *ctx_.scene;
+  const SceneDef& d = scene.def();
+  ragdoll_sim::PhysicsConfig c;
+  c.gravity_x = d.world.gravity.x();
+  c.gravity_y = d.world.gravity.y();
+  c.gravity_z = d.world.gravity.z();
+  c.time_step = scene.dt();
+  c.substeps = d.world.substeps;
+  c.position_iterations = d.world.position_iterations;
+  c.static_friction = d.ragdoll_surface.static_friction;
+  c.kinetic_friction = d.ragdoll_surface.kinetic_friction;
+  c.restitution = d.ragdoll_surface.restitution;
+  const double rtf = ctx_.config.real_time_factor;
+  c.real_time_factor = std::isfinite(rtf) ? rtf : 0.0;
+  c.sleep_enabled = d.world.sleep.enabled;
+  c.sleep_time = d.world.sleep.time;
+  c.sleep_speed = d.world.sleep.speed;
+  c.rest_time = d.world.sleep.rest_time;
+  c.rest_substeps = d.world.sleep.rest_substeps;
+  c.rest_relax_iterations = d.world.sleep.rest_relax_iterations;
+  return c;
+}
+
+void Reconfigure::onReconfigure(ragdoll_sim::PhysicsConfig& cfg, uint32_t) {
+  // Runs in spinOnce, between steps: changes take effect at the next step.
+  Scene& scene = *ctx_.scene;
+  const ragdoll_sim::PhysicsConfig old = current();
+  // The server clamps to the .cfg ranges, but NaN passes every comparison: refuse it whole
+  // (the answer then holds the values in force).
+  for (double v : {cfg.gravity_x, cfg.gravity_y, cfg.gravity_z, cfg.time_step,
+                   cfg.static_friction, cfg.kinetic_friction, cfg.restitution,
+                   cfg.real_time_factor, cfg.sleep_time, cfg.sleep_speed, cfg.rest_time}) {
+    if (std::isfinite(v)) continue;
+    ctx_.warn("reconfigure/not finite", "reconfigure rejected: a value is not finite (NaN or "
+                                        "inf); the physics parameters stay as they were");
+    cfg = old;
+    return;
+  }
+  std::ostringstream log;
+  const Vec3 g(cfg.gravity_x, cfg.gravity_y, cfg.gravity_z);
+  if (g != scene.def().world.gravity) {
+    log << " gravity (" << g.x() << ", " << g.y() << ", " << g.z() << ")";
+    scene.setGravity(g);
+  }
+  const int64_t dt_ns = std::max<int64_t>(1, std::llround(cfg.time_step * 1e9));
+  if (dt_ns != scene.dtNs()) {
+    log << " time_step " << cfg.time_step << " s";
+    scene.setTimeStep(dt_ns);
+    ctx_.config.physics_rate = 1.0 / scene.dt();
+    ctx_.restartPacing();
+  }
+  if (cfg.real_time_factor != old.real_time_factor) {
+    log << " real_time_factor " << cfg.real_time_factor
+        << (cfg.real_time_factor == 0.0 ? " (as fast as possible)" : "");
+    ctx_.config.real_time_factor = cfg.real_time_factor;
+    ctx_.restartPacing();
+  }
+  // Sleep and rest settings change in place (nothing wakes unless sleep goes off); solver
+  // settings and friction go through the Scene's setSolverSettings / setMaterials.
+  const bool solver = cfg.substeps != old.substeps ||
+                      cfg.position_iterations != old.position_iterations;
+  if (solver)
+    log << " substeps " << cfg.substeps << ", position_iterations " << cfg.position_iterations;
+  const bool friction = cfg.static_friction != old.static_friction ||
+                        cfg.kinetic_friction != old.kinetic_friction ||
+                        cfg.restitution != old.restitution;
+  if (friction)
+    log << " friction " << cfg.static_friction << " / " << cfg.kinetic_friction
+        << ", restitution " << cfg.restitution << " (every shape and the ground; named "
+        << "materials off)";
+  if (cfg.sleep_enabled != old.sleep_enabled || cfg.sleep_time != old.sleep_time ||
+      cfg.sleep_speed != old.sleep_speed) {
+    log << " sleep " << (cfg.sleep_enabled ? "on" : "off") << ", after " << cfg.sleep_time
+        << " s below " << cfg.sleep_speed << " m/s"
+        << (!cfg.sleep_enabled && old.sleep_enabled ? " (sleeping bodies wake)" : "");
+  }
+  SleepDef sleep = scene.def().world.sleep;
+  sleep.enabled = cfg.sleep_enabled;
+  sleep.time = cfg.sleep_time;
+  sleep.speed = cfg.sleep_speed;
+  sleep.rest_time = cfg.rest_time;
+  sleep.rest_substeps = cfg.rest_substeps;
+  sleep.rest_relax_iterations = cfg.rest_relax_iterations;
+  if (cfg.rest_time != old.rest_time || cfg.rest_substeps != old.rest_substeps ||
+      cfg.rest_relax_iterations != old.rest_relax_iterations) {
+    log << " rest substeps " << cfg.rest_substeps << " of " << cfg.rest_relax_iterations
+        << " relax sweeps after " << cfg.rest_time << " s slow"
+        << (sleep.restOn(cfg.substeps) ? "" : " (off)");
+  }
+  // The .cfg ranges keep every value >= 0, and NaN was refused above: it cannot throw.
+  scene.setSleep(sleep);
+  if (solver) scene.setSolverSettings(cfg.substeps, cfg.position_iterations);
+  if (friction) {
+    const Material m{cfg.static_friction, cfg.kinetic_friction, cfg.restitution,
+                     scene.def().material.rolling_resistance};
+    scene.setMaterials(m, MaterialTable());  // pair entries would override the new values
+  }
+  if (solver || friction) ctx_.structureChanged();
+  const std::string changes = log.str();
+  if (!changes.empty() && ready_)
+    ROS_INFO("reconfigure at sim time %.3f s:%s", scene.time(), changes.c_str());
+}
+
+}  // namespace node
+}  // namespace ragdoll_sim

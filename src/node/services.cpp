@@ -1,0 +1,306 @@
+#include "services.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "commands.hpp"
+#include "msg_convert.hpp"
+#include "node_context.hpp"
+#include "ragdoll_sim/urdf_loader.hpp"
+
+namespace ragdoll_sim {
+namespace node {
+
+namespace {
+
+// How far a quaternion's length may be from 1 and still be taken (normalized): hand-typed
+// values rounded to 3 digits, e.g. (0.707, 0, 0, 0.707), pass; a rotation vector or a
+// half-filled message does not.
+constexpr double kUnitQuatTolerance = 0.01;
+
+// A pose from a message, or "" and the error naming the problem (*problem: its throttle key):
+// position finite and within max_position of the origin; orientation finite and a unit
+// quaternion within kUnitQuatTolerance (normalized then), or all zeros, which means identity
+// (an unset Pose, e.g. rosservice call without an orientation).
+std::string poseFromMsg(const geometry_msgs::Pose& m, double max_position, Transform* t,
+                        std::string* problem) {
+  const Vec3 p(m.position.x, m.position.y, m.position.z);
+  Quat q(m.orientation.w, m.orientation.x, m.orientation.y, m.orientation.z);
+  std::ostringstream e;
+  const double n = q.norm();
+  if (!p.allFinite()) {
+    *problem = "position not finite";
+    e << "the position (" << p.x() << ", " << p.y() << ", " << p.z() << ") is not finite";
+  } else if (p.norm() > max_position) {
+    *problem = "position above cap";
+    e << "the position (" << p.x() << ", " << p.y() << ", " << p.z() << ") is " << p.norm()
+      << " m from the origin, more than ~max_position = " << max_position << " m";
+  } else if (!q.coeffs().allFinite()) {
+    *problem = "orientation not finite";
+    e << "the orientation is not finite";
+  } else if (n == 0.0) {
+    q = Quat::Identity();
+  } else if (std::abs(n - 1.0) > kUnitQuatTolerance) {
+    *problem = "orientation not unit";
+    e << "the orientation (w " << q.w() << ", x " << q.x() << ", y " << q.y() << ", z " << q.z()
+      << ") has length " << n << ", not a unit quaternion (within " << kUnitQuatTolerance
+      << "; all zeros = identity)";
+  }
+  if (!e.str().empty()) return e.str();
+  *t = Transform(p, q.normalized());
+  return "";
+}
+
+}  // namespace
+
+Services::Services(NodeContext& ctx) : ctx_(ctx) {
+  ros::NodeHandle& pnh = ctx_.pnh;
+  balance_srv_ = pnh.advertiseService("set_balance", &Services::onSetBalance, this);
+  clear_targets_srv_ = pnh.advertiseService("clear_targets", &Services::onClearTargets, this);
+  spawn_srv_ = pnh.advertiseService("spawn", &Services::onSpawn, this);
+  delete_srv_ = pnh.advertiseService("delete", &Services::onDelete, this);
+  set_state_srv_ = pnh.advertiseService("set_ragdoll_state", &Services::onSetState, this);
+  get_link_srv_ = pnh.advertiseService("get_link_state", &Services::onGetLinkState, this);
+  pause_srv_ = pnh.advertiseService("pause", &Services::onPause, this);
+  unpause_srv_ = pnh.advertiseService("unpause", &Services::onUnpause, this);
+  reset_srv_ = pnh.advertiseService("reset", &Services::onReset, this);
+  clear_srv_ = pnh.advertiseService("clear_forces", &Services::onClearForces, this);
+}
+
+void Services::advertiseStep() {
+  step_srv_ = ctx_.pnh.advertiseService("step", &Services::onStep, this);
+}
+
+template <class Res>
+bool Services::refuse(Res& res, const std::string& kind, const std::string& message) {
+  res.success = false;
+  res.message = message;
+  ctx_.warn(kind, message);
+  return true;  // the call itself worked; success says what happened
+}
+
+bool Services::onSetBalance(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res) {
+  Scene& scene = *ctx_.scene;
+  res.success = true;
+  res.message = req.data ? "balance on" : "balance off";
+  scene.setBalance(req.data);
+  for (size_t k = 0; k < scene.ragdollCount(); ++k) {
+    const std::vector<std::string>* missing = scene.balanceMissing(static_cast<int>(k));
+    if (missing && !missing->empty()) {
+      res.message += "; '" + scene.name(static_cast<int>(k)) +
+                     "': joints hold the pose, but the balance law is off: missing";
+      for (const std::string& m : *missing) res.message += " " + m;
+    }
+  }
+  ROS_INFO("%s at sim time %.3f s", res.message.c_str(), scene.time());
+  return true;
+}
+
+bool Services::onClearTargets(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  ctx_.scene->clearTargets();
+  ROS_INFO("joint targets cleared at sim time %.3f s", ctx_.scene->time());
+  return true;
+}
+
+bool Services::onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  ctx_.paused = true;
+  ROS_INFO("paused at sim time %.3f s", ctx_.scene->time());
+  return true;
+}
+
+bool Services::onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  ctx_.paused = false;
+  ROS_INFO("unpaused at sim time %.3f s", ctx_.scene->time());
+  return true;
+}
+
+bool Services::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  std::string error;
+  if (!ctx_.scene->reset(&error)) ROS_ERROR("reset: %s", error.c_str());
+  ctx_.structureChanged();
+  ROS_INFO("%zu ragdoll(s) reset to their spawn poses at sim time %.3f s",
+           ctx_.scene->ragdollCount(), ctx_.scene->time());
+  return true;
+}
+
+bool Services::onClearForces(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  ROS_INFO("cleared %zu active force(s)", ctx_.scene->clearForces());
+  ctx_.visualizer->endForces(ctx_.scene->time());
+  return true;
+}
+
+bool Services::onStep(ragdoll_sim::Step::Request& req, ragdoll_sim::Step::Response& res) {
+  const int max_steps = ctx_.config.max_steps_per_call;
+  if (req.steps > static_cast<uint32_t>(max_steps)) {
+    refuse(res, "step/too many", "step rejected: " + std::to_string(req.steps) +
+                                     " steps exceed ~max_steps_per_call = " +
+                                     std::to_string(max_steps));
+  } else if (!ctx_.paused) {
+    res.success = false;
+    res.message = "the simulation is running; call ~pause first";
+  } else {
+    for (uint32_t i = 0; i < req.steps && ros::ok(); ++i) ctx_.stepOnce();
+    res.success = true;
+    res.message = "stepped " + std::to_string(req.steps) + " step(s)";
+  }
+  const Scene& scene = *ctx_.scene;
+  res.sim_time = scene.time();
+  res.pending_commands = static_cast<uint32_t>(scene.counters().queued);
+  res.awake_bodies = static_cast<uint32_t>(scene.world().awakeBodyCount());
+  res.resting_bodies = static_cast<uint32_t>(scene.world().islandCounters().resting_bodies);
+  return true;
+}
+
+bool Services::onSpawn(ragdoll_sim::SpawnRagdoll::Request& req,
+                       ragdoll_sim::SpawnRagdoll::Response& res) {
+  Scene& scene = *ctx_.scene;
+  const std::string what = "spawn '" + req.name + "' rejected: ";
+  std::string e = scene::ragdollNameError(req.name);
+  if (!e.empty()) return refuse(res, "spawn/bad name", what + e);
+  if (scene.find(req.name) >= 0)
+    return refuse(res, "spawn/name in use", what + "a ragdoll of that name exists");
+  const std::string prefix = req.tf_prefix.empty() ? req.name : req.tf_prefix;
+  for (const RagdollTopics& r : ctx_.publishers->ragdolls())
+    if (r.tf_prefix == prefix)
+      return refuse(res, "spawn/prefix in use",
+                    what + "ragdoll '" + r.name + "' already has TF prefix '" + prefix + "'");
+  SpawnDef spawn;
+  std::string problem;
+  e = poseFromMsg(req.pose, ctx_.config.max_position, &spawn.pose, &problem);
+  if (!e.empty()) return refuse(res, "spawn/" + problem, what + e);
+  UrdfLoadResult loaded;
+  std::string xml = req.urdf;
+  if (!xml.empty()) {
+    loaded = loadUrdfString(xml);
+  } else if (!req.urdf_file.empty()) {
+    loaded = loadUrdfFile(req.urdf_file);
+    if (loaded.ok) {
+      std::ifstream in(req.urdf_file);
+      std::stringstream s;
+      s << in.rdbuf();
+      xml = s.str();
+    }
+  } else {
+    return refuse(res, "spawn/no urdf", what + "neither urdf nor urdf_file is set");
+  }
+  if (!loaded.ok)
+    return refuse(res, "spawn/bad urdf", what + "failed to load the URDF: " + loaded.error);
+
+  spawn.name = req.name;
+  spawn.def = std::move(loaded.def);
+  const Vec3 at = spawn.pose.p;
+  const SpawnResult added = scene.addRagdoll(std::move(spawn), &e);
+  if (added == SpawnResult::WorldRefused) ctx_.structureChanged();  // the World was rebuilt
+  if (added != SpawnResult::Added)
+    return refuse(res, added == SpawnResult::WorldRefused ? "spawn/failed" : "spawn/bad model",
+                  what + e);
+  const int k = scene.find(req.name);
+  RagdollTopics topics;
+  topics.name = req.name;
+  topics.tf_prefix = prefix;
+  topics.spawned = true;
+  const std::string ns = ctx_.nh.resolveName(req.name);
+  topics.joint_states_pub = ctx_.nh.advertise<sensor_msgs::JointState>(req.name + "/joint_states", 10);
+  ctx_.publishers->addRagdoll(std::move(topics));
+  ctx_.nh.setParam(req.name + "/robot_description", xml);
+  ctx_.structureChanged();
+  res.success = true;
+  const RagdollDef& def = scene.def(k);
+  std::ostringstream msg;
+  msg << "spawned '" << req.name << "' (" << def.links.size() << " links, "
+      << def.joints.size() << " joints, " << def.totalMass() << " kg) at (" << at.x() << ", "
+      << at.y() << ", " << at.z() << "), TF prefix '" << prefix << "', joint_states on " << ns
+      << "/joint_states, at sim time " << scene.time() << " s";
+  res.message = msg.str();
+  ROS_INFO("%s", res.message.c_str());
+  return true;
+}
+
+bool Services::onDelete(ragdoll_sim::DeleteRagdoll::Request& req,
+                        ragdoll_sim::DeleteRagdoll::Response& res) {
+  Scene& scene = *ctx_.scene;
+  if (req.name.empty() || scene.find(req.name) < 0)
+    return refuse(res, "delete/unknown ragdoll",
+                  "delete rejected: no ragdoll named '" + req.name + "'");
+  std::string e;
+  const bool removed = scene.removeRagdoll(req.name, &e);
+  const RagdollTopics topics = ctx_.publishers->removeRagdoll(req.name);
+  if (!removed) {
+    res.success = false;
+    res.message = "delete: " + e;
+    ROS_ERROR("%s", res.message.c_str());
+    return true;
+  }
+  if (topics.spawned) ctx_.nh.deleteParam(req.name + "/robot_description");
+  ctx_.publishers->deleteAllMarkers();
+  ctx_.structureChanged();
+  res.success = true;
+  res.message = "deleted '" + req.name + "' at sim time " + std::to_string(scene.time()) + " s; " +
+                std::to_string(scene.ragdollCount()) + " ragdoll(s) left";
+  ROS_INFO("%s", res.message.c_str());
+  return true;
+}
+
+bool Services::onSetState(ragdoll_sim::SetRagdollState::Request& req,
+                          ragdoll_sim::SetRagdollState::Response& res) {
+  Scene& scene = *ctx_.scene;
+  const NodeConfig& c = ctx_.config;
+  const int k = scene.find(req.ragdoll);
+  if (k < 0)
+    return refuse(res, "set_ragdoll_state/unknown ragdoll",
+                  "set_ragdoll_state rejected: no ragdoll named '" + req.ragdoll + "'");
+  Transform target;
+  std::string problem;
+  const std::string e = poseFromMsg(req.pose, c.max_position, &target, &problem);
+  if (!e.empty())
+    return refuse(res, "set_ragdoll_state/" + problem, "set_ragdoll_state rejected: " + e);
+  const Vec3 v(req.twist.linear.x, req.twist.linear.y, req.twist.linear.z);
+  const Vec3 w(req.twist.angular.x, req.twist.angular.y, req.twist.angular.z);
+  if (!v.allFinite() || !w.allFinite())
+    return refuse(res, "set_ragdoll_state/bad twist",
+                  "set_ragdoll_state rejected: the twist is not finite");
+  const double max_v = scene.def().world.max_linear_speed;
+  const double max_w = scene.def().world.max_angular_speed;
+  if (v.norm() > max_v || w.norm() > max_w) {
+    std::ostringstream m;
+    m << "set_ragdoll_state rejected: |linear| = " << v.norm() << " m/s or |angular| = "
+      << w.norm() << " rad/s exceeds ~max_linear_speed = " << max_v
+      << " m/s / ~max_angular_speed = " << max_w << " rad/s";
+    return refuse(res, "set_ragdoll_state/twist above cap", m.str());
+  }
+  scene.setRagdollState(k, target, v, w);
+  res.success = true;
+  res.message = "moved '" + scene.name(k) + "'";
+  ROS_INFO("set_ragdoll_state: '%s' root at (%.3f, %.3f, %.3f), v (%.3f, %.3f, %.3f), "
+           "w (%.3f, %.3f, %.3f) at sim time %.3f s", scene.name(k).c_str(), target.p.x(),
+           target.p.y(), target.p.z(), v.x(), v.y(), v.z(), w.x(), w.y(), w.z(), scene.time());
+  return true;
+}
+
+bool Services::onGetLinkState(ragdoll_sim::GetLinkState::Request& req,
+                              ragdoll_sim::GetLinkState::Response& res) {
+  const Scene& scene = *ctx_.scene;
+  res.sim_time = scene.time();
+  const int k = scene.find(req.ragdoll);
+  if (k < 0)
+    return refuse(res, "get_link_state/unknown ragdoll",
+                  "get_link_state: no ragdoll named '" + req.ragdoll + "'");
+  const int link = scene.findLink(k, req.link);
+  if (link < 0)
+    return refuse(res, "get_link_state/unknown link",
+                  "get_link_state: ragdoll '" + scene.name(k) + "' has no simulated link '" +
+                      req.link + "'");
+  const LinkState s = scene.linkState(k, link);
+  toMsg(s.pose, &res.pose);
+  toMsg(s.linear_velocity, &res.twist.linear);
+  toMsg(s.angular_velocity, &res.twist.angular);
+  res.com.x = s.com.x();
+  res.com.y = s.com.y();
+  res.com.z = s.com.z();
+  res.success = true;
+  return true;
+}
+
+}  // namespace node
+}  // namespace ragdoll_sim

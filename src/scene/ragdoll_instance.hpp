@@ -1,0 +1,41 @@
+// One ragdoll of a Scene: its model, its bodies in the World, its joint control and its active
+// forces. The Scene holds them in a std::vector; indices shift on removal, ids do not.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "joint_control.hpp"
+#include "ragdoll_sim/balance.hpp"
+#include "ragdoll_sim/ragdoll.hpp"
+#include "ragdoll_sim/scene.hpp"
+
+namespace ragdoll_sim {
+namespace scene {
+
+struct RagdollInstance {
+  std::string name;       // unique; commands name it ("" = the first)
+  RagdollId id;
+  RagdollDef def;         // with the joint settings applied
+  Transform spawn_pose;   // root link in the world frame (reset() goes back here)
+  Ragdoll ragdoll;        // body and joint ids in the current World (new ids after a rebuild)
+  LinkTable links;
+
+  // Joint control: every joint angle (joint_states names), its motor gains and target.
+  AxisTable axes;
+  std::vector<std::string> axis_names;
+  std::vector<MotorGains> gains;     // per axis
+  std::vector<AxisTarget> targets;   // per axis
+  std::vector<int> moving_targets;   // axes whose target moves (position + velocity)
+  // Refers to `def` and `ragdoll`: the Scene rebuilds it whenever the vector of instances or
+  // the World changes.
+  std::unique_ptr<BalanceController> balance;
+  bool balance_on = false;
+
+  std::vector<ActiveForce> forces;   // re-applied every step
+};
+
+}  // namespace scene
+}  // namespace ragdoll_sim

@@ -1,0 +1,266 @@
+// Scene: ragdolls by name and the World they live in (building, rebuilding, removal).
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <stdexcept>
+
+#include "scene_impl.hpp"
+
+namespace ragdoll_sim {
+
+namespace scene {
+
+std::string format(const char* fmt, ...) {
+  va_list args;
+  va_start(args, fmt);
+  va_list copy;
+  va_copy(copy, args);
+  const int n = std::vsnprintf(nullptr, 0, fmt, copy);
+  va_end(copy);
+  std::string out(n > 0 ? static_cast<size_t>(n) : 0, '\0');
+  if (n > 0) std::vsnprintf(&out[0], out.size() + 1, fmt, args);
+  va_end(args);
+  return out;
+}
+
+}  // namespace scene
+
+using scene::RagdollInstance;
+
+void Scene::Impl::say(SceneMessage::Level level, const std::string& kind,
+                      const std::string& text) const {
+  if (listener) listener->message(SceneMessage{level, kind, text});
+}
+
+Scene::Scene(SceneDef def, SceneListener* listener) : impl_(std::make_unique<Impl>()) {
+  impl_->def = std::move(def);
+  impl_->listener = listener;
+  impl_->queue = scene::CommandQueue(static_cast<size_t>(impl_->def.max_queued_commands));
+  setTimeStep(impl_->def.dt_ns);
+}
+
+Scene::~Scene() = default;
+
+bool Scene::Impl::makeInstance(SpawnDef spawn, RagdollInstance* out, std::string* error) {
+  RagdollDef& def = spawn.def;
+  if (def.links.empty()) {
+    *error = "the model has no links";
+    return false;
+  }
+  RagdollInstance& r = *out;
+  r.name = spawn.name;
+  r.spawn_pose = spawn.pose;
+  // Joint springs, break forces and motor gains (joint_defaults, joints) by joint name.
+  r.axes = scene::AxisTable(def);
+  scene::JointSettingsResult settings =
+      applyJointSettings(&def, r.axes, this->def.joint_defaults, this->def.joints, this->def.motor);
+  if (spawn.warn_unknown_joints)
+    for (const std::string& w : settings.warnings) warn("", w);
+  if (!settings.error.empty()) {
+    *error = settings.error;
+    return false;
+  }
+  r.def = std::move(def);
+  r.gains = std::move(settings.gains);
+  r.targets.assign(static_cast<size_t>(r.axes.size()), scene::AxisTarget());
+  r.moving_targets.clear();
+  r.links = scene::LinkTable(r.def);
+  r.axis_names.clear();
+  for (const scene::AxisInfo& a : r.axes.axes()) r.axis_names.push_back(a.name);
+  r.balance_on = spawn.balance;
+  for (const RagdollJointDef& j : r.def.joints) {
+    if (j.spring.stiffness > 0.0 || std::isfinite(j.spring.break_force) ||
+        std::isfinite(j.spring.break_torque))
+      info(scene::format("%s: joint '%s': anchor stiffness %g N/m, damping %g N*s/m, break_force "
+                         "%g N, break_torque %g N*m",
+                         r.name.c_str(), j.name.c_str(), j.spring.stiffness, j.spring.damping,
+                         j.spring.break_force, j.spring.break_torque));
+  }
+  return true;
+}
+
+bool Scene::Impl::spawnInWorld(RagdollInstance& r, std::string* error) {
+  try {  // the World refuses what it cannot simulate (e.g. a non-finite pose) by throwing
+    r.ragdoll = spawnRagdoll(*world, r.def, r.spawn_pose, &def.ragdoll_surface);
+  } catch (const std::exception& e) {
+    *error = e.what();
+    return false;
+  }
+  if (r.ragdoll.bodies.size() != r.def.links.size() ||
+      r.ragdoll.joints.size() != r.def.joints.size()) {
+    *error = "spawnRagdoll returned " + std::to_string(r.ragdoll.bodies.size()) + " bodies / " +
+             std::to_string(r.ragdoll.joints.size()) + " joints for a model with " +
+             std::to_string(r.def.links.size()) + " links / " +
+             std::to_string(r.def.joints.size()) + " joints";
+    return false;
+  }
+  return true;
+}
+
+bool Scene::Impl::buildWorld(bool carry_state, std::string* error) {
+  // The state to carry over, per ragdoll: body states and broken joints.
+  std::vector<std::vector<BodyState>> bodies(ragdolls.size());
+  std::vector<std::vector<char>> broken(ragdolls.size());
+  if (carry_state && world) {
+    for (size_t k = 0; k < ragdolls.size(); ++k) {
+      for (BodyId b : ragdolls[k].ragdoll.bodies) bodies[k].push_back(world->bodyState(b));
+      for (JointId j : ragdolls[k].ragdoll.joints)
+        broken[k].push_back(world->isJointBroken(j) ? 1 : 0);
+    }
+  }
+  for (RagdollInstance& r : ragdolls) r.balance.reset();  // they drive the old world's joints
+
+  try {  // validated before, and settings changed at run time keep their ranges: a guard
+    world = std::make_unique<World>(def.world);
+  } catch (const std::invalid_argument& e) {
+    *error = e.what();
+    return false;
+  }
+  ground = BodyId();
+  if (def.ground) {
+    BodyDef gd;
+    gd.type = BodyType::Static;
+    gd.name = "ground";
+    ground = world->createBody(gd);
+    ShapeDef sd;
+    sd.geometry = Geometry::plane(Vec3::UnitZ(), 0.0);
+    sd.material = def.ground_surface;
+    world->addShape(ground, sd);
+  }
+  for (size_t k = 0; k < ragdolls.size(); ++k) {
+    RagdollInstance& r = ragdolls[k];
+    if (!spawnInWorld(r, error)) return false;
+    if (carry_state && bodies[k].size() == r.ragdoll.bodies.size()) {
+      for (size_t i = 0; i < bodies[k].size(); ++i) {
+        const BodyState& s = bodies[k][i];
+        world->setBodyState(r.ragdoll.bodies[i], s.pose, s.linear_velocity, s.angular_velocity);
+      }
+      for (size_t j = 0; j < broken[k].size(); ++j)
+        if (broken[k][j]) world->breakJoint(r.ragdoll.joints[j]);
+    }
+    setBalance(r, r.balance_on, /*log=*/false);
+  }
+  return true;
+}
+
+int Scene::Impl::find(const std::string& name) const {
+  if (name.empty()) return ragdolls.empty() ? -1 : 0;
+  for (size_t k = 0; k < ragdolls.size(); ++k)
+    if (ragdolls[k].name == name) return static_cast<int>(k);
+  return -1;
+}
+
+SpawnResult Scene::addRagdoll(SpawnDef spawn, std::string* error) {
+  Impl& s = *impl_;
+  if (!spawn.name.empty() && s.find(spawn.name) >= 0) {
+    *error = "a ragdoll named '" + spawn.name + "' exists";
+    return SpawnResult::NameInUse;
+  }
+  RagdollInstance r;
+  if (!s.makeInstance(std::move(spawn), &r, error)) return SpawnResult::BadModel;
+  r.id.serial = s.next_serial++;
+  s.ragdolls.push_back(std::move(r));
+  if (!s.world) return SpawnResult::Added;  // start() spawns it
+  RagdollInstance& added = s.ragdolls.back();
+  if (!s.spawnInWorld(added, error)) {
+    // The bodies it did create stay in the World: rebuild it without them.
+    s.ragdolls.pop_back();
+    std::string ignored;
+    s.buildWorld(/*carry_state=*/true, &ignored);
+    return SpawnResult::WorldRefused;
+  }
+  s.rebindControllers();  // the vector may have moved the instances
+  s.applyAllMotors(added);
+  return SpawnResult::Added;
+}
+
+bool Scene::start(std::string* error) {
+  Impl& s = *impl_;
+  if (!s.buildWorld(/*carry_state=*/false, error)) return false;
+  for (RagdollInstance& r : s.ragdolls) s.setBalance(r, r.balance_on, /*log=*/true);
+  return true;
+}
+
+// The one place a ragdoll leaves the World: rebuilt from the others, carrying their state.
+bool Scene::removeRagdoll(const std::string& name, std::string* error) {
+  Impl& s = *impl_;
+  const int k = name.empty() ? -1 : s.find(name);
+  if (k < 0) {
+    *error = "no ragdoll named '" + name + "'";
+    return false;
+  }
+  s.ragdolls.erase(s.ragdolls.begin() + k);
+  if (!s.buildWorld(/*carry_state=*/true, error)) {
+    *error = "rebuilding the world failed: " + *error;
+    return false;
+  }
+  return true;
+}
+
+bool Scene::reset(std::string* error) {
+  // A fresh world with every ragdoll at its spawn pose rejoins broken joints.
+  for (RagdollInstance& r : impl_->ragdolls) r.forces.clear();
+  return impl_->buildWorld(/*carry_state=*/false, error);
+}
+
+void Scene::setRagdollState(int k, const Transform& target, const Vec3& v, const Vec3& w) {
+  World& world = *impl_->world;
+  const RagdollInstance& r = impl_->ragdolls.at(static_cast<size_t>(k));
+  const BodyId root = r.ragdoll.bodies[static_cast<size_t>(r.def.root)];
+  // Rigid move: every link keeps its pose relative to the root link.
+  const Transform move = target * world.bodyPose(root).inverse();
+  std::vector<Transform> poses;
+  for (BodyId b : r.ragdoll.bodies) poses.push_back(move * world.bodyPose(b));
+  for (size_t i = 0; i < r.ragdoll.bodies.size(); ++i) {
+    const BodyId b = r.ragdoll.bodies[i];
+    const Vec3 com = poses[i].apply(world.bodyDef(b).com);
+    world.setBodyState(b, poses[i], v + w.cross(com - target.p), w);
+  }
+}
+
+LinkState Scene::linkState(int k, int link) const {
+  const World& world = *impl_->world;
+  const BodyId b = impl_->ragdolls.at(static_cast<size_t>(k)).ragdoll.bodies.at(static_cast<size_t>(link));
+  const BodyState s = world.bodyState(b);
+  LinkState out;
+  out.pose = s.pose;
+  out.linear_velocity = world.pointVelocity(b, s.pose.p);
+  out.angular_velocity = s.angular_velocity;
+  out.com = s.com_position;
+  return out;
+}
+
+size_t Scene::ragdollCount() const { return impl_->ragdolls.size(); }
+int Scene::find(const std::string& name) const { return impl_->find(name); }
+int Scene::indexOf(RagdollId id) const {
+  for (size_t k = 0; k < impl_->ragdolls.size(); ++k)
+    if (impl_->ragdolls[k].id == id) return static_cast<int>(k);
+  return -1;
+}
+RagdollId Scene::id(int k) const { return impl_->ragdolls.at(static_cast<size_t>(k)).id; }
+const std::string& Scene::name(int k) const { return impl_->ragdolls.at(static_cast<size_t>(k)).name; }
+const RagdollDef& Scene::def(int k) const { return impl_->ragdolls.at(static_cast<size_t>(k)).def; }
+const Ragdoll& Scene::bodies(int k) const {
+  return impl_->ragdolls.at(static_cast<size_t>(k)).ragdoll;
+}
+int Scene::findLink(int k, const std::string& link) const {
+  return impl_->ragdolls.at(static_cast<size_t>(k)).links.find(link);
+}
+const std::vector<std::string>& Scene::axisNames(int k) const {
+  return impl_->ragdolls.at(static_cast<size_t>(k)).axis_names;
+}
+int Scene::firstAxis(int k, int joint) const {
+  return impl_->ragdolls.at(static_cast<size_t>(k)).axes.first(joint);
+}
+const std::vector<std::string>* Scene::balanceMissing(int k) const {
+  const RagdollInstance& r = impl_->ragdolls.at(static_cast<size_t>(k));
+  return r.balance ? &r.balance->missing() : nullptr;
+}
+bool Scene::balanceOn(int k) const { return impl_->ragdolls.at(static_cast<size_t>(k)).balance_on; }
+
+World& Scene::world() { return *impl_->world; }
+const World& Scene::world() const { return *impl_->world; }
+BodyId Scene::ground() const { return impl_->ground; }
+const SceneDef& Scene::def() const { return impl_->def; }
+
+}  // namespace ragdoll_sim

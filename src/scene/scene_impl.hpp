@@ -1,0 +1,75 @@
+// The Scene's state and its internal steps, shared by the files that implement it, one concept
+// each: scene.cpp (ragdolls and the World), scene_commands.cpp (queue and commands),
+// scene_motors.cpp (targets and balance), scene_step.cpp (settings, the step, reports).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "command_queue.hpp"
+#include "ragdoll_instance.hpp"
+#include "ragdoll_sim/scene.hpp"
+
+namespace ragdoll_sim {
+
+namespace scene {
+// printf-style text, for messages that keep the node's printf formats.
+std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+}  // namespace scene
+
+struct Scene::Impl {
+  SceneDef def;
+  SceneListener* listener = nullptr;
+  std::unique_ptr<World> world;
+  BodyId ground;
+  std::vector<scene::RagdollInstance> ragdolls;
+  uint64_t next_serial = 1;
+  scene::CommandQueue queue;
+  uint64_t received = 0, applied = 0, rejected = 0, body_faults = 0;
+  int64_t sim_ns = 0, steps = 0;
+  double dt = 1e-3;
+  std::function<void(World&, double)> before_forces;
+  std::vector<BrokenJointReport> broken;
+
+  double simTime() const { return static_cast<double>(sim_ns) * 1e-9; }
+  void say(SceneMessage::Level level, const std::string& kind, const std::string& text) const;
+  void debug(const std::string& text) const { say(SceneMessage::Level::Debug, "", text); }
+  void info(const std::string& text) const { say(SceneMessage::Level::Info, "", text); }
+  void warn(const std::string& kind, const std::string& text) const {
+    say(SceneMessage::Level::Warn, kind, text);
+  }
+
+  // scene.cpp
+  bool makeInstance(SpawnDef spawn, scene::RagdollInstance* out, std::string* error);
+  // A new World with the ground and every ragdoll: at its spawn pose (joints whole), or, with
+  // carry_state, in the pose and velocity it has now with its broken joints still broken.
+  bool buildWorld(bool carry_state, std::string* error);
+  bool spawnInWorld(scene::RagdollInstance& r, std::string* error);
+  int find(const std::string& name) const;
+
+  // scene_motors.cpp
+  void setBalance(scene::RagdollInstance& r, bool on, bool log);
+  // Rebuilds every balance controller (they refer into the instances, which may have moved).
+  void rebindControllers();
+  void applyAxisMotor(scene::RagdollInstance& r, int axis);
+  void applyAllMotors(scene::RagdollInstance& r);
+  bool applyTargetPose(scene::RagdollInstance& r, const TargetPoseCommand& cmd);
+
+  // scene_commands.cpp
+  void applyCommand(const scene::QueuedCommand& cmd);
+  // `link`: the command's link and frame as resolved on receipt
+  bool applyImpulse(scene::RagdollInstance& r, const ImpulseCommand& cmd,
+                    const scene::CommandCheck& link);
+  bool applyForce(scene::RagdollInstance& r, const ForceCommand& cmd,
+                  const scene::CommandCheck& link);
+  size_t activeForceCount() const;
+
+  // scene_step.cpp
+  void reportBodyFaults();
+  void collectBrokenJoints();
+};
+
+}  // namespace ragdoll_sim

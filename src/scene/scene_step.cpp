@@ -1,0 +1,142 @@
+// Scene: the fixed step, the settings that change between steps, and the reports of a step
+// (bodies the World reset, joints that broke).
+#include <algorithm>
+#include <sstream>
+
+#include "scene_impl.hpp"
+
+namespace ragdoll_sim {
+
+using scene::ActiveForce;
+using scene::RagdollInstance;
+
+void Scene::setBeforeForces(std::function<void(World&, double)> fn) {
+  impl_->before_forces = std::move(fn);
+}
+
+void Scene::step() {
+  Impl& s = *impl_;
+  World& world = *s.world;
+  applyDueCommands();
+  if (s.before_forces) s.before_forces(world, s.simTime());
+  for (RagdollInstance& r : s.ragdolls) {
+    for (const ActiveForce& f : r.forces) {
+      BodyId body = r.ragdoll.bodies[static_cast<size_t>(f.link)];
+      world.applyForce(body, f.force, world.bodyPose(body).apply(f.local_point));
+      if (!f.torque.isZero(0.0)) world.applyTorque(body, f.torque);
+    }
+    for (int i : r.moving_targets) s.applyAxisMotor(r, i);  // targets that move with their velocity
+    // applyAxisMotor drops a target that overflowed: it moves no more.
+    r.moving_targets.erase(std::remove_if(r.moving_targets.begin(), r.moving_targets.end(),
+                                          [&](int i) { return !r.targets[size_t(i)].active; }),
+                           r.moving_targets.end());
+    if (r.balance) r.balance->update(world);
+  }
+  world.step(s.dt);
+  s.sim_ns += s.def.dt_ns;
+  ++s.steps;
+  s.reportBodyFaults();
+  for (RagdollInstance& r : s.ragdolls) {
+    if (r.forces.empty()) continue;
+    for (ActiveForce& f : r.forces)
+      if (f.steps_left > 0) --f.steps_left;
+    r.forces.erase(std::remove_if(r.forces.begin(), r.forces.end(),
+                                  [](const ActiveForce& f) { return f.steps_left == 0; }),
+                   r.forces.end());
+  }
+  s.collectBrokenJoints();
+}
+
+void Scene::Impl::reportBodyFaults() {
+  const std::vector<BodyFault> faults = world->takeBodyFaults();
+  if (faults.empty()) return;
+  body_faults += faults.size();
+  std::string input, solver;
+  for (const BodyFault& f : faults) {
+    std::string where = "body " + std::to_string(f.body.index);
+    for (const RagdollInstance& r : ragdolls)
+      for (size_t l = 0; l < r.ragdoll.bodies.size(); ++l)
+        if (r.ragdoll.bodies[l] == f.body) where = "'" + r.name + "/" + r.def.links[l].name + "'";
+    std::string& list = f.cause == BodyFaultCause::Input ? input : solver;
+    list += (list.empty() ? "" : ", ") + where;
+  }
+  std::ostringstream at;
+  at << "solver fault at sim time " << simTime() << " s: ";
+  if (!input.empty())
+    warn("body fault/input", at.str() + "link(s) " + input + " had a non-finite state, force or "
+         "torque before the step; reset to the last finite pose with zero velocity");
+  if (!solver.empty())
+    warn("body fault/solver", at.str() + "link(s) " + solver + " went non-finite in the step; "
+         "reset to the last finite pose with zero velocity");
+}
+
+void Scene::Impl::collectBrokenJoints() {
+  broken.clear();
+  for (JointId id : world->takeBrokenJoints()) {
+    for (const RagdollInstance& r : ragdolls) {
+      const auto it = std::find(r.ragdoll.joints.begin(), r.ragdoll.joints.end(), id);
+      if (it == r.ragdoll.joints.end()) continue;
+      const RagdollJointDef& j = r.def.joints[static_cast<size_t>(it - r.ragdoll.joints.begin())];
+      BrokenJointReport b;
+      b.ragdoll = r.name;
+      b.joint = j.name;
+      b.parent_link = r.def.links[static_cast<size_t>(j.parent)].name;
+      b.child_link = r.def.links[static_cast<size_t>(j.child)].name;
+      b.force = world->jointForce(id);
+      b.torque = world->jointTorque(id);
+      b.break_force = j.spring.break_force;
+      b.break_torque = j.spring.break_torque;
+      broken.push_back(std::move(b));
+      break;
+    }
+  }
+}
+
+const std::vector<BrokenJointReport>& Scene::brokenJoints() const { return impl_->broken; }
+
+// ------------------------------------------------------------------------------------------
+// Settings between steps
+
+void Scene::setGravity(const Vec3& g) {
+  impl_->def.world.gravity = g;
+  if (impl_->world) impl_->world->setGravity(g);
+}
+
+void Scene::setTimeStep(int64_t dt_ns) {
+  impl_->def.dt_ns = std::max<int64_t>(1, dt_ns);
+  impl_->dt = static_cast<double>(impl_->def.dt_ns) * 1e-9;
+}
+
+void Scene::setSleep(const SleepDef& sleep) {
+  impl_->def.world.sleep = sleep;
+  if (impl_->world) impl_->world->setSleep(sleep);
+}
+
+// The one place solver settings reach the World: rebuilt with them, carrying every body's
+// state, broken joint and motor over (every body wakes).
+void Scene::setSolverSettings(int substeps, int position_iterations) {
+  impl_->def.world.substeps = substeps;
+  impl_->def.world.position_iterations = position_iterations;
+  std::string e;
+  if (impl_->world && !impl_->buildWorld(/*carry_state=*/true, &e))
+    impl_->say(SceneMessage::Level::Error, "", "reconfigure: " + e);
+}
+
+// The one place materials reach the World: rebuilt with them, as above.
+void Scene::setMaterials(const Material& surface, const MaterialTable& table) {
+  impl_->def.material = surface;
+  impl_->def.ragdoll_surface = surface;
+  impl_->def.ground_surface = surface;
+  impl_->def.world.materials = table;
+  std::string e;
+  if (impl_->world && !impl_->buildWorld(/*carry_state=*/true, &e))
+    impl_->say(SceneMessage::Level::Error, "", "reconfigure: " + e);
+}
+
+int64_t Scene::timeNs() const { return impl_->sim_ns; }
+double Scene::time() const { return impl_->simTime(); }
+int64_t Scene::steps() const { return impl_->steps; }
+int64_t Scene::dtNs() const { return impl_->def.dt_ns; }
+double Scene::dt() const { return impl_->dt; }
+
+}  // namespace ragdoll_sim
