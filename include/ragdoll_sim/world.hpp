@@ -178,6 +178,19 @@ class World {
   // The pair never collides (joints also disable their pair unless collide_connected).
   void disableCollision(BodyId a, BodyId b);
 
+  // --- removing --------------------------------------------------------------------------
+  // Nothing is rebuilt: every other id keeps its index, other islands keep their warm starts
+  // and their sleep. A destroyed id's slot is not reused (later creates append), so a stale id
+  // is refused like any bad id (std::out_of_range, isValid false) instead of naming another.
+  // The body with its shapes, the joints on it and its contacts; the bodies it touched or was
+  // joined to wake.
+  void destroyBody(BodyId body);
+  // The joint; its pair collides again (as after breakJoint) and its bodies wake.
+  void destroyJoint(JointId joint);
+  // Shape `index` of bodyShapes(body) with its contacts; the body's later shapes move down by
+  // one. The body and what it touched wake.
+  void removeShape(BodyId body, int index);
+
   // --- stepping -------------------------------------------------------------------------
   // Advances by dt seconds. Forces and torques applied since the last step act during it and
   // are then cleared.
@@ -209,9 +222,11 @@ class World {
                     const Vec3& angular_velocity);
 
   // --- queries ---------------------------------------------------------------------------
+  // Slots, destroyed ones included: every id is below these; isValid tells the live ones.
   int bodyCount() const;
   int jointCount() const;
   bool isValid(BodyId body) const;
+  bool isValid(JointId joint) const;
   BodyState bodyState(BodyId body) const;
   Transform bodyPose(BodyId body) const;  // link frame in world
   const BodyDef& bodyDef(BodyId body) const;

@@ -23,6 +23,11 @@ void World::Impl::collide(double dt) {
   // Boxes in parallel (each shape its own slot), the few planes after.
 #pragma omp parallel for schedule(static) num_threads(threadCount()) if (n >= kParallelMin)
   for (int s = 0; s < n; ++s) {
+    if (!shapes[s].alive) {  // removed: in no pair (neither bounded nor a plane)
+      unbounded[s] = 1;
+      frozen[s] = 0;
+      continue;
+    }
     const Geometry& g = shapeDef(s).geometry;
     const BodyMotion& m = motions[shapes[s].body];
     unbounded[s] = isUnbounded(g);
@@ -39,7 +44,7 @@ void World::Impl::collide(double dt) {
   planes.swap(last_planes);
   planes.clear();
   for (int s = 0; s < n; ++s) {
-    if (!unbounded[s]) continue;
+    if (!unbounded[s] || !shapes[s].alive) continue;
     const Transform& f = shape_frames[s] = shapeFrame(s);
     const Vec3 nw = f.q * shapeDef(s).geometry.normal;
     const Vec3 p = motions[shapes[s].body].x + f.p;  // world

@@ -71,7 +71,7 @@ void World::Impl::prepareSolverBody(int i) {
 void World::Impl::prepareOutsideBodies() {
   const int body_count = int(bodies.size());
   for (int i = 0; i < body_count; ++i)
-    if (island_of_body[i] < 0) prepareSolverBody(i);
+    if (island_of_body[i] < 0 && bodies[i].alive) prepareSolverBody(i);
 }
 
 void World::Impl::prepareIsland(const IslandRange& p, const StepContext& c) {

@@ -93,7 +93,8 @@ IslandCounters World::islandCounters() const {
   return c;
 }
 
-bool World::isValid(BodyId id) const { return id.index >= 0 && id.index < bodyCount(); }
+bool World::isValid(BodyId id) const { return impl_->validBody(id); }
+bool World::isValid(JointId id) const { return impl_->validJoint(id); }
 
 BodyState World::bodyState(BodyId id) const {
   impl_->checkBody(id);
@@ -127,17 +128,17 @@ Vec3 World::pointVelocity(BodyId id, const Vec3& p) const {
   return m.v + m.w.cross(p - m.x);
 }
 
-JointType World::jointType(JointId id) const { return impl_->joints.at(id.index).type; }
+JointType World::jointType(JointId id) const { return impl_->joint(id).type; }
 
 double World::hingeAngle(JointId id) const {
-  const Joint& j = impl_->joints.at(id.index);
+  const Joint& j = impl_->joint(id);
   if (j.type != JointType::Hinge) return 0.0;
   return ragdoll_sim::hingeAngle(j.frameRotationA(impl_->motions[j.a].q),
                                  j.frameRotationB(impl_->motions[j.b].q), j.axis);
 }
 
 std::array<double, 3> World::ballAngles(JointId id) const {
-  const Joint& j = impl_->joints.at(id.index);
+  const Joint& j = impl_->joint(id);
   if (j.type != JointType::Ball) return {0, 0, 0};
   const Vec3 t = j.euler.angles(j.frameRotationA(impl_->motions[j.a].q),
                                 j.frameRotationB(impl_->motions[j.b].q));
@@ -145,7 +146,7 @@ std::array<double, 3> World::ballAngles(JointId id) const {
 }
 
 std::array<double, 2> World::ballSwingTwist(JointId id) const {
-  const Joint& j = impl_->joints.at(id.index);
+  const Joint& j = impl_->joint(id);
   if (j.type != JointType::Ball) return {0, 0};
   const SwingTwist st = swingTwist(j.frameRotationA(impl_->motions[j.a].q),
                                    j.frameRotationB(impl_->motions[j.b].q), j.twist_axis);
@@ -153,7 +154,7 @@ std::array<double, 2> World::ballSwingTwist(JointId id) const {
 }
 
 double World::prismaticPosition(JointId id) const {
-  const Joint& j = impl_->joints.at(id.index);
+  const Joint& j = impl_->joint(id);
   if (j.type != JointType::Prismatic) return 0.0;
   const auto& m = impl_->motions;
   const Vec3 d = m[j.b].linkPose().apply(j.frame_b.p) - m[j.a].linkPose().apply(j.frame_a.p);
@@ -161,7 +162,7 @@ double World::prismaticPosition(JointId id) const {
 }
 
 Vec3 World::jointAnchorError(JointId id) const {
-  const Joint& j = impl_->joints.at(id.index);
+  const Joint& j = impl_->joint(id);
   const auto& m = impl_->motions;
   const Vec3 e = m[j.b].linkPose().apply(j.frame_b.p) - m[j.a].linkPose().apply(j.frame_a.p);
   if (j.type != JointType::Prismatic) return e;
@@ -169,9 +170,9 @@ Vec3 World::jointAnchorError(JointId id) const {
   return e - a.dot(e) * a;
 }
 
-double World::jointForce(JointId id) const { return impl_->joints.at(id.index).force; }
-double World::jointTorque(JointId id) const { return impl_->joints.at(id.index).torque; }
-bool World::isJointBroken(JointId id) const { return impl_->joints.at(id.index).broken; }
+double World::jointForce(JointId id) const { return impl_->joint(id).force; }
+double World::jointTorque(JointId id) const { return impl_->joint(id).torque; }
+bool World::isJointBroken(JointId id) const { return impl_->joint(id).broken; }
 
 std::vector<JointId> World::takeBrokenJoints() {
   std::vector<JointId> out;
@@ -180,7 +181,7 @@ std::vector<JointId> World::takeBrokenJoints() {
 }
 
 void World::setJointMotor(JointId id, int axis, const JointMotor& motor) {
-  Joint& j = impl_->joints.at(id.index);
+  Joint& j = impl_->joint(id);
   const std::string e = jointMotorError(motor);
   if (!e.empty())
     throw std::invalid_argument("ragdoll_sim: setJointMotor, axis " + std::to_string(axis) +
