@@ -122,7 +122,7 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
                             int begin, int end) {
   const auto& motions = *ctx.motions;
   const auto& bodies = *ctx.bodies;
-  const WorldDef& def = *ctx.def;
+  const SolverSettings& def = *ctx.def;
   for (int slot = begin; slot < end; ++slot) {
     const int ci = active_[slot];
     const Contact& c = contacts[ci];
@@ -228,7 +228,7 @@ void warmStartConstraint(ContactConstraint& cc, SolverBody& A, SolverBody& B,
 template <bool kLiveA>
 void solveConstraint(ContactConstraint& cc, SolverBody& A, SolverBody& B, const StepContext& ctx,
                      bool use_bias, bool positions_moved) {
-  const WorldDef& def = *ctx.def;
+  const SolverSettings& def = *ctx.def;
   const Softness& soft = ctx.contact_softness;
   if (positions_moved) updateSeparations(A, B, cc);
   PairVelocity<kLiveA> u(A, B);
@@ -312,7 +312,7 @@ void ContactSolver::solve(const StepContext& ctx, bool use_bias, int begin, int 
 
 bool ContactSolver::project(const StepContext& ctx, int begin, int end, int sweep) {
   auto& bodies = *ctx.bodies;
-  const WorldDef& def = *ctx.def;
+  const SolverSettings& def = *ctx.def;
   bool moved = false;
   for (int k = begin; k < end; ++k) {
     ContactConstraint& cc = constraints_[k];

@@ -41,8 +41,8 @@ void World::Impl::guardInputs() {
     if (!bodies[i].alive) continue;
     BodyMotion& m = motions[i];
     if (inputsFinite(m)) {
-      clampNorm(m.v, def.max_linear_speed);
-      clampNorm(m.w, def.max_angular_speed);
+      clampNorm(m.v, def.solver.max_linear_speed);
+      clampNorm(m.w, def.solver.max_angular_speed);
       last_finite[i] = {m.x, m.q};
       continue;
     }
@@ -86,8 +86,8 @@ void World::Impl::finishBody(int i) {
     m.v = s.v;
     m.w = s.w;
     if (motionFinite(m)) {
-      clampNorm(m.v, def.max_linear_speed);
-      clampNorm(m.w, def.max_angular_speed);
+      clampNorm(m.v, def.solver.max_linear_speed);
+      clampNorm(m.w, def.solver.max_angular_speed);
       last_finite[i] = {m.x, m.q};
     } else {
       solver_fault[i] = 1;

@@ -248,4 +248,20 @@ void World::removeShape(BodyId id, int index) {
   w.wake(id.index);
 }
 
+void World::setShapeMaterial(BodyId id, int index, const Material& material) {
+  Impl& w = *impl_;
+  w.checkBody(id);
+  Body& body = w.bodies[id.index];
+  if (index < 0 || index >= int(body.shapes.size()))
+    throw std::out_of_range("ragdoll_sim: setShapeMaterial: body '" + body.def.name +
+                            "' has no shape " + std::to_string(index));
+  const std::string e = materialError(material);
+  if (!e.empty())
+    throw std::invalid_argument("ragdoll_sim: a shape of body '" + body.def.name + "': material " + e);
+  body.shapes[index].material = material;
+  const int s = body.shape_ids[index];
+  for (Contact& c : w.contacts)
+    if (c.shape_a == s || c.shape_b == s) w.applyPairMaterial(c, w.shapeDef(c.shape_a), w.shapeDef(c.shape_b));
+}
+
 }  // namespace ragdoll_sim

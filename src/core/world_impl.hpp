@@ -8,6 +8,7 @@
 //   world_create.cpp     the create and destroy API, breakJoints
 //   world_query.cpp      commands and queries
 //   world.cpp            the constructor, World::step (the phase list) and the settings
+//   world_tuning.hpp     the internal switches that check an optimisation (WorldInternals)
 #pragma once
 
 #include <algorithm>
@@ -28,6 +29,7 @@
 #include "island_solve.hpp"
 #include "joint.hpp"
 #include "sleep.hpp"
+#include "world_tuning.hpp"
 
 namespace ragdoll_sim {
 
@@ -39,6 +41,7 @@ struct ShapeRef {
 
 struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, SleepData {
   WorldDef def;
+  WorldTuning tuning;  // world_tuning.hpp
   double time = 0.0;
   std::vector<Body> bodies;
   std::vector<BodyMotion> motions;
@@ -143,6 +146,7 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
 
   // collide.cpp
   void collide(double dt);
+  void applyPairMaterial(Contact& c, const ShapeDef& da, const ShapeDef& db) const;
 
   // island_schedule.cpp
   void buildIslands();

@@ -301,12 +301,12 @@ bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* c, std::string* erro
 WorldDef worldDefOf(const NodeConfig& c) {
   WorldDef wd;
   wd.gravity = c.gravity;
-  wd.substeps = c.substeps;
+  wd.solver.substeps = c.substeps;
   wd.threads = c.threads;
-  wd.position_iterations = c.position_iterations;
+  wd.solver.position_iterations = c.position_iterations;
   wd.materials = c.materials;
-  wd.max_linear_speed = c.max_linear_speed;
-  wd.max_angular_speed = c.max_angular_speed;
+  wd.solver.max_linear_speed = c.max_linear_speed;
+  wd.solver.max_angular_speed = c.max_angular_speed;
   wd.sleep = c.sleep;
   return wd;
 }

@@ -37,9 +37,9 @@ struct NodeConfig {
   double physics_rate = 1000.0;        // Hz, fixed physics step = 1 / physics_rate
   double real_time_factor = 1.0;       // sim s per wall s; 0 or inf = as fast as possible
   double clock_rate = 0.0;             // Hz of sim time for /clock (on /use_sim_time); 0 = every step
-  int position_iterations = WorldDef().position_iterations;
+  int position_iterations = SolverSettings().position_iterations;
   double publish_rate = 60.0;          // Hz, TF / markers / joint_states
-  int substeps = WorldDef().substeps;  // solver substeps per physics step
+  int substeps = SolverSettings().substeps;  // solver substeps per physics step
   int threads = WorldDef().threads;    // islands in parallel (0 = all cores)
   Vec3 gravity = Vec3(0.0, 0.0, -9.81);
   SpawnPose spawn;

@@ -500,8 +500,8 @@ TEST(SwingTwist, TwistLimitsHoldAgainstTorque) {
   }
   const double held_lower = p.w.ballSwingTwist(p.joint)[1];
   // semi-implicit Euler over n substeps of h: theta_n = a h^2 n (n + 1) / 2 (0.5 a t^2 = 0.2)
-  const int n = 20 * p.w.def().substeps;
-  const double h = kDt / p.w.def().substeps;
+  const int n = 20 * p.w.def().solver.substeps;
+  const double h = kDt / p.w.def().solver.substeps;
   const double expected_20ms = 0.5 * tau / I * h * h * n * (n + 1);  // limit reached at ~28 ms
   EXPECT_NEAR(twist_20ms, expected_20ms, 0.01 * expected_20ms);
   EXPECT_LT(max_twist - 0.4, 0.01);
@@ -628,8 +628,8 @@ TEST(JointProjection, SliderWeldAndHingeAxisComeBackWithoutVelocity) {
     for (int kind = 0; kind < 5; ++kind) {
       WorldDef d = zeroG();
       d.sleep.enabled = false;
-      d.joint_hertz = 1.0;
-      if (!on) d.joint_slop = d.angular_slop = 1e9;
+      d.solver.joint_hertz = 1.0;
+      if (!on) d.solver.joint_slop = d.solver.angular_slop = 1e9;
       World w(d);
       const BodyId a = addStatic(w);
       const double upper = 0.1, start = kind < 2 ? 0.04 : 0.2;
@@ -665,7 +665,7 @@ TEST(JointProjection, SliderWeldAndHingeAxisComeBackWithoutVelocity) {
       };
       ASSERT_NEAR(error(), start, 1e-9) << "kind " << kind;
       w.step(kDt);
-      const double slop = kind < 2 ? d.joint_slop : d.angular_slop;
+      const double slop = kind < 2 ? d.solver.joint_slop : d.solver.angular_slop;
       const BodyState st = w.bodyState(b);
       if (on) {
         EXPECT_LT(error(), slop + 0.05 * slop) << "kind " << kind;
@@ -717,9 +717,9 @@ TEST(PositionSweeps, EachProjectionThatMovesABodyLetsTheNextSweepRun) {
     for (const int sweeps : {1, 3}) {
       WorldDef d = zeroG();
       d.sleep.enabled = false;
-      d.joint_hertz = 1.0;
-      d.position_iterations = sweeps;
-      d.anchor_iterations = 0;
+      d.solver.joint_hertz = 1.0;
+      d.solver.position_iterations = sweeps;
+      d.solver.anchor_iterations = 0;
       World w(d);
       const BodyId a = kind == 9 ? addGround(w) : addStatic(w);
       const bool linear = kind <= 1 || kind >= 8;
@@ -797,8 +797,8 @@ TEST(PositionSweeps, EachProjectionThatMovesABodyLetsTheNextSweepRun) {
 TEST(PositionSweeps, AMovedBodyMakesItsOtherJointsLookAgain) {
   WorldDef d = zeroG();
   d.sleep.enabled = false;
-  d.joint_hertz = 1.0;
-  d.anchor_iterations = 0;
+  d.solver.joint_hertz = 1.0;
+  d.solver.anchor_iterations = 0;
   World w(d);
   const BodyId a = addStatic(w);
   const Vec3 start(0.12, 0, 0);
@@ -856,12 +856,12 @@ TEST(PointPart, EffectiveMassMatchesProductForm) {
 // Each case: hinge (upper 0), ball with Euler limits (t1 upper 0), ball with a swing cone
 // (0.3) and a twist range (upper 0).
 TEST(LimitProjection, TurnsAViolatedLimitBackWithoutAddingVelocity) {
-  for (const double slop : {WorldDef().angular_slop, 1e9}) {
+  for (const double slop : {SolverSettings().angular_slop, 1e9}) {
     for (int kind = 0; kind < 4; ++kind) {
       WorldDef d = zeroG();
       d.sleep.enabled = false;
-      d.joint_hertz = 1.0;
-      d.angular_slop = slop;
+      d.solver.joint_hertz = 1.0;
+      d.solver.angular_slop = slop;
       World w(d);
       const BodyId a = addStatic(w);
       // B's COM sits on the anchor, so turning it keeps the anchor together.
