@@ -23,6 +23,7 @@
 #include "joint_angles.hpp"
 #include "ragdoll_sim/urdf_loader.hpp"
 #include "scaling_grid.hpp"
+#include "world_tuning.hpp"
 
 using namespace ragdoll_sim;
 
@@ -198,6 +199,7 @@ int main(int argc, char** argv) {
   char scenario = 'a';
   int steps = -1, n_ragdolls = -1;
   WorldDef wd;
+  WorldTuning tuning;  // --opt cache_distance (internal: world_tuning.hpp)
   bool metrics = true;
   double rolling = 0.0;
   double yaw = 0.0;  // --opt yaw=R: every root turned R rad about z (round-off variants of a scene)
@@ -226,27 +228,27 @@ int main(int argc, char** argv) {
         const size_t eq = kv.find('=');
         const std::string k = kv.substr(0, eq);
         const double v = eq == std::string::npos ? 1.0 : std::atof(kv.c_str() + eq + 1);
-        if (k == "substeps") wd.substeps = int(v);
-        else if (k == "joint_hertz") wd.joint_hertz = v;
-        else if (k == "joint_zeta") wd.joint_damping_ratio = v;
-        else if (k == "contact_hertz") wd.contact_hertz = v;
-        else if (k == "contact_zeta") wd.contact_damping_ratio = v;
+        if (k == "substeps") wd.solver.substeps = int(v);
+        else if (k == "joint_hertz") wd.solver.joint_hertz = v;
+        else if (k == "joint_zeta") wd.solver.joint_damping_ratio = v;
+        else if (k == "contact_hertz") wd.solver.contact_hertz = v;
+        else if (k == "contact_zeta") wd.solver.contact_damping_ratio = v;
         else if (k == "sleep") wd.sleep.enabled = v != 0.0;
         else if (k == "threads") wd.threads = int(v);
-        else if (k == "position_iterations") wd.position_iterations = int(v);
-        else if (k == "anchor_iterations") wd.anchor_iterations = int(v);
-        else if (k == "relax") wd.contact_relax_iterations = int(v);
-        else if (k == "joint_relax") wd.joint_relax_iterations = int(v);
+        else if (k == "position_iterations") wd.solver.position_iterations = int(v);
+        else if (k == "anchor_iterations") wd.solver.anchor_iterations = int(v);
+        else if (k == "relax") wd.solver.contact_relax_iterations = int(v);
+        else if (k == "joint_relax") wd.solver.joint_relax_iterations = int(v);
         else if (k == "sleep_speed") wd.sleep.speed = v;
         else if (k == "time_to_sleep") wd.sleep.time = v;
         else if (k == "rest_substeps") wd.sleep.rest_substeps = int(v);
         else if (k == "rest_time") wd.sleep.rest_time = v;
         else if (k == "rest_relax") wd.sleep.rest_relax_iterations = int(v);
-        else if (k == "static_friction_speed") wd.static_friction_speed = v;
-        else if (k == "joint_slop") wd.joint_slop = v;
-        else if (k == "angular_slop") wd.angular_slop = v;
-        else if (k == "speculative") wd.speculative_distance = v;
-        else if (k == "cache_distance") wd.manifold_cache_distance = v;
+        else if (k == "static_friction_speed") wd.solver.static_friction_speed = v;
+        else if (k == "joint_slop") wd.solver.joint_slop = v;
+        else if (k == "angular_slop") wd.solver.angular_slop = v;
+        else if (k == "speculative") wd.solver.speculative_distance = v;
+        else if (k == "cache_distance") tuning.manifold_cache_distance = v;
         else if (k == "rolling") rolling = v;
         else if (k == "yaw") yaw = v;
         else if (k == "trace") trace = int(v);
@@ -267,7 +269,7 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  if (const std::string e = worldDefError(wd); !e.empty()) {
+  if (const std::string e = worldDefError(wd) + worldTuningError(tuning); !e.empty()) {
     std::fprintf(stderr, "bench_ragdoll: --opt: %s\n", e.c_str());
     return 2;
   }
@@ -297,6 +299,7 @@ int main(int argc, char** argv) {
   const double dt = 1e-3;
 
   World world(wd);
+  WorldInternals::setTuning(world, tuning);
   BodyDef ground;
   ground.type = BodyType::Static;
   Material mat;
@@ -413,8 +416,8 @@ int main(int argc, char** argv) {
       "awake_body_steps=%ld resting_body_steps=%ld worst_pen=%s@%d worst_anchor=%s@%d%s\n",
       sc.id, n, bodies, steps, wall, sps, sps * bodies, 1e6 * wall / (steps * double(bodies)),
       m.max_anchor, m.max_pen, m.max_limit, m.pel_mean, m.pel_min, m.pel_max, m.pen3, m.anchor3,
-      m.vmax3, m.worst_joint.c_str(), m.worst_step, m.nan ? 1 : 0, loop_wall, wd.substeps,
-      wd.joint_hertz, wd.contact_hertz, wd.sleep.enabled ? 1 : 0, wd.threads, rolling, yaw, world.contacts().size(),
+      m.vmax3, m.worst_joint.c_str(), m.worst_step, m.nan ? 1 : 0, loop_wall, wd.solver.substeps,
+      wd.solver.joint_hertz, wd.solver.contact_hertz, wd.sleep.enabled ? 1 : 0, wd.threads, rolling, yaw, world.contacts().size(),
       1e6 * wall_first / window, 1e6 * wall_last / window, world.awakeBodyCount(),
       awake_body_steps, resting_body_steps, m.pen_link.c_str(), m.pen_step, m.anchor_joint.c_str(), m.anchor_step, extra.c_str());
   return 0;

@@ -9,7 +9,7 @@ namespace ragdoll_sim {
 struct DropSettings {
   double seconds = 3.0;      // sim time
   double dt = 1e-3;          // s, physics step (the node's default rate)
-  int substeps = WorldDef().substeps;  // the node's default
+  int substeps = SolverSettings().substeps;  // the node's default
   double clearance = 0.05;   // m between the lowest shape point and the ground at spawn
 };
 

@@ -21,13 +21,10 @@ struct SleepDef {
   bool enabled = true;
   double time = 0.5;    // s an island must stay slow before it sleeps
   double speed = 0.05;  // m/s, max(|v|, extent |w|) below this counts as slow (Box2D v3)
-  // An island whose bodies have all been slow (the sleep test above) for rest_time is solved
-  // with rest_substeps substeps of rest_relax_iterations relax sweeps each, until one of its
-  // bodies moves faster, is woken (a command, a new contact with a moving body) or it sleeps:
-  // the last part of the sleep time costs less. Scenes b and c (callgrind, one thread): -8.1 %
-  // and -4.7 % instructions, asleep at the same step, the same quality metrics; with one
-  // substep a resting ragdoll jitters above the sleep speed and never sleeps. rest_substeps 0
-  // (or not below WorldDef::substeps) turns it off; it needs `enabled` (it reads the sleep
+  // An island whose bodies have all been slow for rest_time is solved with rest_substeps
+  // substeps of rest_relax_iterations relax sweeps each, until one of its bodies moves faster,
+  // is woken or it sleeps: the last part of the sleep time costs less. rest_substeps 0 (or not
+  // below SolverSettings::substeps) turns it off; it needs `enabled` (it reads the sleep
   // timers). A split island shares its substep loop with the islands solved along with its
   // halves: it takes the rest substeps only when they all rest too.
   double rest_time = 0.05;
@@ -44,38 +41,26 @@ struct SleepDef {
 // finite and >= 0, rest_substeps and rest_relax_iterations >= 0.
 std::string sleepDefError(const SleepDef& sleep);
 
-struct WorldDef {
-  Vec3 gravity = Vec3(0, 0, -9.81);
-  // Solver substeps per step (soft step). 3, with contact_hertz 360 and 3 position sweeps,
-  // keep the joints issue's bars on perturbed copies of the peers' scenes for ~15 % fewer
-  // instructions than 4 with 240 Hz and 2 sweeps; with 240 Hz or 2 sweeps they do not (the
-  // numbers: README, "How the physics works").
-  int substeps = 3;
+// How the solver iterates and how soft and how far it corrects: the knobs one tunes while the
+// world runs (World::setSolverSettings), apart from what describes the world itself (WorldDef).
+struct SolverSettings {
+  int substeps = 3;                     // solver substeps per step (soft step)
   int contact_relax_iterations = 4;     // relax sweeps over the contacts per substep
   int joint_relax_iterations = 2;       // of which the first this many also relax the joints
   // Position (non-linear Gauss-Seidel) sweeps after the substeps over penetrating contacts,
   // joint rotations (angle and slide limits, hinge axes, rotation locks) and joint anchors
   // (points, slider lines): they remove the error left by hard hits without adding velocity.
   int position_iterations = 3;
-  // Sweeps over the joint anchors alone after those. A sweep projects the anchors last, but
-  // along a limb each projection moves a body that the next joint shares, so a hard hit could
-  // leave an anchor at up to twice joint_slop (ragdoll15, 64 perturbed copies of the peers'
-  // scene c: 0.975 mm). One more anchor sweep brought that to 0.539 mm. Contacts are not
-  // projected again; these moves are at most about the slop. Resting anchors are within the
-  // slop and are not moved (scene b: none after 1.4 s).
+  // Sweeps over the joint anchors alone after those: along a limb each projection moves a body
+  // that the next joint shares, so one sweep can leave an anchor at up to twice joint_slop.
   int anchor_iterations = 1;
-  double position_factor = 0.5;         // share of a contact's penetration removed per sweep
+  double position_factor = 0.5;           // share of a contact's penetration removed per sweep
   double max_position_correction = 0.05;  // m, the most one projection sweep moves a point
-  // m, anchor error that the projection leaves to the soft velocity rows. Projection moves
-  // bodies without velocity, so friction cannot hold against it: with no such slop the joint
-  // projection and the contact projection (which pushes feet out along the normal) traded
-  // micrometres every step, and a resting ragdoll crept (ragdoll15 in scene b: 1-2 cm/s).
+  // m, anchor error left to the soft velocity rows: projection moves bodies without velocity,
+  // so friction cannot hold against it, and without a slop a resting ragdoll creeps.
   double joint_slop = 0.0005;
   // rad, how far outside its range a joint angle may stay before the projection turns it back
-  // (left to the soft limit rows, like joint_slop), and the most one sweep turns it. The slop
-  // keeps the projection to hits: a limb resting on a limit is within 0.01 rad, and one that
-  // is turned without velocity every step cannot be held by friction (at 0.005 rad, 9 of 16
-  // perturbed copies of scene b still moved at 3 s, 4 of 16 without the projection).
+  // (left to the soft limit rows, like joint_slop), and the most one sweep turns it.
   double angular_slop = 0.02;
   double max_angular_correction = 0.2;
   double contact_hertz = 360.0;         // contact softness (capped at a quarter of the substep rate)
@@ -86,36 +71,33 @@ struct WorldDef {
   double restitution_threshold = 1.0;   // m/s, no bounce below this approach speed
   double static_friction_speed = 0.02;  // m/s, below this tangential speed static friction holds
   double speculative_distance = 0.02;   // m, contacts are made this far before touching
-  // m: a touching pair keeps its manifold (carried along with the shapes) instead of running
-  // the narrowphase while no point of one shape has moved more than this relative to the
-  // other since the manifold was computed, and both bodies move less than
-  // (speculative_distance - this) per step (src/core/manifold_cache.hpp). 0 (or a value not
-  // below speculative_distance) turns it off; separated pairs are kept regardless (exact).
-  double manifold_cache_distance = 0.001;
   double linear_slop = 0.0005;          // m, penetration allowed to keep contacts warm
   // Clamps against blow-ups, applied to every body before the step (a huge impulse never
-  // enters the solver) and after it.
+  // enters the solver), per substep and after it.
   double max_linear_speed = 100.0;      // m/s
   double max_angular_speed = 200.0;     // rad/s
+};
+
+// "" when the settings can be used, else what is wrong with the first field that cannot, named
+// as in the struct ("contact_hertz must be ..."): the ranges are in src/core/world_def.cpp.
+std::string solverSettingsError(const SolverSettings& solver);
+
+struct WorldDef {
+  Vec3 gravity = Vec3(0, 0, -9.81);
+  SolverSettings solver;                // World::setSolverSettings
   SleepDef sleep;                       // sleeping and the rest substeps (World::setSleep)
-  // A pair of shapes that both keep last step's box (sleeping or static bodies) or plane is
-  // carried over from the last step instead of found and filtered by the broadphase again: its
-  // overlap cannot have changed. Off: every pair is found every step (to check; the result is
-  // the same bit for bit). 256 ragdolls of which one is awake: ~1.35 -> ~1.0 ms per step.
-  bool carry_sleeping_pairs = true;
-  MaterialTable materials;              // pair coefficients and the combine rules
+  MaterialTable materials;              // pair coefficients and the combine rules (setMaterials)
   // Islands are solved in parallel on this many threads (0: all cores). The result does not
-  // depend on it: islands share no bodies and each is solved in the same order. Default 1:
-  // on a machine whose cores are busy (tests, rviz), waiting for a preempted worker costs
-  // more than it gains. The node's `~threads` and the benchmark's `--opt threads=N` set it.
+  // depend on it: islands share no bodies and each is solved in the same order. Default 1: on a
+  // machine whose cores are busy, waiting for a preempted worker costs more than it gains.
   int threads = 1;
   static constexpr int kMaxThreads = 256;  // more is a typo: OpenMP would start them all
 };
 
 // "" when the World can simulate with these settings, else what is wrong with the first field
-// that it cannot, named as in the struct ("sleep.speed must be a finite number >= 0, got -1",
-// "contact_hertz must be ..."): the ranges are in src/core/world_def.cpp. World's constructor
-// throws std::invalid_argument with it; the node names its parameters after the same fields.
+// that it cannot, named as in the struct ("sleep.speed must be a finite number >= 0, got -1");
+// the solver's fields are named without "solver.", as the node's flat parameters are. World's
+// constructor throws std::invalid_argument with it.
 std::string worldDefError(const WorldDef& def);
 
 // A contact point for display and tests.
@@ -178,6 +160,23 @@ class World {
   // The pair never collides (joints also disable their pair unless collide_connected).
   void disableCollision(BodyId a, BodyId b);
 
+  // --- removing --------------------------------------------------------------------------
+  // Nothing is rebuilt: every other id keeps its index, other islands keep their warm starts
+  // and their sleep. A destroyed id's slot is not reused (later creates append), so a stale id
+  // is refused like any bad id (std::out_of_range, isValid false) instead of naming another.
+  // The body with its shapes, the joints on it and its contacts; the bodies it touched or was
+  // joined to wake.
+  void destroyBody(BodyId body);
+  // The joint; its pair collides again (as after breakJoint) and its bodies wake.
+  void destroyJoint(JointId joint);
+  // Shape `index` of bodyShapes(body) with its contacts; the body's later shapes move down by
+  // one. The body and what it touched wake.
+  void removeShape(BodyId body, int index);
+  // Gives shape `index` of bodyShapes(body) a new material; its kept contacts take the new
+  // coefficients before the next step (no body wakes). Throws std::invalid_argument for a
+  // material that materialError refuses, std::out_of_range for a bad body or index.
+  void setShapeMaterial(BodyId body, int index, const Material& material);
+
   // --- stepping -------------------------------------------------------------------------
   // Advances by dt seconds. Forces and torques applied since the last step act during it and
   // are then cleared.
@@ -185,6 +184,15 @@ class World {
   double time() const;
   const WorldDef& def() const;
   void setGravity(const Vec3& g);
+  // Changes the solver settings on the running world without rebuilding it: warm starts carry
+  // over (rescaled to a new substep, solver_context.hpp) and no body wakes. Throws
+  // std::invalid_argument with solverSettingsError's message, changing nothing, for settings
+  // out of range.
+  void setSolverSettings(const SolverSettings& solver);
+  // Replaces the material table: contacts made from now on take the new coefficients, and every
+  // kept contact is given them before the next step (no body wakes). Throws
+  // std::invalid_argument with MaterialTable::error()'s message, changing nothing.
+  void setMaterials(const MaterialTable& materials);
   // WorldDef::sleep changed while the world runs: nothing is rebuilt and no body wakes,
   // except that turning sleep off wakes every sleeping body (it would never wake by itself).
   // Turning it on restarts every body's slow time, so an island sleeps `time` after that at the
@@ -209,9 +217,11 @@ class World {
                     const Vec3& angular_velocity);
 
   // --- queries ---------------------------------------------------------------------------
+  // Slots, destroyed ones included: every id is below these; isValid tells the live ones.
   int bodyCount() const;
   int jointCount() const;
   bool isValid(BodyId body) const;
+  bool isValid(JointId joint) const;
   BodyState bodyState(BodyId body) const;
   Transform bodyPose(BodyId body) const;  // link frame in world
   const BodyDef& bodyDef(BodyId body) const;
@@ -249,6 +259,7 @@ class World {
   std::vector<ContactInfo> contacts() const;
 
  private:
+  friend struct WorldInternals;  // src/core: the switches that check an optimisation
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

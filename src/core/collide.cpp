@@ -11,6 +11,18 @@
 
 namespace ragdoll_sim {
 
+// The pair's coefficients from the material table (when the manifold is made, and for every
+// kept contact by World::setMaterials).
+void World::Impl::applyPairMaterial(Contact& c, const ShapeDef& da, const ShapeDef& db) const {
+  const Material pair = def.materials.resolve(da.material, db.material);
+  c.static_friction = pair.static_friction;
+  c.kinetic_friction = pair.kinetic_friction;
+  c.restitution = pair.restitution;
+  c.rolling = pair.rolling_resistance > 0.0
+                  ? pair.rolling_resistance * std::max(rollingRadius(da.geometry), rollingRadius(db.geometry))
+                  : 0.0;
+}
+
 void World::Impl::collide(double dt) {
   const int n = int(shapes.size());
   aabbs.resize(n);
@@ -18,11 +30,16 @@ void World::Impl::collide(double dt) {
   shape_frames.resize(n);
   unbounded.resize(n);
   frozen.resize(n);
-  const bool carry = def.carry_sleeping_pairs && !pairs_dirty;
-  const double spec = def.speculative_distance;
+  const bool carry = tuning.carry_sleeping_pairs && !pairs_dirty;
+  const double spec = def.solver.speculative_distance;
   // Boxes in parallel (each shape its own slot), the few planes after.
 #pragma omp parallel for schedule(static) num_threads(threadCount()) if (n >= kParallelMin)
   for (int s = 0; s < n; ++s) {
+    if (!shapes[s].alive) {  // removed: in no pair (neither bounded nor a plane)
+      unbounded[s] = 1;
+      frozen[s] = 0;
+      continue;
+    }
     const Geometry& g = shapeDef(s).geometry;
     const BodyMotion& m = motions[shapes[s].body];
     unbounded[s] = isUnbounded(g);
@@ -39,7 +56,7 @@ void World::Impl::collide(double dt) {
   planes.swap(last_planes);
   planes.clear();
   for (int s = 0; s < n; ++s) {
-    if (!unbounded[s]) continue;
+    if (!unbounded[s] || !shapes[s].alive) continue;
     const Transform& f = shape_frames[s] = shapeFrame(s);
     const Vec3 nw = f.q * shapeDef(s).geometry.normal;
     const Vec3 p = motions[shapes[s].body].x + f.p;  // world
@@ -98,7 +115,7 @@ void World::Impl::collide(double dt) {
   // (speculative - cache distance) away, so both bodies must move less than that in the step,
   // (|v| + extent |w|) dt, for it not to be reached unseen. (Separated pairs need no such
   // check: the collision at the step start decides the step's contacts.)
-  const double cache_distance = def.manifold_cache_distance;
+  const double cache_distance = tuning.manifold_cache_distance;
   const bool cache_on = cache_distance > 0.0 && cache_distance < spec;
   const double cache_speed = (spec - cache_distance) / dt;
   const auto slow = [&](int b) {
@@ -164,13 +181,7 @@ void World::Impl::collide(double dt) {
     // Cache the normal of a separated pair as its axis (not for planes: they are cheap).
     c.sep_valid = c.manifold.count == 0 && !unbounded[sa] && !unbounded[sb];
     c.sep_axis = c.manifold.normal;
-    const Material pair = def.materials.resolve(da.material, db.material);
-    c.static_friction = pair.static_friction;
-    c.kinetic_friction = pair.kinetic_friction;
-    c.restitution = pair.restitution;
-    c.rolling = pair.rolling_resistance > 0.0
-                    ? pair.rolling_resistance * std::max(rollingRadius(da.geometry), rollingRadius(db.geometry))
-                    : 0.0;
+    applyPairMaterial(c, da, db);
     matchImpulses(o >= 0 ? contacts[o] : Contact(), c);
   }
   manifold_caches.swap(next_manifold_caches);

@@ -15,4 +15,10 @@ constexpr int kParallelMin = 32;
 // thread count, so the result stays the same for every count.
 constexpr int kSplitMin = 60;
 
+// m: a touching pair keeps its manifold (carried along with the shapes) instead of running the
+// narrowphase while no point of one shape has moved more than this relative to the other since
+// the manifold was computed, and both bodies move less than (speculative_distance - this) per
+// step (manifold_cache.hpp). Separated pairs are kept regardless (exact).
+constexpr double kManifoldCacheDistance = 0.001;
+
 }  // namespace ragdoll_sim

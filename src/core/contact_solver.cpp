@@ -9,7 +9,7 @@
 //   contact softness, so penetration is removed as a damped spring, not by a velocity kick;
 //   a point still approaching (Cdot < 0) is solved rigidly (mass_scale 1, no impulse
 //   relaxation): softness shapes only the push-out, so a hard landing is stopped, not sunk in;
-//   the relax pass (no bias, rigid, WorldDef::contact_relax_iterations sweeps) then takes the
+//   the relax pass (no bias, rigid, SolverSettings::contact_relax_iterations sweeps) then takes the
 //   push-out velocity back. Penetration is thus corrected by impulses (a soft Baumgarte push
 //   whose velocity is removed again: the effect of split impulses, without a second set of
 //   velocities), so the correction splits between the bodies by their inverse masses and
@@ -18,7 +18,7 @@
 // Friction: two tangent rows, impulse clamped to the Coulomb disc |lambda_t| <= mu lambda_n,
 //   mu = static coefficient when the pair was sliding slower than static_friction_speed at the
 //   start of the step, kinetic otherwise.
-// Position projection (WorldDef::position_iterations, after the substeps): a point deeper than
+// Position projection (SolverSettings::position_iterations, after the substeps): a point deeper than
 //   the slop is moved out by the position impulse m_n * min(s + slop, 0) * position_factor
 //   along n (non-linear Gauss-Seidel, Box2D v2's solvePositionConstraints): it removes depth
 //   left by a hard landing without giving the bodies any velocity.
@@ -122,7 +122,7 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
                             int begin, int end) {
   const auto& motions = *ctx.motions;
   const auto& bodies = *ctx.bodies;
-  const WorldDef& def = *ctx.def;
+  const SolverSettings& def = *ctx.def;
   for (int slot = begin; slot < end; ++slot) {
     const int ci = active_[slot];
     const Contact& c = contacts[ci];
@@ -228,7 +228,7 @@ void warmStartConstraint(ContactConstraint& cc, SolverBody& A, SolverBody& B,
 template <bool kLiveA>
 void solveConstraint(ContactConstraint& cc, SolverBody& A, SolverBody& B, const StepContext& ctx,
                      bool use_bias, bool positions_moved) {
-  const WorldDef& def = *ctx.def;
+  const SolverSettings& def = *ctx.def;
   const Softness& soft = ctx.contact_softness;
   if (positions_moved) updateSeparations(A, B, cc);
   PairVelocity<kLiveA> u(A, B);
@@ -312,7 +312,7 @@ void ContactSolver::solve(const StepContext& ctx, bool use_bias, int begin, int 
 
 bool ContactSolver::project(const StepContext& ctx, int begin, int end, int sweep) {
   auto& bodies = *ctx.bodies;
-  const WorldDef& def = *ctx.def;
+  const SolverSettings& def = *ctx.def;
   bool moved = false;
   for (int k = begin; k < end; ++k) {
     ContactConstraint& cc = constraints_[k];

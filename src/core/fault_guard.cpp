@@ -21,10 +21,11 @@ void clearContactWarmStart(Contact& c) {
 // from setBodyState); a body with a bad velocity, force or torque keeps it.
 void World::Impl::guardInputs() {
   for (size_t i = 0; i < bodies.size(); ++i) {
+    if (!bodies[i].alive) continue;
     BodyMotion& m = motions[i];
     if (inputsFinite(m)) {
-      clampNorm(m.v, def.max_linear_speed);
-      clampNorm(m.w, def.max_angular_speed);
+      clampNorm(m.v, def.solver.max_linear_speed);
+      clampNorm(m.w, def.solver.max_angular_speed);
       last_finite[i] = {m.x, m.q};
       continue;
     }
@@ -68,8 +69,8 @@ void World::Impl::finishBody(int i) {
     m.v = s.v;
     m.w = s.w;
     if (motionFinite(m)) {
-      clampNorm(m.v, def.max_linear_speed);
-      clampNorm(m.w, def.max_angular_speed);
+      clampNorm(m.v, def.solver.max_linear_speed);
+      clampNorm(m.w, def.solver.max_angular_speed);
       last_finite[i] = {m.x, m.q};
     } else {
       solver_fault[i] = 1;
@@ -88,21 +89,24 @@ void World::Impl::resetFaulted() {
 }
 
 void World::Impl::finishStep() {
-  for (size_t i = 0; i < bodies.size(); ++i) finishBody(int(i));
+  for (size_t i = 0; i < bodies.size(); ++i)
+    if (bodies[i].alive) finishBody(int(i));
   resetFaulted();
 }
 
 void World::Impl::finishOutsideBodies() {
   const int body_count = int(bodies.size());
   for (int i = 0; i < body_count; ++i)
-    if (island_of_body[i] < 0) finishBody(i);
+    if (island_of_body[i] < 0 && bodies[i].alive) finishBody(i);
 }
 
 // After a solver fault the impulses accumulated by the reset bodies' joints and contacts are
 // garbage (NaN) and would poison the next warm start.
 void World::Impl::clearWarmStart() {
-  for (Joint& j : joints)
-    if (solver_reset[j.a] || solver_reset[j.b]) j.clearWarmStart();
+  for (size_t k = 0; k < joints.size(); ++k) {
+    Joint& j = joints[k];
+    if (joint_alive[k] && (solver_reset[j.a] || solver_reset[j.b])) j.clearWarmStart();
+  }
   for (Contact& c : contacts)
     if (solver_reset[c.body_a] || solver_reset[c.body_b]) clearContactWarmStart(c);
   std::fill(solver_reset.begin(), solver_reset.end(), 0);

@@ -20,7 +20,7 @@ std::pair<int, int> teamSlot() {
 }  // namespace
 
 StepContexts World::Impl::makeContexts(double dt) {
-  const int substeps = std::max(1, def.substeps);
+  const int substeps = std::max(1, def.solver.substeps);
   const auto makeContext = [&](int n, int relax) {
     StepContext c;
     c.dt = dt;
@@ -28,17 +28,17 @@ StepContexts World::Impl::makeContexts(double dt) {
     c.inv_h = 1.0 / c.h;
     c.substeps = n;
     c.relax = std::max(0, relax);
-    c.def = &def;
+    c.def = &def.solver;
     c.bodies = &solver;
     c.motions = &motions;
-    c.contact_softness = Softness::make(std::min(def.contact_hertz, 0.25 * c.inv_h),
-                                        def.contact_damping_ratio, c.h);
-    c.joint_softness = Softness::make(std::min(def.joint_hertz, 0.25 * c.inv_h),
-                                      def.joint_damping_ratio, c.h);
+    c.contact_softness = Softness::make(std::min(def.solver.contact_hertz, 0.25 * c.inv_h),
+                                        def.solver.contact_damping_ratio, c.h);
+    c.joint_softness = Softness::make(std::min(def.solver.joint_hertz, 0.25 * c.inv_h),
+                                      def.solver.joint_damping_ratio, c.h);
     return c;
   };
   StepContexts s;
-  s.full = makeContext(substeps, def.contact_relax_iterations);
+  s.full = makeContext(substeps, def.solver.contact_relax_iterations);
   s.rest_mode = def.sleep.restOn(substeps);
   s.rest = s.rest_mode
                ? makeContext(def.sleep.rest_substeps, def.sleep.rest_relax_iterations)
@@ -71,7 +71,7 @@ void World::Impl::prepareSolverBody(int i) {
 void World::Impl::prepareOutsideBodies() {
   const int body_count = int(bodies.size());
   for (int i = 0; i < body_count; ++i)
-    if (island_of_body[i] < 0) prepareSolverBody(i);
+    if (island_of_body[i] < 0 && bodies[i].alive) prepareSolverBody(i);
 }
 
 void World::Impl::prepareIsland(const IslandRange& p, const StepContext& c) {
@@ -91,8 +91,8 @@ void World::Impl::integrateVelocities(double h, int begin, int end) {
     // Clamped per substep as well as at the step end (as Box2D v3 does): a torque at the
     // command cap on a light link otherwise spins it so fast within one step that the joints
     // fling their neighbours away.
-    clampNorm(s.v, def.max_linear_speed);
-    clampNorm(s.w, def.max_angular_speed);
+    clampNorm(s.v, def.solver.max_linear_speed);
+    clampNorm(s.w, def.solver.max_angular_speed);
   }
 }
 
@@ -172,7 +172,7 @@ class World::Impl::IslandPass {
   void relax(int it) {
     boundary([&](int b, int e) { w.contact_solver.solve(ctx, false, b, e, it == 0); });
     parts([&](const IslandRange& p) {
-      if (it < w.def.joint_relax_iterations)
+      if (it < w.def.solver.joint_relax_iterations)
         joints(p, [&](Joint& j) { solveJoint(j, ctx, false); });
       w.contact_solver.solve(ctx, false, p.contact_begin, p.contact_end, it == 0);
     });
@@ -229,7 +229,7 @@ class World::Impl::IslandPass {
 // skip every projection after an idle sweep; the stop also saves the pass over the constraints
 // and, on a split island, the sweep's two barriers.
 void World::Impl::IslandPass::projectPositions() {
-  const WorldDef& def = w.def;
+  const SolverSettings& def = w.def.solver;
   bool mine = false;  // this thread moved a body in the current sweep
   // f(j): projectJointLimits or projectJointAnchor, as a lambda so that each is called directly
   const auto project = [&](Joint& j, int sweep, auto&& f) {

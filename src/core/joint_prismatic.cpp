@@ -41,7 +41,7 @@ void PrismaticJoint::solve(JointBase& j, SolverBody& A, SolverBody& B, const Ste
 
 bool PrismaticJoint::projectLimits(JointBase& j, SolverBody& A, SolverBody& B,
                                    const StepContext& ctx) {
-  const WorldDef& d = *ctx.def;
+  const SolverSettings& d = *ctx.def;
   bool moved = angle_lock.project(A, B, d.angular_slop, d.max_angular_correction);
   if (limit_enabled)
     moved |= LinearLimitPart::project(A, B, slider.at(A, B), lower, upper, d.joint_slop,

@@ -4,7 +4,7 @@
 // part_rows.hpp):
 //   lower: C = theta - lower,  upper: C = upper - theta (rate -j . (wB - wA)),
 //   m_eff = 1 / (j^T (IA^-1 + IB^-1) j).
-// Position projection (after the substeps, WorldDef::position_iterations): an angle more than
+// Position projection (after the substeps, SolverSettings::position_iterations): an angle more than
 // `slop` outside its range is turned back to `slop` outside by the angular position impulse
 // L = lambda j, lambda = -C' / k (C' the excess beyond the slop, at most max_correction): A
 // turns by -IA^-1 L and B by IB^-1 L, so theta moves by k lambda = -C' to first order, and no

@@ -4,7 +4,7 @@
 //   J    = [ -I  skew(rA)  I  -skew(rB) ]
 //   K    = J M^-1 J^T = (1/mA + 1/mB) I - skew(rA) IA^-1 skew(rA) - skew(rB) IB^-1 skew(rB)
 //   lambda = -mass_scale K^-1 (Cdot + bias_rate C) - impulse_scale lambda_acc   (softness.hpp)
-// Position projection (after the substeps, WorldDef::position_iterations): P = -K^-1 C' with
+// Position projection (after the substeps, SolverSettings::position_iterations): P = -K^-1 C' with
 // C' = C (1 - slop / |C|) moves and turns the bodies so that |C| -> slop to first order, leaving
 // the velocities alone (no energy is added, unlike a velocity bias). The slop (joint_slop) is
 // left to the soft rows, which friction can resist: it keeps the projection off resting limbs.
@@ -100,7 +100,7 @@ struct PointPart {
   }
 
   // K from the current anchors (a fast spin turns them far within one step, and a stale K
-  // overshoots). Only the error beyond `slop` is removed (WorldDef::joint_slop), and at most
+  // overshoots). Only the error beyond `slop` is removed (SolverSettings::joint_slop), and at most
   // max_correction of it per sweep.
   bool project(SolverBody& A, SolverBody& B, double max_correction, double slop) const {
     const Vec3 rA = A.dq * rA0, rB = B.dq * rB0;

@@ -58,6 +58,7 @@ void World::setSleep(const SleepDef& sleep) {
     // Slow times stood still while sleep was off (updateSleep); a body asleep when it is
     // turned off must move again.
     for (size_t i = 0; i < w.bodies.size(); ++i) {
+      if (!w.bodies[i].alive) continue;
       if (!sleep.enabled && !w.motions[i].awake && w.isDynamic(int(i))) w.wake(int(i));
       w.motions[i].sleep_time = 0.0;
     }

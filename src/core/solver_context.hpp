@@ -19,7 +19,7 @@ struct StepContext {
   int relax = 0;          // contact relax sweeps per substep (the first joint_relax_iterations also relax the joints)
   Softness contact_softness;
   Softness joint_softness;
-  const WorldDef* def = nullptr;
+  const SolverSettings* def = nullptr;  // the solver settings
   std::vector<SolverBody>* bodies = nullptr;
   const std::vector<BodyMotion>* motions = nullptr;  // poses at the start of the step
 };

@@ -2,6 +2,8 @@
 // in its own file with the data it owns (world_impl.hpp lists them).
 #include "ragdoll_sim/world.hpp"
 
+#include <algorithm>
+
 #include "world_impl.hpp"
 
 namespace ragdoll_sim {
@@ -57,5 +59,39 @@ void World::step(double dt) {
 double World::time() const { return impl_->time; }
 const WorldDef& World::def() const { return impl_->def; }
 void World::setGravity(const Vec3& g) { impl_->def.gravity = g; }
+
+void World::setSolverSettings(const SolverSettings& solver) {
+  const std::string e = solverSettingsError(solver);
+  if (!e.empty()) throw std::invalid_argument("ragdoll_sim: setSolverSettings: " + e);
+  Impl& w = *impl_;
+  if (solver.speculative_distance != w.def.solver.speculative_distance) {
+    // Kept boxes are grown by the old distance and cached manifolds were made within it.
+    std::fill(w.aabb_kept.begin(), w.aabb_kept.end(), char(0));
+    for (ManifoldCache& c : w.manifold_caches) c.valid = false;
+    w.pairs_dirty = true;
+    w.settled = false;
+  }
+  w.def.solver = solver;
+}
+
+void World::setMaterials(const MaterialTable& materials) {
+  const std::string e = materials.error();
+  if (!e.empty()) throw std::invalid_argument("ragdoll_sim: setMaterials: " + e);
+  Impl& w = *impl_;
+  w.def.materials = materials;
+  for (Contact& c : w.contacts) w.applyPairMaterial(c, w.shapeDef(c.shape_a), w.shapeDef(c.shape_b));
+}
+
+const WorldTuning& WorldInternals::tuning(const World& world) { return world.impl_->tuning; }
+
+void WorldInternals::setTuning(World& world, const WorldTuning& tuning) {
+  const std::string e = worldTuningError(tuning);
+  if (!e.empty()) throw std::invalid_argument("ragdoll_sim: setTuning: " + e);
+  World::Impl& w = *world.impl_;
+  w.tuning = tuning;
+  for (ManifoldCache& c : w.manifold_caches) c.valid = false;
+  w.pairs_dirty = true;
+  w.settled = false;
+}
 
 }  // namespace ragdoll_sim

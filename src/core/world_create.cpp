@@ -1,4 +1,5 @@
-// The create API (bodies, shapes, joints, collision filter) and joint breaking.
+// The create and destroy API (bodies, shapes, joints, collision filter) and joint breaking.
+// Destroyed bodies and joints keep their slots, so every other id keeps its index.
 #include <algorithm>
 #include <utility>
 
@@ -108,12 +109,117 @@ void World::Impl::breakJoints() {
 }
 
 void World::breakJoint(JointId id) {
-  Joint& j = impl_->joints.at(id.index);
+  Joint& j = impl_->joint(id);
   if (j.broken) return;
   j.broken = true;
   impl_->setCollides(j.a, j.b, true);
   impl_->wake(j.a);
   impl_->wake(j.b);
+}
+
+
+template <class Pred>
+void World::Impl::removeContacts(Pred&& drop) {
+  size_t kept = 0;
+  for (size_t k = 0; k < contacts.size(); ++k) {
+    const Contact& c = contacts[k];
+    if (drop(c)) {
+      if (c.manifold.count > 0) {
+        wake(c.body_a);
+        wake(c.body_b);
+      }
+      continue;
+    }
+    if (kept != k) {
+      contacts[kept] = contacts[k];
+      contact_keys[kept] = contact_keys[k];
+      manifold_caches[kept] = manifold_caches[k];
+    }
+    ++kept;
+  }
+  contacts.resize(kept);
+  contact_keys.resize(kept);
+  manifold_caches.resize(kept);
+  pairs_dirty = true;  // no pair of a removed shape may be carried over
+  settled = false;
+}
+
+// As breakJoint, the pair collides again (unless the joint broke already, which did that).
+void World::Impl::removeJoint(int k) {
+  Joint& j = joints[k];
+  if (!j.broken) setCollides(j.a, j.b, true);
+  j.broken = true;  // left out of islands and solving like a broken joint
+  joint_alive[k] = 0;
+  wake(j.a);
+  wake(j.b);
+}
+
+void World::destroyJoint(JointId id) {
+  impl_->joint(id);  // throws for a bad id
+  impl_->removeJoint(id.index);
+}
+
+void World::destroyBody(BodyId id) {
+  Impl& w = *impl_;
+  w.checkBody(id);
+  const int b = id.index;
+  for (size_t k = 0; k < w.joints.size(); ++k)
+    if (w.joint_alive[k] && (w.joints[k].a == b || w.joints[k].b == b)) w.removeJoint(int(k));
+  w.removeContacts([b](const Contact& c) { return c.body_a == b || c.body_b == b; });
+  Body& body = w.bodies[b];
+  for (const int s : body.shape_ids) w.shapes[s].alive = false;
+  body.shapes.clear();
+  body.shape_ids.clear();
+  body.no_collide.clear();
+  for (int i = 0; i < b; ++i) {  // pairs with a lower body are listed under that one
+    std::vector<int>& v = w.bodies[i].no_collide;
+    v.erase(std::remove(v.begin(), v.end(), b), v.end());
+  }
+  body.alive = false;
+  BodyMotion& m = w.motions[b];
+  m.awake = false;
+  m.v.setZero();
+  m.w.setZero();
+  m.force.setZero();
+  m.torque.setZero();
+  w.pairs_dirty = true;
+  w.settled = false;
+}
+
+void World::removeShape(BodyId id, int index) {
+  Impl& w = *impl_;
+  w.checkBody(id);
+  Body& body = w.bodies[id.index];
+  if (index < 0 || index >= int(body.shapes.size()))
+    throw std::out_of_range("ragdoll_sim: removeShape: body '" + body.def.name + "' has no shape " +
+                            std::to_string(index));
+  const int s = body.shape_ids[index];
+  w.removeContacts([s](const Contact& c) { return c.shape_a == s || c.shape_b == s; });
+  w.shapes[s].alive = false;
+  body.shapes.erase(body.shapes.begin() + index);
+  body.shape_ids.erase(body.shape_ids.begin() + index);
+  for (int k = index; k < int(body.shape_ids.size()); ++k) w.shapes[body.shape_ids[k]].index = k;
+  BodyMotion& m = w.motions[id.index];
+  m.extent = 0.0;
+  for (const ShapeDef& d : body.shapes)
+    m.extent = std::max(m.extent, maxExtent(d.geometry, d.local, m.local_com));
+  w.wake(id.index);
+}
+
+void World::setShapeMaterial(BodyId id, int index, const Material& material) {
+  Impl& w = *impl_;
+  w.checkBody(id);
+  Body& body = w.bodies[id.index];
+  if (index < 0 || index >= int(body.shapes.size()))
+    throw std::out_of_range("ragdoll_sim: setShapeMaterial: body '" + body.def.name +
+                            "' has no shape " + std::to_string(index));
+  const std::string e = materialError(material);
+  if (!e.empty())
+    throw std::invalid_argument("ragdoll_sim: a shape of body '" + body.def.name + "': material " + e);
+  body.shapes[index].material = material;
+  const int s = body.shape_ids[index];
+  for (Contact& c : w.contacts)
+    if (c.shape_a == s || c.shape_b == s) w.applyPairMaterial(c, w.shapeDef(c.shape_a), w.shapeDef(c.shape_b));
 }
 
 }  // namespace ragdoll_sim

@@ -1,10 +1,11 @@
-// The ranges of WorldDef and SleepDef, in one place: World's constructor and World::setSleep
+// The ranges of WorldDef, SolverSettings and SleepDef, in one place: World's constructor and setters
 // throw with these messages, and the node's parameter check puts "parameter ~" in front of
 // them (its parameters are named after the same fields).
 #include <sstream>
 
 #include "ragdoll_sim/range_check.hpp"
 #include "ragdoll_sim/world.hpp"
+#include "world_tuning.hpp"
 
 namespace ragdoll_sim {
 
@@ -15,16 +16,10 @@ std::string sleepDefError(const SleepDef& s) {
                      intRangeError("rest_relax_iterations", s.rest_relax_iterations, 0)});
 }
 
-std::string worldDefError(const WorldDef& d) {
-  if (!d.gravity.allFinite()) {
-    std::ostringstream s;
-    s << "gravity must be finite, got (" << d.gravity.x() << ", " << d.gravity.y() << ", "
-      << d.gravity.z() << ")";
-    return s.str();
-  }
+std::string solverSettingsError(const SolverSettings& d) {
   // Hertz 0 is a rigid row (softness.hpp); a negative one, or a negative damping ratio, would
   // make the soft step's implicit spring gain energy.
-  std::string e = firstError({
+  return firstError({
       intRangeError("substeps", d.substeps, 1),
       intRangeError("contact_relax_iterations", d.contact_relax_iterations, 0),
       intRangeError("joint_relax_iterations", d.joint_relax_iterations, 0),
@@ -43,15 +38,30 @@ std::string worldDefError(const WorldDef& d) {
       nonNegativeError("restitution_threshold", d.restitution_threshold),
       nonNegativeError("static_friction_speed", d.static_friction_speed),
       nonNegativeError("speculative_distance", d.speculative_distance),
-      nonNegativeError("manifold_cache_distance", d.manifold_cache_distance),
       nonNegativeError("linear_slop", d.linear_slop),
       positiveError("max_linear_speed", d.max_linear_speed),
       positiveError("max_angular_speed", d.max_angular_speed),
+  });
+}
+
+std::string worldDefError(const WorldDef& d) {
+  if (!d.gravity.allFinite()) {
+    std::ostringstream s;
+    s << "gravity must be finite, got (" << d.gravity.x() << ", " << d.gravity.y() << ", "
+      << d.gravity.z() << ")";
+    return s.str();
+  }
+  std::string e = firstError({
+      solverSettingsError(d.solver),
       intRangeError("threads", d.threads, 0, WorldDef::kMaxThreads, " (0 = all cores)"),
   });
   if (!e.empty()) return e;
   if (!(e = sleepDefError(d.sleep)).empty()) return "sleep." + e;
   return d.materials.error();
+}
+
+std::string worldTuningError(const WorldTuning& t) {
+  return nonNegativeError("manifold_cache_distance", t.manifold_cache_distance);
 }
 
 }  // namespace ragdoll_sim

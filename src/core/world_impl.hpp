@@ -5,9 +5,10 @@
 //   island_solve.cpp     the solver bodies, the substep sequence, solveIslands
 //   fault_guard.cpp      guardInputs, finishBody, resetFaulted, clearWarmStart
 //   sleep.cpp            markResting, updateSleep, World::setSleep
-//   world_create.cpp     the create API, breakJoints
+//   world_create.cpp     the create and destroy API, breakJoints
 //   world_query.cpp      commands and queries
 //   world.cpp            the constructor, World::step (the phase list) and the settings
+//   world_tuning.hpp     the internal switches that check an optimisation (WorldInternals)
 #pragma once
 
 #include <algorithm>
@@ -28,21 +29,25 @@
 #include "island_solve.hpp"
 #include "joint.hpp"
 #include "sleep.hpp"
+#include "world_tuning.hpp"
 
 namespace ragdoll_sim {
 
 struct ShapeRef {
   int body;
   int index;  // in Body::shapes
+  bool alive = true;  // false once removed: collide puts it in no pair
 };
 
 struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, SleepData {
   WorldDef def;
+  WorldTuning tuning;  // world_tuning.hpp
   double time = 0.0;
   std::vector<Body> bodies;
   std::vector<BodyMotion> motions;
   std::vector<ShapeRef> shapes;
   std::vector<Joint> joints;
+  std::vector<char> joint_alive;  // per joint: not destroyed
   std::vector<JointId> broken_events;
   // The last step found no body awake and ran the whole pipeline, and nothing has been built,
   // woken, set or reset since: the next step would give the same contacts and move nothing,
@@ -80,10 +85,20 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
     }
     return {p, f.q};
   }
-  void checkBody(BodyId id) const {
-    if (id.index < 0 || id.index >= int(bodies.size()))
-      throw std::out_of_range("ragdoll_sim: invalid body id");
+  bool validBody(BodyId id) const {
+    return id.index >= 0 && id.index < int(bodies.size()) && bodies[id.index].alive;
   }
+  bool validJoint(JointId id) const {
+    return id.index >= 0 && id.index < int(joints.size()) && joint_alive[id.index];
+  }
+  void checkBody(BodyId id) const {
+    if (!validBody(id)) throw std::out_of_range("ragdoll_sim: invalid body id");
+  }
+  Joint& joint(JointId id) {
+    if (!validJoint(id)) throw std::out_of_range("ragdoll_sim: invalid joint id");
+    return joints[id.index];
+  }
+  const Joint& joint(JointId id) const { return const_cast<Impl*>(this)->joint(id); }
   // Throws std::invalid_argument with jointDefError's message e (if any), naming the bodies.
   template <class Def>
   void checkJointDef(const char* type, const Def& def) const {
@@ -95,7 +110,10 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
                                   bodies[def.body_a.index].def.name + "' and '" +
                                   bodies[def.body_b.index].def.name + "': " + e);
   }
-  bool isDynamic(int b) const { return bodies[b].def.type == BodyType::Dynamic; }
+  // False for a destroyed body too: nothing wakes, moves or collides it.
+  bool isDynamic(int b) const {
+    return bodies[b].def.type == BodyType::Dynamic && bodies[b].alive;
+  }
   void wake(int b) {
     settled = false;  // also for a static body: setBodyState moves it through here
     if (!isDynamic(b)) return;
@@ -128,6 +146,7 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
 
   // collide.cpp
   void collide(double dt);
+  void applyPairMaterial(Contact& c, const ShapeDef& da, const ShapeDef& db) const;
 
   // island_schedule.cpp
   void buildIslands();
@@ -172,6 +191,10 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
 
   // world_create.cpp
   void breakJoints();
+  void removeJoint(int k);
+  // Erases the contacts for which drop(c) holds, waking the bodies of the touching ones.
+  template <class Pred>
+  void removeContacts(Pred&& drop);
   // The joint's type struct takes its own fields from the def (joint_<type>.cpp).
   template <class Def>
   JointId addJoint(const char* type, const Def& def) {
@@ -184,6 +207,7 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
     wake(def.body_b.index);
     if (!def.collide_connected) setCollides(def.body_a.index, def.body_b.index, false);
     joints.push_back(Joint(def));
+    joint_alive.push_back(1);
     return JointId{int32_t(joints.size() - 1)};
   }
 };

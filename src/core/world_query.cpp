@@ -93,7 +93,8 @@ IslandCounters World::islandCounters() const {
   return c;
 }
 
-bool World::isValid(BodyId id) const { return id.index >= 0 && id.index < bodyCount(); }
+bool World::isValid(BodyId id) const { return impl_->validBody(id); }
+bool World::isValid(JointId id) const { return impl_->validJoint(id); }
 
 BodyState World::bodyState(BodyId id) const {
   impl_->checkBody(id);
@@ -127,43 +128,43 @@ Vec3 World::pointVelocity(BodyId id, const Vec3& p) const {
   return m.v + m.w.cross(p - m.x);
 }
 
-JointType World::jointType(JointId id) const { return impl_->joints.at(id.index).type(); }
+JointType World::jointType(JointId id) const { return impl_->joint(id).type(); }
 
 double World::hingeAngle(JointId id) const {
-  const Joint& j = impl_->joints.at(id.index);
+  const Joint& j = impl_->joint(id);
   const HingeJoint* h = j.as<HingeJoint>();
   return h ? h->angle(j, impl_->motions) : 0.0;
 }
 
 std::array<double, 3> World::ballAngles(JointId id) const {
-  const Joint& j = impl_->joints.at(id.index);
+  const Joint& j = impl_->joint(id);
   const BallJoint* b = j.as<BallJoint>();
   return b ? b->eulerAngles(j, impl_->motions) : std::array<double, 3>{0, 0, 0};
 }
 
 std::array<double, 2> World::ballSwingTwist(JointId id) const {
-  const Joint& j = impl_->joints.at(id.index);
+  const Joint& j = impl_->joint(id);
   const BallJoint* b = j.as<BallJoint>();
   return b ? b->swingTwistAngles(j, impl_->motions) : std::array<double, 2>{0, 0};
 }
 
 double World::prismaticPosition(JointId id) const {
-  const Joint& j = impl_->joints.at(id.index);
+  const Joint& j = impl_->joint(id);
   const PrismaticJoint* p = j.as<PrismaticJoint>();
   return p ? p->position(j, impl_->motions) : 0.0;
 }
 
 Vec3 World::jointAnchorError(JointId id) const {
-  const Joint& j = impl_->joints.at(id.index);
+  const Joint& j = impl_->joint(id);
   const auto& m = impl_->motions;
   const Vec3 e = m[j.b].linkPose().apply(j.frame_b.p) - m[j.a].linkPose().apply(j.frame_a.p);
   const PrismaticJoint* p = j.as<PrismaticJoint>();
   return p ? p->offAxis(j, m, e) : e;
 }
 
-double World::jointForce(JointId id) const { return impl_->joints.at(id.index).force; }
-double World::jointTorque(JointId id) const { return impl_->joints.at(id.index).torque; }
-bool World::isJointBroken(JointId id) const { return impl_->joints.at(id.index).broken; }
+double World::jointForce(JointId id) const { return impl_->joint(id).force; }
+double World::jointTorque(JointId id) const { return impl_->joint(id).torque; }
+bool World::isJointBroken(JointId id) const { return impl_->joint(id).broken; }
 
 std::vector<JointId> World::takeBrokenJoints() {
   std::vector<JointId> out;
@@ -172,7 +173,7 @@ std::vector<JointId> World::takeBrokenJoints() {
 }
 
 void World::setJointMotor(JointId id, int axis, const JointMotor& motor) {
-  Joint& j = impl_->joints.at(id.index);
+  Joint& j = impl_->joint(id);
   const std::string e = jointMotorError(motor);
   if (!e.empty())
     throw std::invalid_argument("ragdoll_sim: setJointMotor, axis " + std::to_string(axis) +

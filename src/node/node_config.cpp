@@ -234,11 +234,11 @@ bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* c, std::string* erro
   bool ok = read(pnh, "physics_rate", "a number (Hz)", &c->physics_rate, error) &&
             read(pnh, "real_time_factor", "a number", &c->real_time_factor, error) &&
             read(pnh, "clock_rate", "a number (Hz)", &c->clock_rate, error) &&
-            read(pnh, "position_iterations", "an integer", &c->scene.world.position_iterations, error) &&
+            read(pnh, "position_iterations", "an integer", &c->scene.world.solver.position_iterations, error) &&
             read(pnh, "ragdoll_name", "a string", &c->ragdoll_name, error) &&
             read(pnh, "tf_prefix", "a string", &c->tf_prefix, error) &&
             read(pnh, "publish_rate", "a number (Hz)", &c->publish_rate, error) &&
-            read(pnh, "substeps", "an integer", &c->scene.world.substeps, error) &&
+            read(pnh, "substeps", "an integer", &c->scene.world.solver.substeps, error) &&
             read(pnh, "threads", "an integer", &c->scene.world.threads, error) &&
             read(pnh, "gravity", "a list of 3 numbers (m/s^2)", &gravity, error) &&
             read(pnh, "spawn/x", "a number (m)", &c->spawn.x, error) &&
@@ -260,8 +260,8 @@ bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* c, std::string* erro
             read(pnh, "max_torque", "a number (N*m)", &c->scene.limits.max_torque, error) &&
             read(pnh, "max_lever_arm", "a number (m)", &c->scene.limits.max_lever_arm, error) &&
             read(pnh, "max_catchup", "a number (s)", &c->max_catchup, error) &&
-            read(pnh, "max_linear_speed", "a number (m/s)", &c->scene.world.max_linear_speed, error) &&
-            read(pnh, "max_angular_speed", "a number (rad/s)", &c->scene.world.max_angular_speed, error) &&
+            read(pnh, "max_linear_speed", "a number (m/s)", &c->scene.world.solver.max_linear_speed, error) &&
+            read(pnh, "max_angular_speed", "a number (rad/s)", &c->scene.world.solver.max_angular_speed, error) &&
             read(pnh, "max_steps_per_call", "an integer", &c->max_steps_per_call, error) &&
             read(pnh, "max_position", "a number (m)", &c->max_position, error) &&
             read(pnh, "max_queued_commands", "an integer", &c->scene.max_queued_commands, error) &&

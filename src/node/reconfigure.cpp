@@ -27,8 +27,8 @@ ragdoll_sim::PhysicsConfig Reconfigure::current() const {
   c.gravity_y = d.world.gravity.y();
   c.gravity_z = d.world.gravity.z();
   c.time_step = scene.dt();
-  c.substeps = d.world.substeps;
-  c.position_iterations = d.world.position_iterations;
+  c.substeps = d.world.solver.substeps;
+  c.position_iterations = d.world.solver.position_iterations;
   c.static_friction = d.ragdoll_surface.static_friction;
   c.kinetic_friction = d.ragdoll_surface.kinetic_friction;
   c.restitution = d.ragdoll_surface.restitution;

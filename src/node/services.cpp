@@ -260,8 +260,8 @@ bool Services::onSetState(ragdoll_sim::SetRagdollState::Request& req,
   if (!v.allFinite() || !w.allFinite())
     return refuse(res, "set_ragdoll_state/bad twist",
                   "set_ragdoll_state rejected: the twist is not finite");
-  const double max_v = scene.def().world.max_linear_speed;
-  const double max_w = scene.def().world.max_angular_speed;
+  const double max_v = scene.def().world.solver.max_linear_speed;
+  const double max_w = scene.def().world.solver.max_angular_speed;
   if (v.norm() > max_v || w.norm() > max_w) {
     std::ostringstream m;
     m << "set_ragdoll_state rejected: |linear| = " << v.norm() << " m/s or |angular| = "

@@ -97,7 +97,7 @@ bool SimNode::init(std::string* error) {
            "gravity (%.2f, %.2f, %.2f)%s%s%s%s",
            scene.name(0).c_str(), def.links.size(), def.joints.size(), def.totalMass(),
            prefix.empty() ? "" : ", TF prefix ", prefix.c_str(), at.x(), at.y(), at.z(),
-           config.physics_rate, scene.def().world.substeps,
+           config.physics_rate, scene.def().world.solver.substeps,
            threadsText(scene.world().def().threads).c_str(),  // as the World took it
            config.real_time_factor, ctx_.pacer.asFastAsPossible() ? " (as fast as possible)" : "",
            config.publish_rate, g.x(), g.y(), g.z(), scene.def().ground ? ", ground plane z=0" : "",

@@ -115,8 +115,8 @@ void Scene::setSleep(const SleepDef& sleep) {
 // The one place solver settings reach the World: rebuilt with them, carrying every body's
 // state, broken joint and motor over (every body wakes).
 void Scene::setSolverSettings(int substeps, int position_iterations) {
-  impl_->def.world.substeps = substeps;
-  impl_->def.world.position_iterations = position_iterations;
+  impl_->def.world.solver.substeps = substeps;
+  impl_->def.world.solver.position_iterations = position_iterations;
   std::string e;
   if (impl_->world && !impl_->buildWorld(/*carry_state=*/true, &e))
     impl_->say(SceneMessage::Level::Error, "", "reconfigure: " + e);

@@ -49,7 +49,7 @@ double mechanicalEnergy(const World& world, const Ragdoll& r) {
 DropReport dropTest(const RagdollDef& def, const DropSettings& settings) {
   DropReport rep;
   WorldDef wd;
-  wd.substeps = settings.substeps;
+  wd.solver.substeps = settings.substeps;
   World world(wd);
   BodyDef gd;
   gd.type = BodyType::Static;

@@ -175,8 +175,8 @@ TEST(BodyFaults, SolverOverflowResetsTheIslandOnly) {
 TEST(BodyFaults, HugeImpulseClampedToConfiguredCaps) {
   for (double cap : {100.0, 5.0}) {
     WorldDef def;
-    def.max_linear_speed = cap;
-    def.max_angular_speed = 2.0 * cap;
+    def.solver.max_linear_speed = cap;
+    def.solver.max_angular_speed = 2.0 * cap;
     World w(def);
     const std::vector<BodyId> chain = addChain(w, Vec3(0, 0, 2), {1.0, 1.0, 1.0});
     for (int i = 0; i < 10; ++i) w.step(kDt);
@@ -217,8 +217,8 @@ TEST(BodyFaults, MillionToOneMassRatioStaysFinite) {
     for (BodyId b : all) {
       const BodyState s = w.bodyState(b);
       ASSERT_TRUE(finite(s)) << "step " << i;
-      ASSERT_LE(s.linear_velocity.norm(), w.def().max_linear_speed * (1 + 1e-12));
-      ASSERT_LE(s.angular_velocity.norm(), w.def().max_angular_speed * (1 + 1e-12));
+      ASSERT_LE(s.linear_velocity.norm(), w.def().solver.max_linear_speed * (1 + 1e-12));
+      ASSERT_LE(s.angular_velocity.norm(), w.def().solver.max_angular_speed * (1 + 1e-12));
       max_v = std::max(max_v, s.linear_velocity.norm());
     }
   }

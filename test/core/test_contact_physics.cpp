@@ -130,7 +130,7 @@ TEST(Rolling, SphereAcceleratesAtFiveSeventhsGSinTheta) {
 TEST(FreeFlight, MomentumConservedAndMiddleAxisFlips) {
   WorldDef def;
   def.gravity.setZero();
-  def.max_angular_speed = 1e3;
+  def.solver.max_angular_speed = 1e3;
   World w(def);
   const Vec3 half(0.3, 0.2, 0.05);  // inertia smallest about x, middle about y
   const BodyId b = addBody(w, Geometry::box(half), 3.0, boxInertia(half, 3.0), Transform(),
@@ -189,7 +189,7 @@ TEST(Penetration, PushOutAddsNoEnergy) {
   }
   EXPECT_NEAR(w.comPosition(box).z(), half.z(), 2e-3);
   EXPECT_LT(max_z, half.z() + 1e-3) << "popped out above the rest height";
-  EXPECT_LE(max_up, w.def().max_push_velocity);
+  EXPECT_LE(max_up, w.def().solver.max_push_velocity);
   std::printf("[ pushout  ] 3 cm deep box: rest z %.4f (ideal %.4f), max z %.4f, max up speed %.3f m/s\n",
               w.comPosition(box).z(), half.z(), max_z, max_up);
 }
@@ -205,7 +205,7 @@ TEST(Speculative, SlowApproachStopsAtTheSurface) {
   for (double speed : {0.23, 0.37, 0.71, 1.3}) {
     WorldDef def;
     def.gravity = Vec3::Zero();
-    def.contact_relax_iterations = relax;
+    def.solver.contact_relax_iterations = relax;
     World w(def);
     addGround(w);
     const double r = 0.1;

@@ -142,8 +142,8 @@ TEST(SwingTwist, TwistLimitsHoldAgainstTorque) {
   }
   const double held_lower = p.w.ballSwingTwist(p.joint)[1];
   // semi-implicit Euler over n substeps of h: theta_n = a h^2 n (n + 1) / 2 (0.5 a t^2 = 0.2)
-  const int n = 20 * p.w.def().substeps;
-  const double h = kDt / p.w.def().substeps;
+  const int n = 20 * p.w.def().solver.substeps;
+  const double h = kDt / p.w.def().solver.substeps;
   const double expected_20ms = 0.5 * tau / I * h * h * n * (n + 1);  // limit reached at ~28 ms
   EXPECT_NEAR(twist_20ms, expected_20ms, 0.01 * expected_20ms);
   EXPECT_LT(max_twist - 0.4, 0.01);

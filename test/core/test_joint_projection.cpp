@@ -26,8 +26,8 @@ TEST(JointProjection, SliderWeldAndHingeAxisComeBackWithoutVelocity) {
     for (int kind = 0; kind < 5; ++kind) {
       WorldDef d = zeroG();
       d.sleep.enabled = false;
-      d.joint_hertz = 1.0;
-      if (!on) d.joint_slop = d.angular_slop = 1e9;
+      d.solver.joint_hertz = 1.0;
+      if (!on) d.solver.joint_slop = d.solver.angular_slop = 1e9;
       World w(d);
       const BodyId a = addStatic(w);
       const double upper = 0.1, start = kind < 2 ? 0.04 : 0.2;
@@ -63,7 +63,7 @@ TEST(JointProjection, SliderWeldAndHingeAxisComeBackWithoutVelocity) {
       };
       ASSERT_NEAR(error(), start, 1e-9) << "kind " << kind;
       w.step(kDt);
-      const double slop = kind < 2 ? d.joint_slop : d.angular_slop;
+      const double slop = kind < 2 ? d.solver.joint_slop : d.solver.angular_slop;
       const BodyState st = w.bodyState(b);
       if (on) {
         EXPECT_LT(error(), slop + 0.05 * slop) << "kind " << kind;
@@ -115,9 +115,9 @@ TEST(PositionSweeps, EachProjectionThatMovesABodyLetsTheNextSweepRun) {
     for (const int sweeps : {1, 3}) {
       WorldDef d = zeroG();
       d.sleep.enabled = false;
-      d.joint_hertz = 1.0;
-      d.position_iterations = sweeps;
-      d.anchor_iterations = 0;
+      d.solver.joint_hertz = 1.0;
+      d.solver.position_iterations = sweeps;
+      d.solver.anchor_iterations = 0;
       World w(d);
       const BodyId a = kind == 9 ? addGround(w) : addStatic(w);
       const bool linear = kind <= 1 || kind >= 8;
@@ -195,8 +195,8 @@ TEST(PositionSweeps, EachProjectionThatMovesABodyLetsTheNextSweepRun) {
 TEST(PositionSweeps, AMovedBodyMakesItsOtherJointsLookAgain) {
   WorldDef d = zeroG();
   d.sleep.enabled = false;
-  d.joint_hertz = 1.0;
-  d.anchor_iterations = 0;
+  d.solver.joint_hertz = 1.0;
+  d.solver.anchor_iterations = 0;
   World w(d);
   const BodyId a = addStatic(w);
   const Vec3 start(0.12, 0, 0);
@@ -227,12 +227,12 @@ TEST(PositionSweeps, AMovedBodyMakesItsOtherJointsLookAgain) {
 // Each case: hinge (upper 0), ball with Euler limits (t1 upper 0), ball with a swing cone
 // (0.3) and a twist range (upper 0).
 TEST(LimitProjection, TurnsAViolatedLimitBackWithoutAddingVelocity) {
-  for (const double slop : {WorldDef().angular_slop, 1e9}) {
+  for (const double slop : {SolverSettings().angular_slop, 1e9}) {
     for (int kind = 0; kind < 4; ++kind) {
       WorldDef d = zeroG();
       d.sleep.enabled = false;
-      d.joint_hertz = 1.0;
-      d.angular_slop = slop;
+      d.solver.joint_hertz = 1.0;
+      d.solver.angular_slop = slop;
       World w(d);
       const BodyId a = addStatic(w);
       // B's COM sits on the anchor, so turning it keeps the anchor together.

@@ -12,6 +12,7 @@
 #include "narrowphase.hpp"
 #include "ragdoll_sim/world.hpp"
 #include "scene_util.hpp"
+#include "world_tuning.hpp"
 
 using namespace ragdoll_sim;
 using namespace ragdoll_sim::test;
@@ -215,9 +216,10 @@ TEST(ManifoldCache, SeparatedPairIsKeptOnlyWhileProvablyApart) {
 namespace {
 // A pile of 3 boxes and a lying cylinder settling on the ground for 1.5 s.
 std::vector<Transform> settle(double cache_distance) {
-  WorldDef def;
-  def.manifold_cache_distance = cache_distance;
-  World w(def);
+  World w;
+  WorldTuning tuning;
+  tuning.manifold_cache_distance = cache_distance;
+  WorldInternals::setTuning(w, tuning);
   addGround(w);
   std::vector<BodyId> bodies;
   const Vec3 half(0.2, 0.15, 0.1);

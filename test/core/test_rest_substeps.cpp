@@ -39,7 +39,7 @@ int stepsToSleep(World& w, int max_steps) {
 TEST(RestSubsteps, TakenAfterRestTimeAndLeftOnImpulse) {
   const WorldDef def;
   ASSERT_GT(def.sleep.rest_substeps, 0);
-  ASSERT_LT(def.sleep.rest_substeps, def.substeps);
+  ASSERT_LT(def.sleep.rest_substeps, def.solver.substeps);
   World w(def);
   addGround(w);
   const Vec3 half(0.2, 0.2, 0.1);
@@ -154,7 +154,7 @@ TEST(RestSubsteps, TenBoxStackRestsAndSleepsAsOnFullCount) {
   }
   // The stack settles 0.08 mm lower per contact than on the full count, within the slop.
   EXPECT_LT(moved, 2e-3);
-  EXPECT_LT(deepest, WorldDef().linear_slop);
+  EXPECT_LT(deepest, SolverSettings().linear_slop);
   std::printf("[ rest     ] 10-box stack asleep after %d steps (full count %d), poses within %.2e m, "
               "deepest contact %.2e m\n", slept[1], slept[0], moved, deepest);
 }

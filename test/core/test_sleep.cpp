@@ -14,6 +14,7 @@
 
 #include "ragdoll_sim/world.hpp"
 #include "scene_util.hpp"
+#include "world_tuning.hpp"
 
 using namespace ragdoll_sim;
 using namespace ragdoll_sim::test;
@@ -144,7 +145,7 @@ TEST(Sleeping, StaticBodyMovedBesideSleepersIsCollidedAgain) {
   EXPECT_TRUE(hasContact(w, box, plate));
 }
 
-// Pairs of sleeping shapes are carried over from the last step (WorldDef::carry_sleeping_pairs)
+// Pairs of sleeping shapes are carried over from the last step (WorldTuning::carry_sleeping_pairs)
 // instead of found again: the world must step exactly as one that finds every pair. Four stacks
 // of three boxes go to sleep while a box far away is kicked every 0.3 s (so the world never
 // settles and collides every step). Then, while the stacks sleep: a pair inside stack 3 is
@@ -158,9 +159,10 @@ TEST(Sleeping, CarriedSleepingPairsStepAsIfFoundAgain) {
     BodyId ground, kicked;
     std::vector<BodyId> boxes;  // stack k, level l: boxes[3 k + l]
     explicit Scene(bool carry) {
-      WorldDef def;
-      def.carry_sleeping_pairs = carry;
-      w = std::make_unique<World>(def);
+      w = std::make_unique<World>();
+      WorldTuning tuning;
+      tuning.carry_sleeping_pairs = carry;
+      WorldInternals::setTuning(*w, tuning);
       ground = addGround(*w);
       const Vec3 half(0.2, 0.2, 0.2);
       for (int k = 0; k < 4; ++k)

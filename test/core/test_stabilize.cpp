@@ -42,7 +42,7 @@ RagdollDef chain() {
 double worstAnchorAfterHit(const RagdollDef& def) {
   WorldDef wd;
   wd.gravity.setZero();
-  wd.position_iterations = 0;  // the velocity solver alone: what conditioning is for
+  wd.solver.position_iterations = 0;  // the velocity solver alone: what conditioning is for
   World w(wd);
   const Ragdoll r = spawnRagdoll(w, def, Transform());
   w.applyLinearImpulse(r.bodies[2], Vec3(0, 0, 0.5), w.bodyPose(r.bodies[2]).p);

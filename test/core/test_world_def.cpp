@@ -66,13 +66,13 @@ TEST(WorldDefRanges, DefaultsPass) {
   EXPECT_EQ(worldDefError(WorldDef()), "");
   EXPECT_EQ(sleepDefError(SleepDef()), "");
   WorldDef edge;  // the ends of each range are allowed
-  edge.contact_relax_iterations = edge.joint_relax_iterations = edge.position_iterations = 0;
-  edge.anchor_iterations = 0;
-  edge.position_factor = 1.0;
-  edge.contact_hertz = edge.joint_hertz = 0.0;  // rigid rows
-  edge.contact_damping_ratio = edge.joint_damping_ratio = 0.0;
-  edge.joint_slop = edge.angular_slop = edge.linear_slop = 0.0;
-  edge.speculative_distance = edge.manifold_cache_distance = 0.0;
+  edge.solver.contact_relax_iterations = edge.solver.joint_relax_iterations = edge.solver.position_iterations = 0;
+  edge.solver.anchor_iterations = 0;
+  edge.solver.position_factor = 1.0;
+  edge.solver.contact_hertz = edge.solver.joint_hertz = 0.0;  // rigid rows
+  edge.solver.contact_damping_ratio = edge.solver.joint_damping_ratio = 0.0;
+  edge.solver.joint_slop = edge.solver.angular_slop = edge.solver.linear_slop = 0.0;
+  edge.solver.speculative_distance = 0.0;
   edge.threads = WorldDef::kMaxThreads;
   edge.sleep.rest_substeps = 0;
   EXPECT_EQ(worldDefError(edge), "");
@@ -83,29 +83,28 @@ TEST(WorldDefRanges, DefaultsPass) {
 TEST(WorldDefRanges, EveryFieldOutOfRangeIsNamedAndRefused) {
   const std::vector<BadCase> cases = {
       {"gravity", [](WorldDef& d) { d.gravity.y() = kNaN; }},
-      {"substeps", [](WorldDef& d) { d.substeps = 0; }},
-      {"contact_relax_iterations", [](WorldDef& d) { d.contact_relax_iterations = -1; }},
-      {"joint_relax_iterations", [](WorldDef& d) { d.joint_relax_iterations = -1; }},
-      {"position_iterations", [](WorldDef& d) { d.position_iterations = -1; }},
-      {"anchor_iterations", [](WorldDef& d) { d.anchor_iterations = -2; }},
-      {"position_factor", [](WorldDef& d) { d.position_factor = 1.5; }},
-      {"position_factor", [](WorldDef& d) { d.position_factor = -0.1; }},
-      {"max_position_correction", [](WorldDef& d) { d.max_position_correction = kInf; }},
-      {"joint_slop", [](WorldDef& d) { d.joint_slop = -1e-4; }},
-      {"angular_slop", [](WorldDef& d) { d.angular_slop = kNaN; }},
-      {"max_angular_correction", [](WorldDef& d) { d.max_angular_correction = -0.2; }},
-      {"contact_hertz", [](WorldDef& d) { d.contact_hertz = -360.0; }},
-      {"contact_damping_ratio", [](WorldDef& d) { d.contact_damping_ratio = -1.0; }},
-      {"joint_hertz", [](WorldDef& d) { d.joint_hertz = kNaN; }},
-      {"joint_damping_ratio", [](WorldDef& d) { d.joint_damping_ratio = -2.0; }},
-      {"max_push_velocity", [](WorldDef& d) { d.max_push_velocity = -3.0; }},
-      {"restitution_threshold", [](WorldDef& d) { d.restitution_threshold = kNaN; }},
-      {"static_friction_speed", [](WorldDef& d) { d.static_friction_speed = -0.02; }},
-      {"speculative_distance", [](WorldDef& d) { d.speculative_distance = -0.02; }},
-      {"manifold_cache_distance", [](WorldDef& d) { d.manifold_cache_distance = kNaN; }},
-      {"linear_slop", [](WorldDef& d) { d.linear_slop = -5e-4; }},
-      {"max_linear_speed", [](WorldDef& d) { d.max_linear_speed = 0.0; }},
-      {"max_angular_speed", [](WorldDef& d) { d.max_angular_speed = kInf; }},
+      {"substeps", [](WorldDef& d) { d.solver.substeps = 0; }},
+      {"contact_relax_iterations", [](WorldDef& d) { d.solver.contact_relax_iterations = -1; }},
+      {"joint_relax_iterations", [](WorldDef& d) { d.solver.joint_relax_iterations = -1; }},
+      {"position_iterations", [](WorldDef& d) { d.solver.position_iterations = -1; }},
+      {"anchor_iterations", [](WorldDef& d) { d.solver.anchor_iterations = -2; }},
+      {"position_factor", [](WorldDef& d) { d.solver.position_factor = 1.5; }},
+      {"position_factor", [](WorldDef& d) { d.solver.position_factor = -0.1; }},
+      {"max_position_correction", [](WorldDef& d) { d.solver.max_position_correction = kInf; }},
+      {"joint_slop", [](WorldDef& d) { d.solver.joint_slop = -1e-4; }},
+      {"angular_slop", [](WorldDef& d) { d.solver.angular_slop = kNaN; }},
+      {"max_angular_correction", [](WorldDef& d) { d.solver.max_angular_correction = -0.2; }},
+      {"contact_hertz", [](WorldDef& d) { d.solver.contact_hertz = -360.0; }},
+      {"contact_damping_ratio", [](WorldDef& d) { d.solver.contact_damping_ratio = -1.0; }},
+      {"joint_hertz", [](WorldDef& d) { d.solver.joint_hertz = kNaN; }},
+      {"joint_damping_ratio", [](WorldDef& d) { d.solver.joint_damping_ratio = -2.0; }},
+      {"max_push_velocity", [](WorldDef& d) { d.solver.max_push_velocity = -3.0; }},
+      {"restitution_threshold", [](WorldDef& d) { d.solver.restitution_threshold = kNaN; }},
+      {"static_friction_speed", [](WorldDef& d) { d.solver.static_friction_speed = -0.02; }},
+      {"speculative_distance", [](WorldDef& d) { d.solver.speculative_distance = -0.02; }},
+      {"linear_slop", [](WorldDef& d) { d.solver.linear_slop = -5e-4; }},
+      {"max_linear_speed", [](WorldDef& d) { d.solver.max_linear_speed = 0.0; }},
+      {"max_angular_speed", [](WorldDef& d) { d.solver.max_angular_speed = kInf; }},
       {"threads", [](WorldDef& d) { d.threads = -1; }},
       {"threads", [](WorldDef& d) { d.threads = WorldDef::kMaxThreads + 1; }},
       {"sleep.time", [](WorldDef& d) { d.sleep.time = -0.5; }},

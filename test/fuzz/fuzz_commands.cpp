@@ -103,7 +103,7 @@ bool numbers(const std::vector<std::string>& tokens, size_t first, size_t n, dou
 // jumps kilometres within a step or two, long before its numbers overflow to NaN.
 double maxTravel(int steps) {
   const WorldDef d;
-  return steps * (d.max_linear_speed * kDt + 0.5) + 1.0;
+  return steps * (d.solver.max_linear_speed * kDt + 0.5) + 1.0;
 }
 
 bool allFiniteState(const World& world, const Ragdoll& r) {

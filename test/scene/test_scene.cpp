@@ -216,7 +216,7 @@ TEST(Scene, SettingsChangeBetweenSteps) {
   scene.step();
   EXPECT_EQ(scene.timeNs(), 12000000);
   scene.setSolverSettings(4, 2);
-  EXPECT_EQ(scene.world().def().substeps, 4);
+  EXPECT_EQ(scene.world().def().solver.substeps, 4);
   scene.setMaterials(Material{0.5, 0.4, 0.0, 0.0}, MaterialTable());
   EXPECT_EQ(scene.def().ground_surface.static_friction, 0.5);
   scene.setGravity(Vec3::Zero());

@@ -136,7 +136,7 @@ TEST(RagdollHits, LimbsRestingOnLimitsDoNotJitter) {
 // projection moves bodies without velocity, so friction cannot hold against it; when it also
 // corrected anchor errors of micrometres it traded them with the contact projection every step,
 // and every drop crept 0.83 to 2.2 mm per second (a pinned foot slid, a bent leg slowly
-// folded). WorldDef::joint_slop keeps it off: 0.1-0.3 mm per second in most drops since.
+// folded). SolverSettings::joint_slop keeps it off: 0.1-0.3 mm per second in most drops since.
 // The median, not the worst drop: the bundled ragdoll has no joint damping, so a limb that
 // lands hanging free swings as an undamped pendulum (a foot at 1.7 rad/s, period 1.1 s, in
 // one drop) and drags its resting neighbour along by up to 0.9 mm/s, and a drop that lands
@@ -183,7 +183,7 @@ TEST(RagdollHits, TorqueAtTheCommandCapOnAFootStaysBounded) {
   const BodyId foot = r.bodies.at(static_cast<size_t>(def.findLink("foot_r")));
   std::vector<Vec3> start;
   for (BodyId b : r.bodies) start.push_back(w.bodyPose(b).p);
-  const double dt = 1e-3, reach_per_step = w.def().max_linear_speed * dt + 0.1;
+  const double dt = 1e-3, reach_per_step = w.def().solver.max_linear_speed * dt + 0.1;
   double farthest = 0.0;
   for (int i = 1; i <= 200; ++i) {
     w.applyTorque(foot, Vec3(0, 0, 1e5));
@@ -254,7 +254,7 @@ TEST(RagdollHits, PileKeepsAnchorsWithinTheSlop) {
   mat.static_friction = mat.kinetic_friction = 0.8;
   const auto pile = [&](double yaw, int anchor_iterations) {
     WorldDef wd;
-    wd.anchor_iterations = anchor_iterations;
+    wd.solver.anchor_iterations = anchor_iterations;
     World w(wd);
     addGround(w, mat);
     std::vector<Ragdoll> rs;
