@@ -162,11 +162,11 @@ SpawnResult Scene::addRagdoll(SpawnDef spawn, std::string* error) {
   s.ragdolls.push_back(std::move(r));
   if (!s.world) return SpawnResult::Added;  // start() spawns it
   RagdollInstance& added = s.ragdolls.back();
+  const int first_new = s.world->bodyCount();  // ids append, so what it created is above this
   if (!s.spawnInWorld(added, error)) {
-    // The bodies it did create stay in the World: rebuild it without them.
+    for (int b = first_new; b < s.world->bodyCount(); ++b)
+      if (s.world->isValid(BodyId{b})) s.world->destroyBody(BodyId{b});
     s.ragdolls.pop_back();
-    std::string ignored;
-    s.buildWorld(/*carry_state=*/true, &ignored);
     return SpawnResult::WorldRefused;
   }
   s.rebindControllers();  // the vector may have moved the instances
@@ -181,7 +181,8 @@ bool Scene::start(std::string* error) {
   return true;
 }
 
-// The one place a ragdoll leaves the World: rebuilt from the others, carrying their state.
+// Its bodies (and with them its joints and contacts) leave the World; the other ragdolls keep
+// their warm starts and their sleep.
 bool Scene::removeRagdoll(const std::string& name, std::string* error) {
   Impl& s = *impl_;
   const int k = name.empty() ? -1 : s.find(name);
@@ -189,11 +190,13 @@ bool Scene::removeRagdoll(const std::string& name, std::string* error) {
     *error = "no ragdoll named '" + name + "'";
     return false;
   }
+  RagdollInstance& r = s.ragdolls[static_cast<size_t>(k)];
+  r.balance.reset();
+  if (s.world)
+    for (BodyId b : r.ragdoll.bodies)
+      if (s.world->isValid(b)) s.world->destroyBody(b);
   s.ragdolls.erase(s.ragdolls.begin() + k);
-  if (!s.buildWorld(/*carry_state=*/true, error)) {
-    *error = "rebuilding the world failed: " + *error;
-    return false;
-  }
+  s.rebindControllers();  // the erase moved the instances behind it
   return true;
 }
 

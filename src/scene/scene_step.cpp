@@ -112,25 +112,42 @@ void Scene::setSleep(const SleepDef& sleep) {
   if (impl_->world) impl_->world->setSleep(sleep);
 }
 
-// The one place solver settings reach the World: rebuilt with them, carrying every body's
-// state, broken joint and motor over (every body wakes).
+// Changed in place: nothing wakes and warm starts are rescaled to a new substep.
 void Scene::setSolverSettings(int substeps, int position_iterations) {
-  impl_->def.world.solver.substeps = substeps;
-  impl_->def.world.solver.position_iterations = position_iterations;
-  std::string e;
-  if (impl_->world && !impl_->buildWorld(/*carry_state=*/true, &e))
-    impl_->say(SceneMessage::Level::Error, "", "reconfigure: " + e);
+  SolverSettings solver = impl_->def.world.solver;
+  solver.substeps = substeps;
+  solver.position_iterations = position_iterations;
+  try {  // the node checks the ranges first: a guard
+    if (impl_->world) impl_->world->setSolverSettings(solver);
+    impl_->def.world.solver = solver;
+  } catch (const std::invalid_argument& e) {
+    impl_->say(SceneMessage::Level::Error, "", std::string("reconfigure: ") + e.what());
+  }
 }
 
-// The one place materials reach the World: rebuilt with them, as above.
+// Every ragdoll shape and the ground get `surface` in place; touching pairs take the new
+// coefficients at once and nothing wakes.
 void Scene::setMaterials(const Material& surface, const MaterialTable& table) {
-  impl_->def.material = surface;
-  impl_->def.ragdoll_surface = surface;
-  impl_->def.ground_surface = surface;
-  impl_->def.world.materials = table;
-  std::string e;
-  if (impl_->world && !impl_->buildWorld(/*carry_state=*/true, &e))
-    impl_->say(SceneMessage::Level::Error, "", "reconfigure: " + e);
+  Impl& s = *impl_;
+  try {  // the node checks the ranges first: a guard
+    if (s.world) {
+      s.world->setMaterials(table);
+      std::vector<BodyId> bodies;
+      if (s.ground.valid()) bodies.push_back(s.ground);
+      for (const RagdollInstance& r : s.ragdolls)
+        bodies.insert(bodies.end(), r.ragdoll.bodies.begin(), r.ragdoll.bodies.end());
+      for (BodyId b : bodies)
+        for (int i = 0; i < static_cast<int>(s.world->bodyShapes(b).size()); ++i)
+          s.world->setShapeMaterial(b, i, surface);
+    }
+  } catch (const std::invalid_argument& e) {
+    s.say(SceneMessage::Level::Error, "", std::string("reconfigure: ") + e.what());
+    return;
+  }
+  s.def.material = surface;
+  s.def.ragdoll_surface = surface;
+  s.def.ground_surface = surface;
+  s.def.world.materials = table;
 }
 
 int64_t Scene::timeNs() const { return impl_->sim_ns; }

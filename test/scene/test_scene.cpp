@@ -172,6 +172,34 @@ TEST(Scene, RemoveKeepsTheOthersAndDropsTheirCommands) {
   EXPECT_TRUE(rec.saw("command/deleted ragdoll"));
 }
 
+// Removing a ragdoll, new solver settings and new friction change the World in place: a
+// ragdoll asleep on the ground stays asleep with the same World ids, which a rebuilt World
+// (every body created anew and awake) could not give.
+TEST(Scene, RemovalAndSettingsDoNotRebuildTheWorld) {
+  Scene scene{SceneDef()};
+  start(scene, {stick("a", 0.0, 0.3), stick("b", 3.0, 0.3)});
+  const World* world = &scene.world();
+  for (int i = 0; i < 5000 && world->awakeBodyCount() > 0; ++i) scene.step();
+  ASSERT_EQ(world->awakeBodyCount(), 0) << "the sticks never slept";
+  const BodyId a0 = scene.bodies(0).bodies[0];
+  const Transform pose = world->bodyPose(a0);
+  std::string e;
+  ASSERT_TRUE(scene.removeRagdoll("b", &e)) << e;
+  scene.setSolverSettings(4, 2);
+  scene.setMaterials(Material{0.9, 0.7, 0.1, 0.05}, MaterialTable());
+  scene.step();
+  EXPECT_EQ(scene.world().awakeBodyCount(), 0) << "removal or settings woke the sleeping ragdoll";
+  ASSERT_EQ(&scene.world(), world) << "a new World";
+  EXPECT_EQ(scene.bodies(0).bodies[0], a0);
+  EXPECT_EQ(world->def().solver.substeps, 4);
+  EXPECT_EQ(world->bodyShapes(a0)[0].material.static_friction, 0.9);
+  EXPECT_EQ(world->bodyPose(a0).p, pose.p);
+  // A spawn wakes only its own bodies.
+  ASSERT_EQ(scene.addRagdoll(stick("c", -3.0), &e), SpawnResult::Added) << e;
+  scene.step();
+  EXPECT_EQ(world->awakeBodyCount(), int(scene.bodies(1).bodies.size()));
+}
+
 TEST(Scene, ResetGoesBackToTheSpawnPose) {
   Scene scene{SceneDef()};
   start(scene, {stick("a", 0.0)});
