@@ -1,9 +1,9 @@
 // libFuzzer target: arbitrary bytes decoded into impulse / force commands (and ragdoll names)
 // for the node's ROS-free validation (src/scene/commands.*), on the bundled ragdoll standing on
-// a ground plane. The verdict of checkImpulse / checkForce must match the README's rules
-// computed here independently; an accepted command must respect the caps after conversion and,
-// applied to the world and stepped as the node does (SimNode::stepOnce), keep the state finite
-// and the bodies within reach of the speed cap.
+// a ground plane. The verdict of checkImpulse / checkForce must match the "Command rules" of
+// docs/interface.md computed here independently; an accepted command must respect the caps
+// after conversion and, applied to the world and stepped as the Scene does (Scene::step), keep
+// the state finite and the bodies within reach of the speed cap.
 //
 // Input: text lines of whitespace-separated tokens, so that a crash artifact reads as text:
 //   impulse <link> <frame> px py pz  jx jy jz
@@ -116,8 +116,8 @@ bool allFiniteState(const World& world, const Ragdoll& r) {
   return true;
 }
 
-// The README's rules, written out again: link known (not a dummy), frame known, every number
-// finite, magnitudes within the caps, point within the lever arm.
+// docs/interface.md's "Command rules", written out again: link known (not a dummy), frame
+// known, every number finite, magnitudes within the caps, point within the lever arm.
 bool expectedOk(const std::string& link, const std::string& frame, const Vec3& point,
                 const std::vector<std::pair<Vec3, double>>& capped, double duration,
                 const LinkTable& links, const CommandLimits& lim, const World& world,
@@ -159,7 +159,7 @@ struct Sim {
     return world.bodyPose(ragdoll.bodies[static_cast<size_t>(link)]);
   }
 
-  // As SimNode::stepOnce: active forces at their link points, then the step, then the count.
+  // As Scene::step: active forces at their link points, then the step, then the count.
   // Only once a command was accepted: a ragdoll falling untouched is fuzz_urdf's drop, and
   // steps are what makes an input slow.
   void step(int n) {

@@ -1,7 +1,8 @@
 // rostest: rosbag record / replay gives the same poses at the same sim times. Commands are
 // stamped with the sim time at which they take effect, so the node applies each at the start
-// of that step whenever the message arrives (README "Deterministic replay"). Run 1: commands to
-// /rec/ragdoll_sim, recorded by `rosbag record`; both nodes are paused and stepped by the test.
+// of that step whenever the message arrives (docs/interface.md "Deterministic replay").
+// Run 1: commands to /rec/ragdoll_sim, recorded by `rosbag record`; both nodes are paused and
+// stepped by the test.
 // Run 2: `rosbag play` of that bag into the fresh /play/ragdoll_sim. Every link pose of both is
 // compared at the same sim times.
 #include <gtest/gtest.h>
