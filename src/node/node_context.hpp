@@ -29,7 +29,7 @@ struct NodeContext {
   std::unique_ptr<Visualizer> visualizer;     // ~markers: shapes, contacts, arrows
   std::unique_ptr<Interaction> interaction;   // /clicked_point pokes, ~drag marker
   std::unique_ptr<Publishers> publishers;
-  Pacer pacer;
+  scene::Pacer pacer;
   bool paused = false;
   bool pacing_dirty = false;     // restart the pacer at the next loop iteration
 

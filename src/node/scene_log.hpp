@@ -26,7 +26,7 @@ class SceneLog : public SceneListener {
                     double sim_time, double duration) override;
 
  private:
-  WarnThrottle throttle_{1.0};
+  scene::WarnThrottle throttle_{1.0};
   Visualizer* visualizer_ = nullptr;
 };
 

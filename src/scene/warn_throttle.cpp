@@ -1,7 +1,7 @@
 #include "warn_throttle.hpp"
 
 namespace ragdoll_sim {
-namespace node {
+namespace scene {
 
 bool WarnThrottle::allow(const std::string& kind, double now_s, uint64_t* suppressed) {
   auto [it, fresh] = kinds_.try_emplace(kind);
@@ -16,5 +16,5 @@ bool WarnThrottle::allow(const std::string& kind, double now_s, uint64_t* suppre
   return true;
 }
 
-}  // namespace node
+}  // namespace scene
 }  // namespace ragdoll_sim

@@ -1,9 +1,9 @@
-// Unit tests of the per-kind warning throttle (src/node/warn_throttle.*).
+// Unit tests of the per-kind warning throttle (src/scene/warn_throttle.*).
 #include <gtest/gtest.h>
 
 #include "warn_throttle.hpp"
 
-using namespace ragdoll_sim::node;
+using namespace ragdoll_sim::scene;
 
 TEST(WarnThrottle, EachKindOncePerPeriodWithTheHeldBackCount) {
   WarnThrottle t(1.0);

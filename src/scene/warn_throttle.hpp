@@ -9,7 +9,7 @@
 #include <unordered_map>
 
 namespace ragdoll_sim {
-namespace node {
+namespace scene {
 
 class WarnThrottle {
  public:
@@ -29,5 +29,5 @@ class WarnThrottle {
   std::unordered_map<std::string, Entry> kinds_;
 };
 
-}  // namespace node
+}  // namespace scene
 }  // namespace ragdoll_sim

@@ -6,7 +6,7 @@
 #include <cstdint>
 
 namespace ragdoll_sim {
-namespace node {
+namespace scene {
 
 class Pacer {
  public:
@@ -41,5 +41,5 @@ class Pacer {
 constexpr double kMinRealTimeFactor = 0.01;
 const char* realTimeFactorError(double rtf);
 
-}  // namespace node
+}  // namespace scene
 }  // namespace ragdoll_sim

@@ -1,4 +1,4 @@
-// Unit tests of the wall-clock pacing at a real-time factor (src/node/pacing.*), on made-up
+// Unit tests of the wall-clock pacing at a real-time factor (src/scene/pacing.*), on made-up
 // time points (no real clock).
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 
 #include "pacing.hpp"
 
-using namespace ragdoll_sim::node;
+using namespace ragdoll_sim::scene;
 using Clock = Pacer::Clock;
 using std::chrono::milliseconds;
 

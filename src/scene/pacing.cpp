@@ -3,7 +3,7 @@
 #include <cmath>
 
 namespace ragdoll_sim {
-namespace node {
+namespace scene {
 
 void Pacer::configure(int64_t dt_ns, double rtf, int max_catchup_steps) {
   period_ns_ = (rtf > 0.0 && std::isfinite(rtf)) ? static_cast<double>(dt_ns) / rtf : 0.0;
@@ -44,5 +44,5 @@ const char* realTimeFactorError(double rtf) {
   return "";
 }
 
-}  // namespace node
+}  // namespace scene
 }  // namespace ragdoll_sim
