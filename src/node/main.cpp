@@ -1,5 +1,6 @@
 // ragdoll_sim_node: loads a URDF ragdoll, simulates it in real time, publishes TF / markers /
-// joint_states and takes impulse / force commands. See README.md.
+// joint_states and takes impulse / force commands. Its topics, services and parameters:
+// docs/interface.md.
 #include <ros/ros.h>
 
 #include "sim_node.hpp"

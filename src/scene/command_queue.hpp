@@ -3,11 +3,9 @@
 // next loop iteration, so the subscriber callbacks stay short under load. It is bounded:
 // beyond `capacity` waiting commands a push is refused and counted (dropped()).
 //
-// Why: a command applied whenever its message happens to arrive lands on a step that depends on
-// wall-clock timing, so a recorded run could not be replayed step for step. A command whose
-// header stamp lies in the future is queued here and applied at the start of the first physics
-// step that begins at or after that sim time, so the same commands give the same steps in
-// every run (README: "Deterministic replay").
+// A command whose header stamp lies in the future is applied at the start of the first physics
+// step that begins at or after that sim time, so that a recorded run replays step for step
+// whatever the wall-clock timing (docs/interface.md, "Deterministic replay").
 #pragma once
 
 #include <cstddef>

@@ -1,4 +1,4 @@
-// Joint settings and joint targets of the node, ROS-free (unit-tested in test/node):
+// Joint settings and joint targets of the node, ROS-free (unit-tested in test/scene):
 //   - AxisTable: every joint angle of a RagdollDef by the name joint_states gives it (a hinge's
 //     URDF name; a ball chain's three source revolute joints; a 2-joint chain's locked third
 //     axis "<ball name>_2"), with its limits;
