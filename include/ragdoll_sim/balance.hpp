@@ -1,7 +1,7 @@
-// Active ragdoll: joint motors hold a pose (the rest pose unless targets are set) and a
-// balance law on the ankles keeps the body over its feet, the seed's inverted-pendulum idea:
-// the body is a pendulum standing on the ankles, so each ankle's target angle leans it back
-// towards the support with a PD law on the centre of mass,
+// Active ragdoll: joint motors hold a pose (the rest pose unless targets are set) and a balance law
+// on the ankles keeps the body over its feet: the body is an inverted pendulum standing on the
+// ankles, so each ankle's target angle leans it back towards the support with a PD law on the
+// centre of mass,
 //   target = kp (c - s) . f + kd v_c . f,
 // c, v_c: centre of mass and its velocity, s: centre of the feet, f: the ankle's forward
 // direction (its hinge axis x up; the sign follows the URDF axis).

@@ -19,10 +19,10 @@ struct JointId {
 
 enum class JointType : uint8_t { Ball, Hinge, Fixed, Prismatic };
 
-// Optional elasticity of a joint's anchor (seed section 4.3): with stiffness > 0 the anchors
-// are held by a Hooke spring F = -k x - c v instead of rigidly. The joint breaks (and stays
-// broken: the bodies fly apart with their momentum) once the force in it passes break_force:
-// k |x| for a spring, the constraint force for a rigid anchor.
+// Optional elasticity of a joint's anchor: with stiffness > 0 the anchors are held by a Hooke
+// spring F = -k x - c v instead of rigidly. The joint breaks (and stays broken: the bodies fly
+// apart with their momentum) once the force in it passes break_force: k |x| for a spring, the
+// constraint force for a rigid anchor.
 struct JointSpring {
   double stiffness = 0.0;  // N/m, 0 = rigid
   double damping = 0.0;    // N s/m

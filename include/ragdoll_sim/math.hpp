@@ -12,9 +12,8 @@ using Quat = Eigen::Quaterniond;
 
 // m: the World keeps centres of mass on a grid of 2^-32 m within this distance of the origin
 // (src/core/body.hpp, snapPosition). A shape size or offset, or a joint frame offset, beyond it
-// cannot belong to such a world: geometryError and poseError refuse them (a URDF box of 1e100 m
-// loaded, and the drop check ran it from z = 5e99 m; with a joint origin of 1e300 m as well, the
-// anchor error came out infinite).
+// cannot belong to such a world: geometryError and poseError refuse them, since the poses and
+// anchor errors computed from it would overflow.
 constexpr double kWorldRange = 1048576.0;  // 2^20 m
 
 // Rigid transform: x_parent = q * x_child + p.

@@ -1,8 +1,8 @@
 // URDF -> RagdollDef (urdfdom, with a tinyxml2 pre-pass for malformed files and extensions).
 // Chains of revolute joints with coincident origins through massless links become ball joints;
 // fixed joints are lumped into the parent link; meshes become convex hulls when the file
-// resolves, else a primitive fitted to the visual geometry or the inertia. See README.md
-// "Loading your own URDF".
+// resolves, else a primitive fitted to the visual geometry or the inertia. See docs/urdf.md
+// for what maps to what.
 #pragma once
 
 #include <string>

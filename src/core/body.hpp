@@ -20,9 +20,8 @@ struct Body {
   std::vector<ShapeDef> shapes;
   std::vector<int> shape_ids;  // world shape indices
   // Bodies of higher index that this one never collides with (World's setCollides; a pair is
-  // listed once, under its lower body), sorted: a ragdoll link's few neighbours. The
-  // broadphase's filter scans it for every overlapping pair; a hash set of all such pairs cost
-  // a cache miss per lookup.
+  // listed once, under its lower body), sorted: a ragdoll link's few neighbours, so the
+  // broadphase's filter scans a short list instead of missing the cache in a hash set.
   std::vector<int> no_collide;
   bool alive = true;  // false once destroyed: the slot stays so that other ids keep their index
 };
@@ -33,9 +32,8 @@ struct Body {
 // remainder is carried into the next step's, so a steady motion does not drift), hence
 // x_B - x_A, and x - o for any other centre o, do not depend on where the pair is: the
 // solver and the narrowphase work from such differences (joint centres, contact origins),
-// and a scene moved by any grid vector (1.5 m, say) gives the same motion bit for bit. With
-// positions rounded each at its own magnitude, 32 copies of one ragdoll on a 1.5 m grid (the
-// peers' scene b) went apart within 1 s: round-off decided how each one landed.
+// and a scene moved by any grid vector gives the same motion bit for bit, so copies of one
+// ragdoll placed apart behave alike instead of diverging by round-off.
 inline double snapPosition(double x) {
   constexpr double kGrid = 4294967296.0;  // 2^32 steps per metre
   return std::abs(x) < kWorldRange ? std::nearbyint(x * kGrid) / kGrid : x;
@@ -72,8 +70,8 @@ inline Vec3 centerOffset(const BodyMotion& A, const BodyMotion& B) {
 }
 
 // One cache line holds what every constraint row reads and writes (v, w, inverse mass): a
-// row touches one line per body, and a body at the cut of a split island moves one line
-// between the cores per sweep (scene c: +2 %).
+// row touches one line per body, and a body at the cut of a split island moves only one line
+// between the cores per sweep.
 struct alignas(64) SolverBody {
   Vec3 v = Vec3::Zero();
   Vec3 w = Vec3::Zero();

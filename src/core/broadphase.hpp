@@ -4,14 +4,13 @@
 //   sweep and prune on one axis (fewer than kGridMin bounded shapes): the axis the box centres
 //     spread most along; the proxies' order is kept between steps and re-sorted by insertion
 //     sort, near linear when bodies move little per step. Its candidates grow with the length
-//     of a row of bodies along the axis: for 64 ragdolls on a grid it was 6.6 % of a
-//     single-thread step, for 256 ragdolls 10 %.
+//     of a row of bodies along the axis, so it scales poorly to many spread-out ragdolls.
 //   uniform hash grid (from kGridMin shapes), rebuilt every step: cell side twice the mean
 //     largest box side; each box goes into every cell it overlaps, and a pair is reported only
 //     in the cell that holds the low corner of its overlap ((max lo_a, lo_b) per axis: inside
 //     both boxes, so every overlapping pair is found, and once). Its work grows with the
-//     bodies and their neighbours only (64 ragdolls: 2.7 %, 256: 3 %), but a dense cluster
-//     fills cells (scene c's pile of 8: 5 % against 2.3 % for the sweep), hence the switch.
+//     bodies and their neighbours only, but a dense cluster fills cells and makes it slower
+//     than the sweep, hence the switch by shape count.
 //     Boxes longer than kMaxSpan cells (a pit's walls) or not finite are tested against every
 //     box instead.
 #pragma once
@@ -36,8 +35,8 @@ class Broadphase {
  public:
   // accept(i, j), i < j: whether an overlapping pair is kept (the world drops the pairs it
   // never collides before they are stored); it may be called from several threads at once.
-  // A reference to the caller's callable, valid for the one findPairs call: one indirect call
-  // per overlapping pair (std::function tested for emptiness and went through its invoker).
+  // A reference to the caller's callable, valid for the one findPairs call, so that each
+  // overlapping pair costs one indirect call and no std::function overhead.
   class Filter {
    public:
     Filter(std::nullptr_t = nullptr) {}
@@ -70,8 +69,8 @@ class Broadphase {
                  int threads = 1, const std::vector<char>* frozen = nullptr);
 
   static constexpr int kGridMin = 768;  // bounded shapes from which the grid is used
-  // Bounded shapes from which the sweep is split. Scene c's pile (120 shapes, 2 threads):
-  // the broadphase took 13.9 us of a ~255 us step serial, 9.9-10.7 us split (it was 128).
+  // Bounded shapes from which the sweep is split over threads; below it the fork costs more
+  // than the pair loop it would share.
   static constexpr int kParallelMin = 64;
 
  private:

@@ -13,8 +13,8 @@
 //   push-out velocity back. Penetration is thus corrected by impulses (a soft Baumgarte push
 //   whose velocity is removed again: the effect of split impulses, without a second set of
 //   velocities), so the correction splits between the bodies by their inverse masses and
-//   inertias and adds no kinetic energy: two boxes created 2 cm apart-in-overlap in free
-//   space separate and stop (KE 1.5e-8 J after 4 relax sweeps; 6.8e-3 J with one sweep).
+//   inertias and adds no kinetic energy: two boxes created overlapping in free space separate
+//   and stop.
 // Friction: two tangent rows, impulse clamped to the Coulomb disc |lambda_t| <= mu lambda_n,
 //   mu = static coefficient when the pair was sliding slower than static_friction_speed at the
 //   start of the step, kinetic otherwise.
@@ -53,7 +53,7 @@ ContactRow makeRow(const SolverBody& A, const SolverBody& B, const Vec3& rA, con
 }
 // The velocities of a manifold's two bodies, held in locals through its rows and written back
 // once, and only for a movable() body: static bodies are shared by all islands, and writing the
-// ground from both threads on every row was what kept two threads from scaling.
+// ground from both threads on every row would make the cores fight over its cache line.
 // kLiveA = false: A is an identity body (static or asleep: v = w = 0, inverse mass 0); its
 // terms are dropped instead of multiplied by zero, which gives the same numbers with half the
 // row work. Most contacts of a ragdoll are with the ground, which is side A when it was created
@@ -122,7 +122,7 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
                             int begin, int end) {
   const auto& motions = *ctx.motions;
   const auto& bodies = *ctx.bodies;
-  const SolverSettings& def = *ctx.def;
+  const SolverSettings& settings = *ctx.settings;
   for (int slot = begin; slot < end; ++slot) {
     const int ci = active_[slot];
     const Contact& c = contacts[ci];
@@ -165,7 +165,8 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
         p.tangent_impulse[k] = scale * c.friction_impulse[i].dot(cc.tangent[k]);
       }
     }
-    cc.friction = max_slip < def.static_friction_speed ? c.static_friction : c.kinetic_friction;
+    cc.friction =
+        max_slip < settings.static_friction_speed ? c.static_friction : c.kinetic_friction;
     cc.rolling = c.rolling;
     cc.rolling_impulse[0] = cc.rolling_impulse[1] = 0.0;
     if (cc.rolling > 0.0) {
@@ -197,8 +198,8 @@ bool noImpulse(const ContactConstraint& cc) {
 // A manifold is idle in a sweep when it carries no impulse and every point is apart (s > 0)
 // and would stay apart at the current velocities through the substep (vn + s / h >= 0): each
 // normal row then clamps to 0, so friction's limit is 0 too, and the sweep changes nothing.
-// Most manifolds of a pile are such speculative ones (scene c: 62 % of the constraint solves,
-// b: 25 %), and this test costs one row velocity per point instead of three rows and stores.
+// Most manifolds of a pile are such speculative ones, and this test costs one row velocity per
+// point instead of three rows and stores.
 template <bool kLiveA>
 bool idleIn(const ContactConstraint& cc, const PairVelocity<kLiveA>& u, double inv_h) {
   for (int i = 0; i < cc.count; ++i) {
@@ -228,7 +229,7 @@ void warmStartConstraint(ContactConstraint& cc, SolverBody& A, SolverBody& B,
 template <bool kLiveA>
 void solveConstraint(ContactConstraint& cc, SolverBody& A, SolverBody& B, const StepContext& ctx,
                      bool use_bias, bool positions_moved) {
-  const SolverSettings& def = *ctx.def;
+  const SolverSettings& settings = *ctx.settings;
   const Softness& soft = ctx.contact_softness;
   if (positions_moved) updateSeparations(A, B, cc);
   PairVelocity<kLiveA> u(A, B);
@@ -240,7 +241,8 @@ void solveConstraint(ContactConstraint& cc, SolverBody& A, SolverBody& B, const 
     if (s > 0.0) {
       bias = s * ctx.inv_h;
     } else if (use_bias) {
-      bias = std::max(soft.bias_rate * std::min(s + def.linear_slop, 0.0), -def.max_push_velocity);
+      bias = std::max(soft.bias_rate * std::min(s + settings.linear_slop, 0.0),
+                      -settings.max_push_velocity);
       mass_scale = soft.mass_scale;
       impulse_scale = soft.impulse_scale;
     }
@@ -312,7 +314,7 @@ void ContactSolver::solve(const StepContext& ctx, bool use_bias, int begin, int 
 
 bool ContactSolver::project(const StepContext& ctx, int begin, int end, int sweep) {
   auto& bodies = *ctx.bodies;
-  const SolverSettings& def = *ctx.def;
+  const SolverSettings& settings = *ctx.settings;
   bool moved = false;
   for (int k = begin; k < end; ++k) {
     ContactConstraint& cc = constraints_[k];
@@ -322,8 +324,8 @@ bool ContactSolver::project(const StepContext& ctx, int begin, int end, int swee
       const ContactConstraintPoint& p = cc.points[i];
       const Vec3 rA = A.dq * p.rA, rB = B.dq * p.rB;
       const double s = (B.dp - A.dp + rB - rA).dot(cc.normal) + p.base_separation;
-      const double C = std::max(def.position_factor * std::min(s + def.linear_slop, 0.0),
-                                -def.max_position_correction);
+      const double C = std::max(settings.position_factor * std::min(s + settings.linear_slop, 0.0),
+                                -settings.max_position_correction);
       if (C < 0.0) {
         applyPairPositionImpulse(A, B, (-p.normal_row.mass * C) * cc.normal, rA, rB);
         markMoved(sweep, cc.moved_sweep, A, B);
@@ -336,7 +338,7 @@ bool ContactSolver::project(const StepContext& ctx, int begin, int end, int swee
 
 void ContactSolver::applyRestitution(const StepContext& ctx, int begin, int end) {
   auto& bodies = *ctx.bodies;
-  const double threshold = ctx.def->restitution_threshold;
+  const double threshold = ctx.settings->restitution_threshold;
   for (int k = begin; k < end; ++k) {
     ContactConstraint& cc = constraints_[k];
     if (cc.restitution == 0.0) continue;

@@ -27,8 +27,8 @@ Vec3 ConvexCore::support(const Vec3& d) const {
       for (int i = 0; i < 3; ++i) s[i] = l[i] >= 0 ? g->half_extents[i] : -g->half_extents[i];
       break;
     case ShapeType::Cylinder: {
-      // sqrt, not hypot: l is a direction (no overflow), and hypot's care costs ~5 % of a
-      // pile's step (perf, scene c)
+      // sqrt, not hypot: l is a direction (no overflow), and hypot's care is slow on this hot
+      // path.
       const double rho = std::sqrt(l.x() * l.x() + l.y() * l.y());
       if (rho > 1e-12) s.head<2>() = g->radius / rho * l.head<2>();
       s.z() = l.z() >= 0 ? g->half_height : -g->half_height;
@@ -276,8 +276,7 @@ CoreDistance epa(const ConvexCore& A, const ConvexCore& B, SV* s, int n) {
 CoreDistance coreDistance(const ConvexCore& A, const ConvexCore& B, const Vec3* guess,
                           double far) {
   // The point of A - B nearest the origin is its support along the normal (A to B); without a
-  // guess, the centres' offset starts on the far side (ragdoll piles: ~2.5 iterations more of
-  // ~10 per call).
+  // guess, the centres' offset starts on the far side and costs extra iterations.
   Vec3 d = guess ? *guess : Vec3(A.x.p - B.x.p);
   if (d.squaredNorm() < 1e-24) d = Vec3::UnitX();
   SV s[4] = {supportM(A, B, d)};

@@ -91,10 +91,10 @@ void World::Impl::partitionIslands() {
   assignThreadRuns();
 }
 
-// Each thread takes a run of consecutive islands (in body order) of about equal work, the same
-// run step after step while the islands last: its bodies and constraints stay in that core's
-// cache (handing out islands dynamically moved them between the cores). A thread done with its
-// run takes what is left of the others' from their back (run_queue.hpp).
+// Each thread takes a run of consecutive islands (in body order) of about equal work, the same run
+// step after step while the islands last: its bodies and constraints stay in that core's cache
+// (handing out islands dynamically would move them between the cores). A thread done with its run
+// takes what is left of the others' from their back (run_queue.hpp).
 void World::Impl::assignThreadRuns() {
   const int count = int(island_ranges.size());
   const int threads = threadCount();
@@ -118,14 +118,14 @@ void World::Impl::assignThreadRuns() {
   }
 }
 
-// With a split island, the whole islands go along with its halves instead of into runs: each,
-// in order, to the half with the least work so far (its bodies, joints and contacts plus its
-// boundary group's). The threads wait for each other at every boundary sweep, and the thread
-// of the lighter half now solves, e.g., a ragdoll that lies apart in that time, instead of after the split island
-// while the other thread idles. An attached island goes through the same substep sequence as
-// alone, in lockstep with the half, so the result does not change. With more than two threads
-// (a split island takes two) an island only fills a lighter half up to the other's work: the
-// runs spread the rest over all threads.
+// With a split island, the whole islands go along with its halves instead of into runs: each, in
+// order, to the half with the least work so far (its bodies, joints and contacts plus its boundary
+// group's). The threads wait for each other at every boundary sweep, so the thread of the lighter
+// half solves, e.g., a ragdoll that lies apart in that time instead of after the split island while
+// the other thread idles. An attached island goes through the same substep sequence as alone, in
+// lockstep with the half, so the result does not change. With more than two threads (a split island
+// takes two) an island only fills a lighter half up to the other's work: the runs spread the rest
+// over all threads.
 void World::Impl::attachToSplitHalves() {
   attached_islands.clear();
   attach_scratch.clear();  // (slot, island); slot = 2 x (split island's rank) + half

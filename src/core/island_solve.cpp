@@ -28,7 +28,7 @@ StepContexts World::Impl::makeContexts(double dt) {
     c.inv_h = 1.0 / c.h;
     c.substeps = n;
     c.relax = std::max(0, relax);
-    c.def = &def.solver;
+    c.settings = &def.solver;
     c.bodies = &solver;
     c.motions = &motions;
     c.contact_softness = Softness::make(std::min(def.solver.contact_hertz, 0.25 * c.inv_h),

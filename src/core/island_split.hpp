@@ -10,12 +10,10 @@
 // are solved first in every sweep (World's solveIsland), in two groups of whole boundary
 // components (contacts joined through a body they share), one per thread: the groups touch
 // disjoint bodies, so solving them at once, each in its order, gives what one thread gives
-// solving the boundary in order (scene c's pile: the boundary on one thread while the other
-// waited was 42 of the split island's ~205 us per step). The split depends only
-// on the island, never on the thread count, so the result is the same for 1 and 2 threads.
-// Picking the best of several seed limbs (fewest contacts cut, or the most even work) ran scene
-// c 4-7 % faster but doubled the tails of its perturbed copies (anchor 1.0 mm, penetration
-// 11 mm): that choice flips from step to step and reorders the constraints; this one is stable.
+// solving the boundary in order, without one thread waiting for the other. The split depends
+// only on the island, never on the thread count, so the result is the same for 1 and 2 threads.
+// The first half always grows from the first body's limb: a start chosen by cut size or balance
+// would flip from step to step and reorder the constraints, which makes the motion less steady.
 #pragma once
 
 #include <vector>

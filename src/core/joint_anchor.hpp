@@ -45,7 +45,7 @@ struct AnchorPart {
 
   bool project(const JointBase& j, SolverBody& A, SolverBody& B, const StepContext& ctx) const {
     if (j.spring.stiffness > 0.0) return false;  // a spring anchor is meant to stretch
-    return point.project(A, B, ctx.def->max_position_correction, ctx.def->joint_slop);
+    return point.project(A, B, ctx.settings->max_position_correction, ctx.settings->joint_slop);
   }
 
   void scaleImpulses(double s) { point.impulse *= s; }

@@ -2,8 +2,7 @@
 //
 // Hinge: theta = signed angle about the axis a between a perpendicular u carried by frame A
 // and the same u carried by frame B; theta_dot = a . (wB - wA). (The cheaper twist angle of
-// q_rel about a, equal for a true hinge, was tried: in one 8-copy ensemble of scene b, 3 copies
-// came to rest by 3 s instead of 7.)
+// q_rel about a, equal for a true hinge, differs on a bent one and lets ragdolls settle later.)
 //
 // Ball (Euler): R_rel = R(a0,t0) R(a1,t1) R(a2,t2) with orthonormal joint-frame axes. With
 // P = [a0 a1 s a2] (s = +-1 so that det P = +1), R' = P^T R_rel P = Rx(t0) Ry(t1) Rz(s t2):

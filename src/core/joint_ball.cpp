@@ -75,7 +75,7 @@ bool BallJoint::limitsClear(double margin) const {
 
 bool BallJoint::projectLimits(JointBase& j, SolverBody& A, SolverBody& B,
                               const StepContext& ctx) {
-  const double slop = ctx.def->angular_slop, max_turn = ctx.def->max_angular_correction;
+  const double slop = ctx.settings->angular_slop, max_turn = ctx.settings->max_angular_correction;
   if (!(axes.limits_enabled || swing_twist_limits) || limitsClear(0.5 * slop)) return false;
   updateAngles(j, A, B, ctx);
   bool moved = axes.project(A, B, slop, max_turn);

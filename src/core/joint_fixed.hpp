@@ -25,7 +25,8 @@ struct FixedJoint {
     anchor.refresh(A, B);
   }
   bool projectLimits(JointBase& j, SolverBody& A, SolverBody& B, const StepContext& ctx) {
-    return angle_lock.project(A, B, ctx.def->angular_slop, ctx.def->max_angular_correction);
+    return angle_lock.project(A, B, ctx.settings->angular_slop,
+                              ctx.settings->max_angular_correction);
   }
   bool projectAnchor(JointBase& j, SolverBody& A, SolverBody& B, const StepContext& ctx) const {
     return anchor.project(j, A, B, ctx);

@@ -58,7 +58,7 @@ void HingeJoint::advance(JointBase& j, const SolverBody& A, const SolverBody& B,
 
 bool HingeJoint::projectLimits(JointBase& j, SolverBody& A, SolverBody& B,
                                const StepContext& ctx) {
-  const double slop = ctx.def->angular_slop, max_turn = ctx.def->max_angular_correction;
+  const double slop = ctx.settings->angular_slop, max_turn = ctx.settings->max_angular_correction;
   bool moved = false;
   // The axis error refreshed after the last position update (as for limitsClear) screens out
   // the hinges that cannot be beyond the slop.

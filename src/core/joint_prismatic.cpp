@@ -41,7 +41,7 @@ void PrismaticJoint::solve(JointBase& j, SolverBody& A, SolverBody& B, const Ste
 
 bool PrismaticJoint::projectLimits(JointBase& j, SolverBody& A, SolverBody& B,
                                    const StepContext& ctx) {
-  const SolverSettings& d = *ctx.def;
+  const SolverSettings& d = *ctx.settings;
   bool moved = angle_lock.project(A, B, d.angular_slop, d.max_angular_correction);
   if (limit_enabled)
     moved |= LinearLimitPart::project(A, B, slider.at(A, B), lower, upper, d.joint_slop,
@@ -51,8 +51,8 @@ bool PrismaticJoint::projectLimits(JointBase& j, SolverBody& A, SolverBody& B,
 
 bool PrismaticJoint::projectAnchor(JointBase& j, SolverBody& A, SolverBody& B,
                                    const StepContext& ctx) const {
-  return line.project(A, B, slider.at(A, B), ctx.def->joint_slop,
-                      ctx.def->max_position_correction);
+  return line.project(A, B, slider.at(A, B), ctx.settings->joint_slop,
+                      ctx.settings->max_position_correction);
 }
 
 void PrismaticJoint::scaleImpulses(double s) {

@@ -25,9 +25,8 @@
 // - a rolling point is not a feature: the point of a sphere or capsule below its core (centre,
 //   segment point) along the normal, or a cylinder's point on its side or rim below an axis
 //   point, where the normal leaves the axis. Carried along with its body it trails a rolling
-//   shape (up to the cache distance), and the normal force there drives the roll: a ball
-//   rolling on the flat sped up from 0.1 to 0.2 m/s in 3 s, and the heads of lying ragdolls
-//   rolled ever faster. Such a point keeps its core point instead:
+//   shape (up to the cache distance), and the normal force there drives the roll, so a ball
+//   or a lying ragdoll's head would roll ever faster. Such a point keeps its core point instead:
 //     sphere, capsule: x = core + sigma r n;   cylinder: x = core + sigma r u,
 //     u = the unit part of n across the axis (sigma = +1 on A, -1 on B: A's surface faces n),
 //   exact for a rolling sphere and a capsule or cylinder rolling about its axis. The other

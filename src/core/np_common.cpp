@@ -3,9 +3,9 @@
 // from it, then the one giving the largest triangle, then the one adding the most area outside
 // that triangle — the support polygon a resting body needs (as in Bullet's manifold reduction).
 // Distance and areas are weighted by depth, w = speculative - separation (Jolt weighs its
-// pruning by penetration too): unweighted, a cylinder lying on the ground kept a rim sample
-// 1-2 cm up and dropped the bottom of its other cap, so that cap sank, became the deepest, and
-// the two caps took turns: a 24 um rocking every step that kept ragdolls awake at rest.
+// pruning by penetration too): unweighted, a cylinder lying on the ground can keep a raised rim
+// sample and drop the bottom of its other cap, so the caps take turns sinking and the body
+// rocks instead of sleeping.
 // closestSegmentParams(): Ericson, Real-Time Collision Detection 5.1.9.
 // clipToPrism(): Sutherland–Hodgman against the side planes (edge x normal) of the reference
 // polygon; a segment is clipped parametrically so it never duplicates its cut points.

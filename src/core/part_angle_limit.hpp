@@ -8,10 +8,9 @@
 // `slop` outside its range is turned back to `slop` outside by the angular position impulse
 // L = lambda j, lambda = -C' / k (C' the excess beyond the slop, at most max_correction): A
 // turns by -IA^-1 L and B by IB^-1 L, so theta moves by k lambda = -C' to first order, and no
-// velocity is added. A limb pinned between the ground and a heavy falling body is driven past
-// its limit faster than the soft rows bring it back (a hand under a pile in scene c: 0.046 rad
-// for ~15 ms; 0.035 with the projection, worst of 8 perturbed copies). The slop is left to
-// the soft rows, so a limb resting on its limit is not moved every step.
+// velocity is added. The projection exists because a limb pinned between the ground and a
+// heavy falling body is driven past its limit faster than the soft rows bring it back. The slop
+// is left to the soft rows, so a limb resting on its limit is not moved every step.
 #pragma once
 
 #include <algorithm>

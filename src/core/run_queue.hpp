@@ -1,13 +1,11 @@
-// The runs of islands that the threads solve (World::Impl::partitionIslands), with stealing at
-// the end. Thread t takes the islands of its own run from the front, in order, as before: the
-// same run step after step, so its bodies and constraints stay in its core's cache. A thread
-// whose run is done takes the last island left in another run (from the back, the one its
-// owner would reach last) instead of waiting at the end of the parallel region. The runs are
-// cut by estimated work, which the threads' time does not follow: on this 2-vCPU VM the first
-// thread to finish scene b's runs waited 26-126 us of a 337-438 us region per step (the other
-// vCPU slowed, or an island costing more than its count of constraints says). Islands are
-// independent (each writes only its own bodies, joints and contacts, in its fixed order), so
-// which thread solves one does not change the result.
+// The runs of islands that the threads solve (World::Impl::partitionIslands), with stealing at the
+// end. Thread t takes the islands of its own run from the front, in order: the same run step after
+// step, so its bodies and constraints stay in its core's cache. A thread whose run is done takes
+// the last island left in another run (from the back, the one its owner would reach last) instead
+// of waiting at the end of the parallel region. The runs are cut by estimated work, which the
+// threads' time does not follow (a vCPU slows, or an island costs more than its count of
+// constraints says). Islands are independent (each writes only its own bodies, joints and contacts,
+// in its fixed order), so which thread solves one does not change the result.
 //
 // Each run is one 64-bit word, front in the low half and back in the high half, changed by
 // compare-and-swap: the owner and a thief can never take the same island.

@@ -19,31 +19,28 @@ struct StepContext {
   int relax = 0;          // contact relax sweeps per substep (the first joint_relax_iterations also relax the joints)
   Softness contact_softness;
   Softness joint_softness;
-  const SolverSettings* def = nullptr;  // the solver settings
+  const SolverSettings* settings = nullptr;
   std::vector<SolverBody>* bodies = nullptr;
   const std::vector<BodyMotion>* motions = nullptr;  // poses at the start of the step
 };
 
 // False for an identity solver body (static or asleep): nothing can move it, and the ground,
 // shared by all islands, must not be written by two threads at once. The inverse inertia is
-// positive semidefinite (R I^-1 R^T), so its largest entry is on the diagonal: the diagonal
-// alone tells whether it is zero (Eigen's isZero, to 1e-12), with 3 tests instead of 9 for
-// the ground of every contact row (callgrind, one thread: -0.44 % of scene c's instructions,
-// -0.58 % of b's).
+// positive semidefinite (R I^-1 R^T), so its diagonal alone tells whether it is zero (Eigen's
+// isZero, to 1e-12), which keeps this test cheap on every contact row.
 inline bool movable(const SolverBody& b) {
   constexpr double kZero = 1e-12;  // Eigen's dummy_precision<double>, as isZero() used
   return b.inv_mass > 0.0 || std::abs(b.inv_inertia(0, 0)) > kZero ||
          std::abs(b.inv_inertia(1, 1)) > kZero || std::abs(b.inv_inertia(2, 2)) > kZero;
 }
 
-// Accumulated impulses are per substep (about force x h): warm starting on substep h from
+// Accumulated impulses are per substep (about force x h), so warm starting on substep h from
 // impulses accumulated over h0 scales them by h / h0 (1 when h0 == h, exactly; h0 = 0: none
-// kept yet). Without it an island switching from 3 substeps to its 2 rest substeps started
-// each substep with 2/3 of the impulse that holds it up, and one woken back to 3 with 3/2.
+// kept yet); an island that changes its substep count thus starts with the impulse that holds it.
 inline double warmStartScale(double h0, double h) { return h0 > 0.0 ? h / h0 : 1.0; }
 
 // K^-1 of an effective mass matrix (2x2, 3x3), or zero where K is singular (det <= 1e-300).
-// One cofactor pass gives both: a separate determinant() cost as much as the inverse.
+// One cofactor pass gives both the inverse and the determinant.
 template <class M>
 M inverseOrZero(const M& K) {
   M inv;
@@ -64,8 +61,8 @@ bool trimToSlop(V& C, double slop, double max_correction) {
 }
 
 // Applies a world impulse P at world offset r (from the COM) to A (negative) and B (positive).
-// This and applyPairAngularImpulse are forced inline: GCC left them as calls in the joint parts,
-// and inlining them removed 2.4 % of scene b's instructions and 2 % of c's (callgrind, one thread).
+// This and applyPairAngularImpulse are forced inline because GCC leaves them as calls in the
+// joint parts, the solver's innermost loop.
 [[gnu::always_inline]] inline void applyPairImpulse(SolverBody& A, SolverBody& B, const Vec3& P,
                                                     const Vec3& rA, const Vec3& rB) {
   if (movable(A)) {

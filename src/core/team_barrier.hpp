@@ -1,13 +1,11 @@
 // A barrier for the two threads that solve a split island (island_split.hpp), in place of
-// `#pragma omp barrier` at each of its ~48 waits per step (two per boundary sweep, four
-// around the prepares and restitution). In a loop of nothing but barriers on this 2-vCPU VM,
-// libgomp's took 0.25-0.29 us per wait and this one 0.08 us; scene c on 2 threads, median of
-// 8 alternating runs: 4,299 -> 4,387 steps/s. A counter and a flag, each on its own cache
-// line: the last thread to arrive resets the counter and flips the flag, the others spin on
-// the flag (sense reversal, so the same barrier serves the next wait at once). Release on
-// arrival and acquire on leaving order every write before the wait before every read after
-// it, as the OpenMP barrier's implied flush does. A waiter that spins long (its partner was
-// preempted) yields its core.
+// `#pragma omp barrier`, which is several times slower per wait where a split island waits twice
+// per boundary sweep and around its prepares and restitution. A counter and a flag, each on its own
+// cache line: the last thread to arrive resets the counter and flips the flag, the others spin on
+// the flag (sense reversal, so the same barrier serves the next wait at once). Release on arrival
+// and acquire on leaving order every write before the wait before every read after it, as the
+// OpenMP barrier's implied flush does. A waiter that spins long (its partner was preempted) yields
+// its core.
 #pragma once
 
 #include <atomic>
