@@ -10,6 +10,11 @@
 namespace ragdoll_sim {
 namespace node {
 
+using scene::CommandCheck;
+using scene::LinkPick;
+using scene::LinkTable;
+using scene::RagdollView;
+
 namespace {
 
 using visualization_msgs::InteractiveMarkerFeedback;
@@ -66,9 +71,9 @@ void Interaction::setScene(World* world, const std::vector<RagdollView>& ragdoll
     Drag d;
     d.marker = view.name;
     d.ragdoll = static_cast<int>(r);
-    const int fallback = dragLink(*view.def, "");
+    const int fallback = scene::dragLink(*view.def, "");
     if (fallback < 0) continue;  // a model without links
-    d.link = dragLink(*view.def, settings_.drag.link);
+    d.link = scene::dragLink(*view.def, settings_.drag.link);
     if (d.link < 0) {
       ROS_WARN("~drag/link '%s' is not a link of '%s'; dragging its '%s' instead",
                settings_.drag.link.c_str(), view.name.c_str(),
@@ -146,11 +151,11 @@ bool Interaction::checkDrag(const Drag& d, const Vec3& target) {
   cmd.link = view.def->links[static_cast<size_t>(d.link)].name;
   cmd.frame = "world";
   cmd.point = p;
-  cmd.force = dragForce(p, world_->pointVelocity(body, p), target, settings_.drag,
-                        settings_.limits.max_force);
+  cmd.force = scene::dragForce(p, world_->pointVelocity(body, p), target, settings_.drag,
+                               settings_.limits.max_force);
   const CommandCheck check =
-      checkForce(cmd, link_tables_[static_cast<size_t>(d.ragdoll)], settings_.limits,
-                 [&](int link) { return world_->bodyPose(view.ragdoll->bodies[static_cast<size_t>(link)]); });
+      scene::checkForce(cmd, link_tables_[static_cast<size_t>(d.ragdoll)], settings_.limits,
+                        [&](int link) { return world_->bodyPose(view.ragdoll->bodies[static_cast<size_t>(link)]); });
   if (!check.ok) {
     ROS_WARN_THROTTLE(1.0, "drag of '%s': %s; drag dropped", d.marker.c_str(), check.error.c_str());
     return false;
@@ -238,7 +243,8 @@ void Interaction::onClickedPoint(const geometry_msgs::PointStamped::ConstPtr& ms
     ROS_WARN_THROTTLE(1.0, "clicked point %s is not finite; poke dropped", fmt(point).c_str());
     return;
   }
-  const LinkPick pick = pickNearestLink(*world_, ragdolls_, point, settings_.poke.max_distance);
+  const LinkPick pick =
+      scene::pickNearestLink(*world_, ragdolls_, point, settings_.poke.max_distance);
   if (!pick.valid()) {
     ROS_WARN_THROTTLE(1.0, "clicked point %s is %.3f m from the nearest link, more than "
                       "~poke/max_distance = %.3f m; poke dropped", fmt(point).c_str(),
@@ -251,15 +257,15 @@ void Interaction::onClickedPoint(const geometry_msgs::PointStamped::ConstPtr& ms
   cmd.link = view.def->links[static_cast<size_t>(pick.link)].name;
   cmd.frame = "world";
   cmd.point = point;
-  cmd.impulse = pokeImpulse(point, world_->comPosition(body), settings_.poke.impulse);
+  cmd.impulse = scene::pokeImpulse(point, world_->comPosition(body), settings_.poke.impulse);
   if (cmd.impulse.squaredNorm() == 0.0) {
     ROS_WARN_THROTTLE(1.0, "clicked point %s is the centre of mass of '%s': no direction to "
                       "push; poke dropped", fmt(point).c_str(), cmd.link.c_str());
     return;
   }
   const CommandCheck check =
-      checkImpulse(cmd, link_tables_[static_cast<size_t>(pick.ragdoll)], settings_.limits,
-                   [&](int link) { return world_->bodyPose(view.ragdoll->bodies[static_cast<size_t>(link)]); });
+      scene::checkImpulse(cmd, link_tables_[static_cast<size_t>(pick.ragdoll)], settings_.limits,
+                          [&](int link) { return world_->bodyPose(view.ragdoll->bodies[static_cast<size_t>(link)]); });
   if (!check.ok) {
     ROS_WARN_THROTTLE(1.0, "poke: %s; poke dropped", check.error.c_str());
     return;
@@ -278,8 +284,9 @@ void Interaction::beforeStep(double sim_time) {
     const BodyId body =
         ragdolls_[static_cast<size_t>(d.ragdoll)].ragdoll->bodies[static_cast<size_t>(d.link)];
     const Vec3 p = grabPoint(d);
-    world_->applyForce(body, dragForce(p, world_->pointVelocity(body, p), d.target, settings_.drag,
-                                       settings_.limits.max_force),
+    world_->applyForce(body,
+                       scene::dragForce(p, world_->pointVelocity(body, p), d.target,
+                                        settings_.drag, settings_.limits.max_force),
                        p);
   }
 }
@@ -296,8 +303,8 @@ void Interaction::update(double sim_time) {
             ragdolls_[static_cast<size_t>(d.ragdoll)].ragdoll->bodies[static_cast<size_t>(d.link)];
         const Vec3 p = grabPoint(d);
         visualizer_->setPull(static_cast<int>(k), *world_, body, p,
-                             dragForce(p, world_->pointVelocity(body, p), d.target, settings_.drag,
-                                       settings_.limits.max_force));
+                             scene::dragForce(p, world_->pointVelocity(body, p), d.target,
+                                              settings_.drag, settings_.limits.max_force));
       }
       continue;
     }

@@ -30,11 +30,9 @@
 namespace ragdoll_sim {
 namespace node {
 
-using namespace scene;  // the node's ROS-free helpers moved to src/scene
-
 struct InteractionSettings {
-  PokeSettings poke;
-  DragSettings drag;
+  scene::PokeSettings poke;
+  scene::DragSettings drag;
   std::string world_frame = "world";
   CommandLimits limits;
 };
@@ -49,7 +47,7 @@ class Interaction {
 
   // The world and ragdolls every callback acts on (not owned); call again whenever either
   // changes (reset, spawn). Drags in progress end.
-  void setScene(World* world, const std::vector<RagdollView>& ragdolls);
+  void setScene(World* world, const std::vector<scene::RagdollView>& ragdolls);
 
   // Before each physics step: the drag springs' forces.
   void beforeStep(double sim_time);
@@ -81,8 +79,8 @@ class Interaction {
   InteractionSettings settings_;
   Visualizer* visualizer_;
   World* world_ = nullptr;
-  std::vector<RagdollView> ragdolls_;
-  std::vector<LinkTable> link_tables_;  // one per ragdoll, for the command checks
+  std::vector<scene::RagdollView> ragdolls_;
+  std::vector<scene::LinkTable> link_tables_;  // one per ragdoll, for the command checks
   std::vector<Drag> drags_;
   double sim_time_ = 0.0;
 

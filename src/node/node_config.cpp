@@ -159,7 +159,7 @@ bool jointSettings(XmlRpc::XmlRpcValue& v, const std::string& where, JointSettin
     }
     if (!ok) return false;
   }
-  *error = validateJointSettings(*s, where);
+  *error = scene::validateJointSettings(*s, where);
   return error->empty();
 }
 
@@ -323,8 +323,8 @@ std::string validateNodeConfig(const NodeConfig& c) {
     return s.str();
   }
   if (!(e = param(nonNegativeError("clock_rate", c.clock_rate))).empty()) return e;
-  if (!c.ragdoll_name.empty() && !ragdollNameError(c.ragdoll_name).empty())
-    return "parameter ~ragdoll_name: " + ragdollNameError(c.ragdoll_name);
+  if (!c.ragdoll_name.empty() && !scene::ragdollNameError(c.ragdoll_name).empty())
+    return "parameter ~ragdoll_name: " + scene::ragdollNameError(c.ragdoll_name);
   const SpawnPose& s = c.spawn;
   for (double v : {s.x, s.y, s.z, s.roll, s.pitch, s.yaw})
     if (!std::isfinite(v)) return "parameters ~spawn/{x,y,z,roll,pitch,yaw} must be finite";
@@ -342,12 +342,12 @@ std::string validateNodeConfig(const NodeConfig& c) {
     return e;
   if (!(e = param(intRangeError("max_queued_commands", c.scene.max_queued_commands, 1))).empty())
     return e;
-  if (!(e = validateMotorGains(c.scene.motor, "parameter ~motor")).empty()) return e;
+  if (!(e = scene::validateMotorGains(c.scene.motor, "parameter ~motor")).empty()) return e;
   if (!std::isfinite(c.scene.balance.kp) || !std::isfinite(c.scene.balance.kd))
     return "parameters ~balance/kp and ~balance/kd must be finite";
-  if (!(e = validateMarkerSettings(c.markers)).empty()) return e;
-  if (!(e = validatePokeSettings(c.poke)).empty()) return e;
-  return validateDragSettings(c.drag);
+  if (!(e = scene::validateMarkerSettings(c.markers)).empty()) return e;
+  if (!(e = scene::validatePokeSettings(c.poke)).empty()) return e;
+  return scene::validateDragSettings(c.drag);
 }
 
 }  // namespace node

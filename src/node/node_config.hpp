@@ -20,8 +20,6 @@ class NodeHandle;
 namespace ragdoll_sim {
 namespace node {
 
-using namespace scene;  // the node's ROS-free helpers moved to src/scene
-
 struct SpawnPose {
   double x = 0.0, y = 0.0, z = 1.1;  // root link origin, m (z = 1.1: feet ~0.1 m above ground)
   double roll = 0.0, pitch = 0.0, yaw = 0.0;  // rad
@@ -49,9 +47,9 @@ struct NodeConfig {
   double max_position = 1e4;           // m from the origin: farther poses (~spawn,
                                        // ~set_ragdoll_state) are refused
   bool publish_markers = true;
-  MarkerSettings markers;              // ~markers/... (publish_markers switches them all)
-  PokeSettings poke;                   // ~poke/...
-  DragSettings drag;                   // ~drag/...
+  scene::MarkerSettings markers;              // ~markers/... (publish_markers switches them all)
+  scene::PokeSettings poke;                   // ~poke/...
+  scene::DragSettings drag;                   // ~drag/...
 
   Transform spawnTransform() const;
 };

@@ -9,6 +9,8 @@
 namespace ragdoll_sim {
 namespace node {
 
+using scene::RagdollView;
+
 namespace {
 
 using visualization_msgs::Marker;

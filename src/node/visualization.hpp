@@ -20,7 +20,8 @@
 namespace ragdoll_sim {
 namespace node {
 
-using namespace scene;  // the node's ROS-free helpers moved to src/scene
+// The Visualizer's settings are the ROS-free rviz settings of the Scene layer.
+using scene::MarkerSettings;
 
 struct Rgba {
   float r = 1, g = 1, b = 1, a = 1;
@@ -43,7 +44,8 @@ class Visualizer {
 
   // Rebuilds the shape markers for these ragdolls (and the ground plane of `ground`, if valid)
   // and drops every arrow. Call after the world or the ragdoll list changed.
-  void setScene(const World& world, const std::vector<RagdollView>& ragdolls, BodyId ground);
+  void setScene(const World& world, const std::vector<scene::RagdollView>& ragdolls,
+                BodyId ground);
 
   // An arrow pointing at `world_point` on `body` (it moves with the body) along `vector`.
   void addImpulse(const World& world, BodyId body, const Vec3& world_point, const Vec3& impulse,

@@ -1,5 +1,5 @@
 // Lumping: a link and everything below it by fixed joints (or by moving joints that lead only to
-// massless links) become one body, since the solver cannot hold a rigid joint as well as one body.
+// massless links) become one body: exact, and cheaper than a weld the solver must hold.
 #include "loader.hpp"
 
 #include <cmath>
