@@ -247,7 +247,7 @@ class World {
   // Joints broken since the last call, in the order they broke (for events).
   std::vector<JointId> takeBrokenJoints();
   // Breaks a joint as if its break force had been passed (its pair collides again), without an
-  // event: for rebuilding a world that carries broken joints over.
+  // event: for restoring a saved state whose joints had broken.
   void breakJoint(JointId joint);
   // Motor of one joint angle (hinge: axis 0; ball: Euler axes 0..2; prismatic: axis 0, linear).
   // Throws std::invalid_argument, changing nothing, for a motor that jointMotorError refuses.

@@ -1,4 +1,4 @@
-// Scene: ragdolls by name and the World they live in (building, rebuilding, removal).
+// Scene: ragdolls by name and the World they live in (building, spawning, removal, reset).
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -97,17 +97,7 @@ bool Scene::Impl::spawnInWorld(RagdollInstance& r, std::string* error) {
   return true;
 }
 
-bool Scene::Impl::buildWorld(bool carry_state, std::string* error) {
-  // The state to carry over, per ragdoll: body states and broken joints.
-  std::vector<std::vector<BodyState>> bodies(ragdolls.size());
-  std::vector<std::vector<char>> broken(ragdolls.size());
-  if (carry_state && world) {
-    for (size_t k = 0; k < ragdolls.size(); ++k) {
-      for (BodyId b : ragdolls[k].ragdoll.bodies) bodies[k].push_back(world->bodyState(b));
-      for (JointId j : ragdolls[k].ragdoll.joints)
-        broken[k].push_back(world->isJointBroken(j) ? 1 : 0);
-    }
-  }
+bool Scene::Impl::buildWorld(std::string* error) {
   for (RagdollInstance& r : ragdolls) r.balance.reset();  // they drive the old world's joints
 
   try {  // validated before, and settings changed at run time keep their ranges: a guard
@@ -127,17 +117,8 @@ bool Scene::Impl::buildWorld(bool carry_state, std::string* error) {
     sd.material = def.ground_surface;
     world->addShape(ground, sd);
   }
-  for (size_t k = 0; k < ragdolls.size(); ++k) {
-    RagdollInstance& r = ragdolls[k];
+  for (RagdollInstance& r : ragdolls) {
     if (!spawnInWorld(r, error)) return false;
-    if (carry_state && bodies[k].size() == r.ragdoll.bodies.size()) {
-      for (size_t i = 0; i < bodies[k].size(); ++i) {
-        const BodyState& s = bodies[k][i];
-        world->setBodyState(r.ragdoll.bodies[i], s.pose, s.linear_velocity, s.angular_velocity);
-      }
-      for (size_t j = 0; j < broken[k].size(); ++j)
-        if (broken[k][j]) world->breakJoint(r.ragdoll.joints[j]);
-    }
     setBalance(r, r.balance_on, /*log=*/false);
   }
   return true;
@@ -176,7 +157,7 @@ SpawnResult Scene::addRagdoll(SpawnDef spawn, std::string* error) {
 
 bool Scene::start(std::string* error) {
   Impl& s = *impl_;
-  if (!s.buildWorld(/*carry_state=*/false, error)) return false;
+  if (!s.buildWorld(error)) return false;
   for (RagdollInstance& r : s.ragdolls) s.setBalance(r, r.balance_on, /*log=*/true);
   return true;
 }
@@ -203,7 +184,7 @@ bool Scene::removeRagdoll(const std::string& name, std::string* error) {
 bool Scene::reset(std::string* error) {
   // A fresh world with every ragdoll at its spawn pose rejoins broken joints.
   for (RagdollInstance& r : impl_->ragdolls) r.forces.clear();
-  return impl_->buildWorld(/*carry_state=*/false, error);
+  return impl_->buildWorld(error);
 }
 
 void Scene::setRagdollState(int k, const Transform& target, const Vec3& v, const Vec3& w) {

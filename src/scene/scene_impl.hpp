@@ -44,9 +44,8 @@ struct Scene::Impl {
 
   // scene.cpp
   bool makeInstance(SpawnDef spawn, scene::RagdollInstance* out, std::string* error);
-  // A new World with the ground and every ragdoll: at its spawn pose (joints whole), or, with
-  // carry_state, in the pose and velocity it has now with its broken joints still broken.
-  bool buildWorld(bool carry_state, std::string* error);
+  // A new World with the ground and every ragdoll at its spawn pose, joints whole (start, reset).
+  bool buildWorld(std::string* error);
   bool spawnInWorld(scene::RagdollInstance& r, std::string* error);
   int find(const std::string& name) const;
 

@@ -1,4 +1,4 @@
-// World::breakJoint (used by the node to rebuild a World with its broken joints): the joint
+// World::breakJoint (restoring a state with broken joints): the joint
 // stops acting at once, exactly like one that broke under load, without an event.
 #include <gtest/gtest.h>
 
