@@ -316,9 +316,9 @@ std::string validateNodeConfig(const NodeConfig& c) {
   if (c.physics_rate > 1e6) return "parameter ~physics_rate must be <= 1e6 Hz";
   if (!(e = param(positiveError("publish_rate", c.publish_rate))).empty()) return e;
   if (!(e = param(worldDefError(c.scene.world))).empty()) return e;
-  if (*realTimeFactorError(c.real_time_factor)) {
+  if (*scene::realTimeFactorError(c.real_time_factor)) {
     std::ostringstream s;
-    s << "parameter ~real_time_factor " << realTimeFactorError(c.real_time_factor) << ", got "
+    s << "parameter ~real_time_factor " << scene::realTimeFactorError(c.real_time_factor) << ", got "
       << c.real_time_factor;
     return s.str();
   }

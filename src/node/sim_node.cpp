@@ -109,7 +109,7 @@ bool SimNode::init(std::string* error) {
 }
 
 int SimNode::run() {
-  using Clock = Pacer::Clock;
+  using Clock = scene::Pacer::Clock;
   NodeContext& c = ctx_;
   const Clock::duration publish_period =
       std::chrono::nanoseconds(std::llround(1e9 / c.config.publish_rate));
