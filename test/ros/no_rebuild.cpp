@@ -16,7 +16,7 @@
 using namespace ragdoll_test;
 
 namespace {
-const std::string kNode = "/no_rebuild";
+const std::string kNode = "/no_rebuild_sim";
 constexpr int kChunk = 250;  // steps per ~step call
 
 std::string urdfPath() { return std::string(RAGDOLL_SIM_SOURCE_DIR) + "/urdf/ragdoll.urdf"; }
