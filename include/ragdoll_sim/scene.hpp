@@ -216,8 +216,9 @@ class Scene {
   void setGravity(const Vec3& g);
   void setTimeStep(int64_t dt_ns);
   void setSleep(const SleepDef& sleep);
-  // Solver substeps and position sweeps.
-  void setSolverSettings(int substeps, int position_iterations);
+  // Every solver setting, on the live World (nothing wakes); false with *error naming the first
+  // field out of range, changing nothing.
+  bool setSolverSettings(const SolverSettings& solver, std::string* error);
   // One surface for every ragdoll shape and the ground, and the pair table.
   void setMaterials(const Material& surface, const MaterialTable& table);
 

@@ -111,7 +111,13 @@ void Reconfigure::onReconfigure(ragdoll_sim::PhysicsConfig& cfg, uint32_t) {
   }
   // The .cfg ranges keep every value >= 0, and NaN was refused above: it cannot throw.
   scene.setSleep(sleep);
-  if (solver) scene.setSolverSettings(cfg.substeps, cfg.position_iterations);
+  if (solver) {
+    SolverSettings settings = scene.def().world.solver;
+    settings.substeps = cfg.substeps;
+    settings.position_iterations = cfg.position_iterations;
+    std::string e;  // the node checked the ranges first: a guard
+    if (!scene.setSolverSettings(settings, &e)) ROS_ERROR("reconfigure: %s", e.c_str());
+  }
   if (friction) {
     const Material m{cfg.static_friction, cfg.kinetic_friction, cfg.restitution,
                      scene.def().material.rolling_resistance};

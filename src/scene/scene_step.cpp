@@ -113,16 +113,15 @@ void Scene::setSleep(const SleepDef& sleep) {
 }
 
 // Changed in place: nothing wakes and warm starts are rescaled to a new substep.
-void Scene::setSolverSettings(int substeps, int position_iterations) {
-  SolverSettings solver = impl_->def.world.solver;
-  solver.substeps = substeps;
-  solver.position_iterations = position_iterations;
-  try {  // the node checks the ranges first: a guard
+bool Scene::setSolverSettings(const SolverSettings& solver, std::string* error) {
+  try {
     if (impl_->world) impl_->world->setSolverSettings(solver);
-    impl_->def.world.solver = solver;
   } catch (const std::invalid_argument& e) {
-    impl_->say(SceneMessage::Level::Error, "", std::string("reconfigure: ") + e.what());
+    *error = e.what();
+    return false;
   }
+  impl_->def.world.solver = solver;
+  return true;
 }
 
 // Every ragdoll shape and the ground get `surface` in place; touching pairs take the new

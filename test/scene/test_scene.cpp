@@ -185,7 +185,13 @@ TEST(Scene, RemovalAndSettingsDoNotRebuildTheWorld) {
   const Transform pose = world->bodyPose(a0);
   std::string e;
   ASSERT_TRUE(scene.removeRagdoll("b", &e)) << e;
-  scene.setSolverSettings(4, 2);
+  {
+    SolverSettings solver = scene.def().world.solver;
+    solver.substeps = 4;
+    solver.position_iterations = 2;
+    std::string error;
+    ASSERT_TRUE(scene.setSolverSettings(solver, &error)) << error;
+  }
   scene.setMaterials(Material{0.9, 0.7, 0.1, 0.05}, MaterialTable());
   scene.step();
   EXPECT_EQ(scene.world().awakeBodyCount(), 0) << "removal or settings woke the sleeping ragdoll";
@@ -243,8 +249,20 @@ TEST(Scene, SettingsChangeBetweenSteps) {
   scene.setTimeStep(2000000);
   scene.step();
   EXPECT_EQ(scene.timeNs(), 12000000);
-  scene.setSolverSettings(4, 2);
+  {
+    SolverSettings solver = scene.def().world.solver;
+    solver.substeps = 4;
+    solver.position_iterations = 2;
+    std::string error;
+    ASSERT_TRUE(scene.setSolverSettings(solver, &error)) << error;
+  }
   EXPECT_EQ(scene.world().def().solver.substeps, 4);
+  SolverSettings bad = scene.def().world.solver;
+  bad.substeps = 0;
+  std::string error;
+  EXPECT_FALSE(scene.setSolverSettings(bad, &error));
+  EXPECT_NE(error.find("substeps"), std::string::npos) << error;
+  EXPECT_EQ(scene.def().world.solver.substeps, 4) << "a refused change must change nothing";
   scene.setMaterials(Material{0.5, 0.4, 0.0, 0.0}, MaterialTable());
   EXPECT_EQ(scene.def().ground_surface.static_friction, 0.5);
   scene.setGravity(Vec3::Zero());
