@@ -5,12 +5,17 @@
 // for what maps to what.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
 #include "ragdoll_sim/ragdoll.hpp"
 
 namespace ragdoll_sim {
+
+// The largest URDF, package.xml or mesh file the loader reads. Only regular files are read: a
+// device, pipe, directory or larger file is refused before anything is read.
+constexpr std::size_t kMaxInputFileBytes = std::size_t(64) << 20;  // 64 MiB
 
 struct UrdfLoadOptions {
   std::string base_dir;                    // relative mesh paths (loadUrdfFile: the file's folder)
@@ -25,6 +30,8 @@ struct UrdfLoadResult {
 };
 
 UrdfLoadResult loadUrdfString(const std::string& xml, const UrdfLoadOptions& options = {});
-UrdfLoadResult loadUrdfFile(const std::string& path, UrdfLoadOptions options = {});
+// `text`, when given, receives the file's contents as read (the file is read once).
+UrdfLoadResult loadUrdfFile(const std::string& path, UrdfLoadOptions options = {},
+                            std::string* text = nullptr);
 
 }  // namespace ragdoll_sim

@@ -1,7 +1,6 @@
 #include "services.hpp"
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "commands.hpp"
@@ -174,13 +173,7 @@ bool Services::onSpawn(ragdoll_sim::SpawnRagdoll::Request& req,
   if (!xml.empty()) {
     loaded = loadUrdfString(xml);
   } else if (!req.urdf_file.empty()) {
-    loaded = loadUrdfFile(req.urdf_file);
-    if (loaded.ok) {
-      std::ifstream in(req.urdf_file);
-      std::stringstream s;
-      s << in.rdbuf();
-      xml = s.str();
-    }
+    loaded = loadUrdfFile(req.urdf_file, {}, &xml);  // xml: the text read, for robot_description
   } else {
     return refuse(res, "spawn/no urdf", what + "neither urdf nor urdf_file is set");
   }

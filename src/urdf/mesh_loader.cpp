@@ -1,6 +1,8 @@
 // See mesh_loader.hpp.
 #include "mesh_loader.hpp"
 
+#include <assimp/IOSystem.hpp>
+#include <assimp/MemoryIOWrapper.h>
 #include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -10,8 +12,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
+#include <map>
 #include <sstream>
+
+#include "input_file.hpp"
 
 namespace ragdoll_sim {
 namespace mesh {
@@ -23,10 +27,9 @@ bool isPackage(const fs::path& dir, const std::string& pkg) {
   std::error_code ec;
   const fs::path manifest = dir / "package.xml";
   if (!fs::is_regular_file(manifest, ec)) return false;
-  std::ifstream in(manifest);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str().find("<name>" + pkg + "</name>") != std::string::npos;
+  std::string text, error;
+  return readInputFile(manifest.string(), "package manifest", &text, &error) &&
+         text.find("<name>" + pkg + "</name>") != std::string::npos;
 }
 
 // A package folder named pkg at or below root (depth levels), or "".
@@ -43,6 +46,39 @@ std::string findPackage(const fs::path& root, const std::string& pkg, int depth)
   return "";
 }
 
+// assimp's file access (the mesh and whatever it refers to: .mtl, external buffers) through
+// readInputFile, so that assimp never opens a pipe or device nor reads an oversized file; each
+// file is read once however often assimp opens it (format probes open the mesh several times).
+class BoundedIOSystem : public Assimp::IOSystem {
+ public:
+  // Open() decides, with the reason kept for the caller: a plain existence test here.
+  bool Exists(const char* file) const override {
+    std::error_code ec;
+    return fs::exists(file, ec);
+  }
+  char getOsSeparator() const override { return '/'; }
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    if (std::string(mode).find_first_of("wa+") != std::string::npos) return nullptr;
+    auto it = read_.find(file);
+    if (it == read_.end()) {
+      std::string text, error;
+      if (!readInputFile(file, "mesh file", &text, &error)) {
+        if (error_.empty()) error_ = error;
+        return nullptr;
+      }
+      it = read_.emplace(file, std::move(text)).first;
+    }
+    const std::string& text = it->second;
+    return new Assimp::MemoryIOStream(reinterpret_cast<const uint8_t*>(text.data()), text.size());
+  }
+  void Close(Assimp::IOStream* stream) override { delete stream; }
+  const std::string& error() const { return error_; }
+
+ private:
+  std::map<std::string, std::string> read_;  // path -> contents; streams point into these
+  std::string error_;                        // the first refusal
+};
+
 }  // namespace
 
 std::vector<std::string> packagePathFromEnv() {
@@ -57,8 +93,9 @@ std::vector<std::string> packagePathFromEnv() {
 std::string resolveUri(const std::string& uri, const std::string& base_dir,
                        const std::vector<std::string>& package_paths, std::string* why) {
   std::error_code ec;
+  // Existence only: what kind of file it is, and its size, readVertices checks as it reads.
   auto existing = [&](const fs::path& p) -> std::string {
-    if (fs::is_regular_file(p, ec)) return p.lexically_normal().string();
+    if (fs::exists(p, ec)) return p.lexically_normal().string();
     *why = "file " + p.string() + " not found";
     return "";
   };
@@ -91,13 +128,16 @@ std::string resolveUri(const std::string& uri, const std::string& base_dir,
 bool readVertices(const std::string& path, const Vec3& scale, std::vector<Vec3>* out,
                   std::string* error) {
   Assimp::Importer importer;
+  auto* io = new BoundedIOSystem;  // the importer owns it
+  importer.SetIOHandler(io);
   // URDF meshes live in the link frame as written: keep a Collada file's axes (assimp would
   // turn a Z_UP file to its own Y-up); its <unit> scale still applies.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
   // Only positions are needed: no normals, no triangulation beyond what the reader does.
   const aiScene* scene = importer.ReadFile(path, aiProcess_JoinIdenticalVertices);
   if (!scene || !scene->mRootNode) {
-    *error = "assimp cannot read " + path + ": " + importer.GetErrorString();
+    *error = io->error().empty() ? "assimp cannot read " + path + ": " + importer.GetErrorString()
+                                 : io->error();
     return false;
   }
   out->clear();

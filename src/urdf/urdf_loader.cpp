@@ -14,11 +14,11 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <mutex>
 #include <set>
 #include <sstream>
 
+#include "input_file.hpp"
 #include "loader.hpp"
 
 namespace ragdoll_sim {
@@ -143,19 +143,19 @@ UrdfLoadResult loadUrdfString(const std::string& xml, const UrdfLoadOptions& opt
   return result;
 }
 
-UrdfLoadResult loadUrdfFile(const std::string& path, UrdfLoadOptions options) {
-  std::ifstream in(path);
-  if (!in) {
+UrdfLoadResult loadUrdfFile(const std::string& path, UrdfLoadOptions options, std::string* text) {
+  std::string xml;
+  std::string error;
+  if (!readInputFile(path, "URDF file", &xml, &error)) {
     UrdfLoadResult result;
-    result.error = "cannot open URDF file " + quote(path);
+    result.error = error;
     return result;
   }
-  std::stringstream ss;
-  ss << in.rdbuf();
   if (options.base_dir.empty())
     options.base_dir = std::filesystem::path(path).parent_path().string();
-  UrdfLoadResult result = loadUrdfString(ss.str(), options);
+  UrdfLoadResult result = loadUrdfString(xml, options);
   if (!result.ok) result.error = path + ": " + result.error;
+  if (text) *text = std::move(xml);
   return result;
 }
 
