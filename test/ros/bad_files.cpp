@@ -110,6 +110,7 @@ TEST(BadFiles, SpawnRefusesAtOnceAndTheNodeRuns) {
     }
     ASSERT_TRUE(call->done) << c.path << ": no reply within " << 2 * kDeadline << " s";
     EXPECT_LT(seconds, kDeadline) << c.path;
+    ::testing::Test::RecordProperty(call->srv.request.name + "_ms", std::to_string(seconds * 1e3));
     ASSERT_TRUE(call->called) << c.path;
     const std::string& m = call->srv.response.message;
     EXPECT_FALSE(call->srv.response.success) << m;
