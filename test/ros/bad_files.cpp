@@ -1,7 +1,8 @@
 // rostest: ~spawn with a urdf_file that is no regular file or too large is refused at once
-// (a reply naming the path and the rule within 1 s), and the node keeps simulating and
-// publishing. A call that has not answered after 2 s fails the test; for the named pipe the
-// test then opens the pipe for writing itself, so that a node blocked on it is released.
+// (a reply naming the path and the rule within 1 s), a regular file is still spawned (its
+// robot_description the text read), and the node keeps simulating and publishing. A call that
+// has not answered after 2 s fails the test; for the named pipe the test then opens the pipe
+// for writing itself, so that a node blocked on it is released.
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
@@ -10,6 +11,8 @@
 
 #include <atomic>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -117,6 +120,20 @@ TEST(BadFiles, SpawnRefusesAtOnceAndTheNodeRuns) {
     for (const std::string& w : {"'" + c.path + "'", c.why, std::string("only regular files up to 64 MiB")})
       EXPECT_NE(m.find(w), std::string::npos) << w << " not in: " << m;
   }
+  // A regular file is still spawned, its robot_description the text read for the model.
+  ragdoll_sim::SpawnRagdoll good;
+  good.request.name = "regular";
+  good.request.urdf_file = RAGDOLL_SIM_SOURCE_DIR "/urdf/ragdoll.urdf";
+  good.request.pose.position.y = -3.0;
+  good.request.pose.position.z = 1.1;
+  good.request.pose.orientation.w = 1.0;
+  ASSERT_TRUE(ros::service::call(kNode + "/spawn", good));
+  EXPECT_TRUE(good.response.success) << good.response.message;
+  std::ifstream in(good.request.urdf_file);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string description;
+  EXPECT_TRUE(ros::param::get("/regular/robot_description", description));
+  EXPECT_EQ(description, text);
   // Still simulating: ~link_states keeps coming, its sim stamp moving on.
   const auto [stamp0, count0] = fx->latest();
   ros::WallDuration(1.0).sleep();
