@@ -19,7 +19,7 @@ const char* kindOf(mode_t mode) {
   if (S_ISBLK(mode)) return "a block device";
   if (S_ISFIFO(mode)) return "a named pipe";
   if (S_ISSOCK(mode)) return "a socket";
-  return "not a plain file";
+  return "of another kind";
 }
 
 std::string limitText() {
@@ -60,6 +60,7 @@ bool readInputFile(const std::string& path, const std::string& what, std::string
     *error = name + " is too large (" + size + " bytes)" + rule;
     return false;
   };
+  const std::string grown = "more than " + std::to_string(kMaxInputFileBytes);
   if (st.st_size < 0 || static_cast<unsigned long long>(st.st_size) > kMaxInputFileBytes)
     return tooLarge(std::to_string(st.st_size));
   // Read at most limit + 1 bytes whatever st_size said: a file that grows meanwhile stays bounded.
@@ -68,7 +69,7 @@ bool readInputFile(const std::string& path, const std::string& what, std::string
   size_t used = 0;
   for (;;) {
     if (used == out.size()) {
-      if (out.size() > kMaxInputFileBytes) return tooLarge("more than " + std::to_string(kMaxInputFileBytes));
+      if (out.size() > kMaxInputFileBytes) return tooLarge(grown);
       out.resize(std::min(out.size() * 2, kMaxInputFileBytes + 1));
     }
     const ssize_t n = ::read(f.fd, &out[used], out.size() - used);
@@ -80,7 +81,7 @@ bool readInputFile(const std::string& path, const std::string& what, std::string
     if (n == 0) break;
     used += static_cast<size_t>(n);
   }
-  if (used > kMaxInputFileBytes) return tooLarge("more than " + std::to_string(kMaxInputFileBytes));
+  if (used > kMaxInputFileBytes) return tooLarge(grown);
   out.resize(used);
   *text = std::move(out);
   return true;

@@ -10,8 +10,8 @@
 namespace ragdoll_sim {
 
 // The whole of the regular file at `path` into *text. false with *error ("<what> '<path>' is
-// not a regular file (a fifo); only regular files up to 64 MiB are read") when it cannot be
-// opened, is not a regular file, or is (or grows while being read) above the limit.
+// not a regular file (a named pipe); only regular files up to 64 MiB are read") when it cannot
+// be opened, is not a regular file, or is (or grows while being read) above the limit.
 bool readInputFile(const std::string& path, const std::string& what, std::string* text,
                    std::string* error);
 

@@ -31,6 +31,7 @@ namespace {
 
 const std::string kNode = "/ragdoll_sim";
 constexpr double kDeadline = 1.0;  // s
+const std::string kRule = "only regular files up to 64 MiB";
 
 struct Fixture {
   ros::NodeHandle nh;
@@ -117,7 +118,7 @@ TEST(BadFiles, SpawnRefusesAtOnceAndTheNodeRuns) {
     ASSERT_TRUE(call->called) << c.path;
     const std::string& m = call->srv.response.message;
     EXPECT_FALSE(call->srv.response.success) << m;
-    for (const std::string& w : {"'" + c.path + "'", c.why, std::string("only regular files up to 64 MiB")})
+    for (const std::string& w : {"'" + c.path + "'", c.why, kRule})
       EXPECT_NE(m.find(w), std::string::npos) << w << " not in: " << m;
   }
   // A regular file is still spawned, its robot_description the text read for the model.

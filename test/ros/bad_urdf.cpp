@@ -42,6 +42,7 @@ TEST(BadUrdf, NodeExitsNonZeroOnAFileItMustNotRead) {
       {(dir / "folder.urdf").string(), "is not a regular file (a directory)"},
       {"/dev/zero", "is not a regular file (a character device)"},
   };
+  const std::string kRule = "only regular files up to 64 MiB";
   int k = 0;
   for (const auto& [path, why] : cases) {
     std::string out;
@@ -52,7 +53,7 @@ TEST(BadUrdf, NodeExitsNonZeroOnAFileItMustNotRead) {
                                   &out);
     ASSERT_EQ(rc, 1) << path << ":\n" << out;
     EXPECT_NE(out.find("FATAL"), std::string::npos) << path << ":\n" << out;
-    for (const std::string& w : {"'" + path + "'", why, std::string("only regular files up to 64 MiB")})
+    for (const std::string& w : {"'" + path + "'", why, kRule})
       EXPECT_NE(out.find(w), std::string::npos) << w << " not in: " << out;
   }
   std::filesystem::remove_all(dir);

@@ -25,7 +25,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kDeadline = 1.0;  // s: the bound for a refusal
+constexpr double kDeadline = 1.0;  // s: the bound for a refusal
+const std::string kRule = "only regular files up to 64 MiB";
 using Clock = std::chrono::steady_clock;
 
 double since(Clock::time_point t0) {
@@ -118,7 +119,7 @@ void expectRefused(const Outcome& o, const std::string& path, const std::string&
   ASSERT_TRUE(o.finished) << path << ": no answer within " << 2 * kDeadline << " s";
   EXPECT_LT(o.seconds, kDeadline) << path;
   EXPECT_FALSE(o.ok) << path;
-  for (const std::string& w : {"'" + path + "'", why, std::string("only regular files up to 64 MiB")})
+  for (const std::string& w : {"'" + path + "'", why, kRule})
     EXPECT_NE(o.text.find(w), std::string::npos) << w << " not in: " << o.text;
   EXPECT_EQ(o.text.find('\n'), std::string::npos) << o.text;
 }
@@ -151,6 +152,14 @@ TEST_F(HostileFiles, FileAtTheLimitIsRead) {
   EXPECT_FALSE(r.ok);
   EXPECT_EQ(r.error.find("too large"), std::string::npos) << r.error;
   EXPECT_NE(r.error.find(at), std::string::npos) << r.error;
+}
+
+TEST_F(HostileFiles, FileLongerThanItsStatSizeIsReadWhole) {
+  // /proc files are regular with st_size 0: the reader goes on until end of file.
+  const UrdfLoadResult r = loadUrdfFile("/proc/self/status");
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.error.find("empty"), std::string::npos) << r.error;
+  EXPECT_NE(r.error.find("not well-formed XML"), std::string::npos) << r.error;
 }
 
 TEST_F(HostileFiles, TheTextReadIsReturnedOnce) {
@@ -190,8 +199,8 @@ TEST_F(HostileFiles, RagdollCheckExitsOneAtOnce) {
   const std::string big = sparse("huge.urdf", off_t(1) << 40);
   for (const std::string& path : {std::string("/dev/zero"), fifo(), folder(), big}) {
     // The shell's timeout kills a ragdoll_check that blocks or reads forever.
-    const std::string cmd =
-        "timeout -s KILL " + std::to_string(2 * kDeadline) + " " RAGDOLL_CHECK_BIN " " + path + " 2>&1";
+    const std::string cmd = "timeout -s KILL " + std::to_string(2 * kDeadline) +
+                            " " RAGDOLL_CHECK_BIN " " + path + " 2>&1";
     const Clock::time_point t0 = Clock::now();
     FILE* p = popen(cmd.c_str(), "r");
     ASSERT_NE(p, nullptr);
@@ -204,6 +213,6 @@ TEST_F(HostileFiles, RagdollCheckExitsOneAtOnce) {
     EXPECT_EQ(WEXITSTATUS(status), 1) << path << "\n" << out;
     EXPECT_LT(seconds, kDeadline) << path;
     EXPECT_NE(out.find("status=refused"), std::string::npos) << out;
-    EXPECT_NE(out.find("only regular files up to 64 MiB"), std::string::npos) << out;
+    EXPECT_NE(out.find(kRule), std::string::npos) << out;
   }
 }
