@@ -1,0 +1,173 @@
+// <collision> -> shape: SDF primitives map one to one, an ellipsoid becomes the hull of points on
+// its surface, a mesh the convex hull of its vertices (the URDF loader's mesh reader); a mesh
+// that cannot be read becomes a box fitted to a dynamic link's inertia, or is skipped.
+#include <sdf/sdf.hh>
+
+#include <Eigen/Eigenvalues>
+
+#include <cmath>
+#include <filesystem>
+
+#include "loader.hpp"  // urdf_load::kHullDirections
+#include "ragdoll_sim/material.hpp"
+#include "mesh_loader.hpp"
+#include "world_load.hpp"
+
+namespace ragdoll_sim {
+namespace world_load {
+namespace {
+
+Vec3 vec(const ignition::math::Vector3d& v) { return Vec3(v.X(), v.Y(), v.Z()); }
+
+// Points on an ellipsoid's surface (latitude / longitude rings and the poles).
+std::vector<Vec3> ellipsoidPoints(const Vec3& radii) {
+  constexpr int kRings = 8, kSegments = 16;
+  std::vector<Vec3> pts{Vec3(0, 0, radii.z()), Vec3(0, 0, -radii.z())};
+  for (int i = 1; i < kRings; ++i) {
+    const double theta = M_PI * i / kRings;
+    for (int k = 0; k < kSegments; ++k) {
+      const double phi = 2 * M_PI * k / kSegments;
+      pts.emplace_back(radii.x() * std::sin(theta) * std::cos(phi),
+                       radii.y() * std::sin(theta) * std::sin(phi), radii.z() * std::cos(theta));
+    }
+  }
+  return pts;
+}
+
+// The box with the link's principal moments of inertia and mass, on its centre of mass.
+bool fittedBox(const WorldLinkDef& link, ShapeDef* s) {
+  Eigen::SelfAdjointEigenSolver<Mat3> eig(link.inertia);
+  const Vec3 I = eig.eigenvalues();
+  const double m = link.mass;
+  if (!(m > 0)) return false;
+  // Ixx = m (b^2 + c^2) / 12 ... for full sizes a, b, c.
+  const double s2 = 6.0 / m;
+  const Vec3 sq(s2 * (I.y() + I.z() - I.x()), s2 * (I.x() + I.z() - I.y()), s2 * (I.x() + I.y() - I.z()));
+  if (!(sq.minCoeff() > 0) || !sq.allFinite()) return false;
+  Mat3 R = eig.eigenvectors();
+  if (R.determinant() < 0) R.col(2) = -R.col(2);
+  s->geometry = Geometry::box(0.5 * sq.cwiseSqrt());
+  s->local = Transform(link.com, Quat(R));
+  return true;
+}
+
+// <surface> coefficients as written (the element tree: SDFormat 12 has no accessor for them).
+void readSurface(const sdf::Collision& c, const std::string& where, WorldCollisionDef* def) {
+  const sdf::ElementPtr e = c.Element();
+  if (!e || !e->HasElement("surface")) return;
+  const sdf::ElementPtr surface = e->GetElement("surface");
+  if (surface->HasElement("friction") && surface->GetElement("friction")->HasElement("ode")) {
+    const sdf::ElementPtr ode = surface->GetElement("friction")->GetElement("ode");
+    if (ode->HasElement("mu") || ode->HasElement("mu2")) {
+      def->has_friction = true;
+      def->mu = ode->Get<double>("mu");
+      def->mu2 = ode->HasElement("mu2") ? ode->Get<double>("mu2") : def->mu;
+      if (!ode->HasElement("mu")) def->mu = def->mu2;
+      const double mean = 0.5 * (def->mu + def->mu2);
+      def->shape.material.static_friction = def->shape.material.kinetic_friction = mean;
+    }
+  }
+  if (surface->HasElement("bounce") &&
+      surface->GetElement("bounce")->HasElement("restitution_coefficient")) {
+    def->has_restitution = true;
+    def->shape.material.restitution = surface->GetElement("bounce")->Get<double>("restitution_coefficient");
+  }
+  const std::string bad = materialError(def->shape.material);
+  if (!bad.empty()) throw LoadError(where + " <surface>: " + bad);
+}
+
+}  // namespace
+
+bool collisionShape(const sdf::Collision& c, const std::string& where, const WorldLinkDef& link,
+                    const std::string& link_frame, bool dynamic, WalkContext& ctx,
+                    WorldCollisionDef* def) {
+  def->name = c.Name();
+  ignition::math::Pose3d p;
+  const sdf::Errors errs = c.SemanticPose().Resolve(p, link_frame);
+  if (!errs.empty()) throw LoadError(where + " <pose>: " + errs[0].Message());
+  def->shape.local = Transform(vec(p.Pos()), Quat(p.Rot().W(), p.Rot().X(), p.Rot().Y(), p.Rot().Z()));
+  const sdf::Geometry* g = c.Geom();
+  Geometry& out = def->shape.geometry;
+  auto skip = [&](const std::string& why) {
+    ctx.warnings->push_back(where + ": " + why + "; skipped");
+    ++*ctx.skipped;
+    return false;
+  };
+  switch (g ? g->Type() : sdf::GeometryType::EMPTY) {
+    case sdf::GeometryType::BOX:
+      out = Geometry::box(0.5 * vec(g->BoxShape()->Size()));
+      def->source = "box";
+      break;
+    case sdf::GeometryType::SPHERE:
+      out = Geometry::sphere(g->SphereShape()->Radius());
+      def->source = "sphere";
+      break;
+    case sdf::GeometryType::CYLINDER:
+      out = Geometry::cylinder(g->CylinderShape()->Radius(), 0.5 * g->CylinderShape()->Length());
+      def->source = "cylinder";
+      break;
+    case sdf::GeometryType::CAPSULE:
+      out = Geometry::capsule(g->CapsuleShape()->Radius(), 0.5 * g->CapsuleShape()->Length());
+      def->source = "capsule";
+      break;
+    case sdf::GeometryType::ELLIPSOID: {
+      const Vec3 r = vec(g->EllipsoidShape()->Radii());
+      if (!(r.allFinite() && r.minCoeff() > 0))
+        throw LoadError(where + " <ellipsoid><radii>: must be three finite numbers > 0");
+      out = Geometry::convexHull(ellipsoidPoints(r));
+      def->source = "convex hull of an ellipsoid";
+      break;
+    }
+    case sdf::GeometryType::PLANE: {
+      const Vec3 n = vec(g->PlaneShape()->Normal());
+      const auto size = g->PlaneShape()->Size();
+      if (!(n.allFinite() && n.norm() > 1e-9))
+        throw LoadError(where + " <plane><normal>: must be a finite non-zero vector");
+      if (!(std::isfinite(size.X()) && std::isfinite(size.Y()) && size.X() >= 0 && size.Y() >= 0))
+        throw LoadError(where + " <plane><size>: must be two finite numbers >= 0");
+      out = Geometry::plane(n.normalized(), 0.0);
+      def->plane_size[0] = size.X();
+      def->plane_size[1] = size.Y();
+      def->source = "plane";
+      break;
+    }
+    case sdf::GeometryType::MESH: {
+      const sdf::Mesh& m = *g->MeshShape();
+      std::string why, path;
+      std::vector<Vec3> points;
+      if (!ctx.options->load_meshes) {
+        why = "mesh loading is off";
+      } else {
+        const std::string base = m.FilePath().empty() ? ctx.options->base_dir
+                                                      : std::filesystem::path(m.FilePath()).parent_path().string();
+        path = ctx.resolver->resource(m.Uri(), base, &why);
+        if (!path.empty()) mesh::readVertices(path, vec(m.Scale()), &points, &why);
+      }
+      if (!points.empty()) {
+        out = Geometry::convexHull(mesh::supportPoints(points, urdf_load::kHullDirections));
+        if (out.hull) {
+          def->source = "convex hull of " + m.Uri() + " (" + std::to_string(out.hull->vertices.size()) +
+                        " of " + std::to_string(points.size()) + " vertices)";
+          break;
+        }
+        why = path + " is flat (no volume)";
+      }
+      if (dynamic && link.has_inertial && fittedBox(link, &def->shape)) {
+        def->source = "box fitted to the inertia (mesh " + m.Uri() + ": " + why + ")";
+        ctx.warnings->push_back(where + ": mesh " + m.Uri() + " unusable (" + why +
+                                "); a box fitted to the link's inertia stands in");
+        break;
+      }
+      return skip("mesh " + m.Uri() + " unusable (" + why + ")");
+    }
+    default:
+      return skip("geometry not simulated");
+  }
+  const std::string bad = geometryError(out);
+  if (!bad.empty()) throw LoadError(where + " <geometry>: " + bad);
+  readSurface(c, where, def);
+  return true;
+}
+
+}  // namespace world_load
+}  // namespace ragdoll_sim

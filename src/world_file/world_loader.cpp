@@ -1,0 +1,155 @@
+// See world_file.hpp. SDFormat 12 spends milliseconds and megabytes on every model it loads, so
+// models that differ only in name and pose (generated worlds: thousands of boxes) are handed to
+// it once and the others placed from their own pose.
+#include <sdf/sdf.hh>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "input_file.hpp"
+#include "world_load.hpp"
+
+namespace ragdoll_sim {
+namespace world_load {
+namespace {
+
+Transform transform(const ignition::math::Pose3d& p) {
+  return Transform(Vec3(p.Pos().X(), p.Pos().Y(), p.Pos().Z()),
+                   Quat(p.Rot().W(), p.Rot().X(), p.Rot().Y(), p.Rot().Z()).normalized());
+}
+
+// Model `from` (walked at its own pose) moved to another model's name, pose and colours.
+WorldModelDef placed(const WorldModelDef& from, const PreparedModel& pm) {
+  WorldModelDef m = from;
+  m.name = pm.name;
+  m.file_name = pm.file_name;
+  const Transform shift = pm.pose * from.pose.inverse();
+  m.pose = pm.pose;
+  for (WorldLinkDef& l : m.links) {
+    l.pose = shift * l.pose;
+    const auto c = pm.colors.find(l.name);
+    l.has_color = c != pm.colors.end();
+    if (l.has_color) l.color = c->second;
+  }
+  for (RagdollJointDef& j : m.joints)
+    if (j.parent < 0) j.frame_parent = shift * j.frame_parent;
+  return m;
+}
+
+std::string versionText(double v) {
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "%.1f", v);
+  return buf;
+}
+
+WorldLoadResult load(const std::string& text, const std::string& file, const WorldLoadOptions& options) {
+  WorldLoadResult r;
+  try {
+    const Resolver resolver(options);
+    PreparedWorld pw;
+    prepareWorld(text, file, options, resolver, &pw);
+
+    // Models parsed by SDFormat: one per key where the others can be placed from their pose.
+    const size_t n = pw.models.size();
+    std::vector<size_t> template_of(n);
+    std::vector<size_t> parsed;
+    std::map<std::string, size_t> by_key;
+    for (size_t i = 0; i < n; ++i) {
+      const PreparedModel& m = pw.models[i];
+      if (pw.models_independent && m.plain_pose) {
+        const auto [it, fresh] = by_key.emplace(m.key, i);
+        template_of[i] = it->second;
+        if (!fresh) continue;
+      } else {
+        template_of[i] = i;
+      }
+      parsed.push_back(i);
+    }
+    std::string doc = "<?xml version=\"1.0\"?>\n<sdf version=\"" + versionText(pw.version) +
+                      "\"><world name=\"w\">" + pw.frames_xml;
+    for (size_t i : parsed) doc += pw.models[i].xml;
+    doc += "</world></sdf>";
+
+    sdf::Console::Instance()->SetQuiet(true);  // its errors come back here; warnings are ours
+    sdf::Root root;
+    const sdf::Errors errs = root.LoadSdfString(doc);
+    if (!errs.empty()) throw LoadError("SDF: " + errs[0].Message());
+    const sdf::World* world = root.WorldCount() ? root.WorldByIndex(0) : nullptr;
+    if (!world) throw LoadError("SDF: no world loaded");
+
+    WorldFileDef& def = r.def;
+    def.name = pw.name;
+    def.gravity = pw.gravity;
+    def.has_max_step_size = pw.has_max_step_size;
+    def.max_step_size = pw.max_step_size;
+    def.notes = pw.notes;
+    def.warnings = pw.warnings;
+    if (def.has_max_step_size)
+      def.notes.push_back("<physics><max_step_size> " + num(def.max_step_size) +
+                          " s is reported, not obeyed (the simulator's own time step is used)");
+    int skipped = 0;
+    WalkContext ctx{&options, &resolver, &def.warnings, &skipped};
+    std::map<size_t, WorldModelDef> walked;
+    std::map<size_t, int> skipped_in;  // per parsed model: collisions skipped while walking it
+    for (size_t i : parsed) {
+      const PreparedModel& pm = pw.models[i];
+      const sdf::Model* m = world->ModelByName(pm.name);
+      if (!m) throw LoadError("SDF: model " + quote(pm.name) + " not loaded");
+      ignition::math::Pose3d p;
+      const sdf::Errors perr = m->SemanticPose().Resolve(p, "world");
+      if (!perr.empty()) throw LoadError("model " + quote(pm.name) + " <pose>: " + perr[0].Message());
+      WorldModelDef& md = walked[i];
+      md.name = pm.name;
+      md.file_name = pm.file_name;
+      const int before = skipped;
+      walkModel(*m, transform(p), pm.colors, ctx, &md);
+      skipped_in[i] = skipped - before;
+    }
+    def.models.reserve(n);
+    WorldCounts& c = def.counts;
+    for (size_t i = 0; i < n; ++i) {
+      const size_t t = template_of[i];
+      def.models.push_back(t == i ? std::move(walked[i]) : placed(def.models[t], pw.models[i]));
+      const WorldModelDef& m = def.models.back();
+      c.skipped += skipped_in[t];
+      for (const WorldLinkDef& l : m.links) {
+        if (l.is_static) c.static_shapes += int(l.collisions.size());
+        else ++c.dynamic_bodies;
+      }
+    }
+    c.models = int(def.models.size());
+    c.skipped += pw.skipped;
+    c.unresolved = pw.unresolved;
+    r.ok = true;
+  } catch (const LoadError& e) {
+    r.ok = false;
+    r.error = e.what();
+    r.def = WorldFileDef();
+  }
+  return r;
+}
+
+}  // namespace
+}  // namespace world_load
+
+WorldLoadResult loadWorldString(const std::string& xml, const WorldLoadOptions& options) {
+  return world_load::load(xml, "", options);
+}
+
+WorldLoadResult loadWorldFile(const std::string& path, WorldLoadOptions options) {
+  WorldLoadResult r;
+  std::string text;
+  if (!readInputFile(path, "world file", &text, &r.error)) return r;
+  if (options.base_dir.empty()) options.base_dir = std::filesystem::path(path).parent_path().string();
+  return world_load::load(text, path, options);
+}
+
+std::string worldSummaryLine(const WorldFileDef& d) {
+  const WorldCounts& c = d.counts;
+  return "world=" + d.name + " status=ok models=" + std::to_string(c.models) +
+         " static_shapes=" + std::to_string(c.static_shapes) + " dynamic_bodies=" +
+         std::to_string(c.dynamic_bodies) + " skipped=" + std::to_string(c.skipped) +
+         " unresolved=" + std::to_string(c.unresolved);
+}
+
+}  // namespace ragdoll_sim
