@@ -76,6 +76,21 @@ void readSurface(const sdf::Collision& c, const std::string& where, WorldCollisi
   if (!bad.empty()) throw LoadError(where + " <surface>: " + bad);
 }
 
+// Sizes as SDF names them: finite and > 0 (a capsule's length may be 0).
+void checkSizes(const std::string& where, const std::string& element, std::initializer_list<double> sizes,
+                bool zero_ok_last = false) {
+  int k = 0;
+  const int n = int(sizes.size());
+  std::string text;
+  bool ok = true;
+  for (double v : sizes) {
+    text += (text.empty() ? "" : " ") + num(v);
+    const bool last = ++k == n;
+    ok &= std::isfinite(v) && (v > 0 || (last && zero_ok_last && v == 0));
+  }
+  if (!ok) throw LoadError(where + " " + element + ": must be finite and > 0, got " + text);
+}
+
 }  // namespace
 
 bool collisionShape(const sdf::Collision& c, const std::string& where, const WorldLinkDef& link,
@@ -94,19 +109,26 @@ bool collisionShape(const sdf::Collision& c, const std::string& where, const Wor
     return false;
   };
   switch (g ? g->Type() : sdf::GeometryType::EMPTY) {
-    case sdf::GeometryType::BOX:
+    case sdf::GeometryType::BOX: {
+      const auto v = g->BoxShape()->Size();
+      checkSizes(where, "<box><size>", {v.X(), v.Y(), v.Z()});
       out = Geometry::box(0.5 * vec(g->BoxShape()->Size()));
       def->source = "box";
       break;
+    }
     case sdf::GeometryType::SPHERE:
+      checkSizes(where, "<sphere><radius>", {g->SphereShape()->Radius()});
       out = Geometry::sphere(g->SphereShape()->Radius());
       def->source = "sphere";
       break;
     case sdf::GeometryType::CYLINDER:
+      checkSizes(where, "<cylinder><radius> <length>", {g->CylinderShape()->Radius(), g->CylinderShape()->Length()});
       out = Geometry::cylinder(g->CylinderShape()->Radius(), 0.5 * g->CylinderShape()->Length());
       def->source = "cylinder";
       break;
     case sdf::GeometryType::CAPSULE:
+      checkSizes(where, "<capsule><radius> <length>", {g->CapsuleShape()->Radius(), g->CapsuleShape()->Length()},
+                 true);
       out = Geometry::capsule(g->CapsuleShape()->Radius(), 0.5 * g->CapsuleShape()->Length());
       def->source = "capsule";
       break;

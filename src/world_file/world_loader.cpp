@@ -1,6 +1,7 @@
 // See world_file.hpp. SDFormat 12 spends milliseconds and megabytes on every model it loads, so
 // models that differ only in name and pose (generated worlds: thousands of boxes) are handed to
 // it once and the others placed from their own pose.
+#include <console_bridge/console.h>
 #include <sdf/sdf.hh>
 
 #include <cstdio>
@@ -12,6 +13,45 @@
 namespace ragdoll_sim {
 namespace world_load {
 namespace {
+
+// SDFormat retries a document it cannot read as URDF, whose parser (urdfdom) writes its errors
+// to console_bridge: swallowed while SDFormat runs, the error returned is SDFormat's own.
+class QuietConsole : public console_bridge::OutputHandler {
+ public:
+  QuietConsole() : previous_(console_bridge::getOutputHandler()) { console_bridge::useOutputHandler(this); }
+  ~QuietConsole() override { console_bridge::useOutputHandler(previous_); }
+  void log(const std::string&, console_bridge::LogLevel, const char*, int) override {}
+
+ private:
+  console_bridge::OutputHandler* previous_;
+};
+
+// "SDF: model 'm' link 'l' <inertial> <mass>: <message>": SDFormat's XML path in our words.
+std::string errorText(const sdf::Error& e) {
+  std::string where;
+  const std::string path = e.XmlPath().value_or("");
+  size_t start = 0;
+  while (start < path.size()) {
+    size_t end = path.find('/', start);
+    // A name may hold a '/': the part ends at a '/' outside [@name="..."].
+    const size_t bracket = path.find('[', start);
+    if (bracket != std::string::npos && bracket < end) {
+      const size_t close = path.find("\"]", bracket);
+      end = close == std::string::npos ? std::string::npos : path.find('/', close);
+    }
+    const std::string part = path.substr(start, end == std::string::npos ? std::string::npos : end - start);
+    start = end == std::string::npos ? path.size() : end + 1;
+    if (part.empty() || part == "sdf" || part.rfind("world[", 0) == 0) continue;
+    const size_t b = part.find("[@name=\"");
+    if (b == std::string::npos) {
+      where += (where.empty() ? "<" : " <") + part + ">";
+    } else {
+      const std::string name = part.substr(b + 8, part.size() - b - 8 - 2);
+      where += (where.empty() ? "" : " ") + part.substr(0, b) + " " + quote(name);
+    }
+  }
+  return "SDF: " + (where.empty() ? "" : where + ": ") + e.Message();
+}
 
 Transform transform(const ignition::math::Pose3d& p) {
   return Transform(Vec3(p.Pos().X(), p.Pos().Y(), p.Pos().Z()),
@@ -72,8 +112,12 @@ WorldLoadResult load(const std::string& text, const std::string& file, const Wor
 
     sdf::Console::Instance()->SetQuiet(true);  // its errors come back here; warnings are ours
     sdf::Root root;
-    const sdf::Errors errs = root.LoadSdfString(doc);
-    if (!errs.empty()) throw LoadError("SDF: " + errs[0].Message());
+    sdf::Errors errs;
+    {
+      QuietConsole quiet;
+      errs = root.LoadSdfString(doc);
+    }
+    if (!errs.empty()) throw LoadError(errorText(errs[0]));
     const sdf::World* world = root.WorldCount() ? root.WorldByIndex(0) : nullptr;
     if (!world) throw LoadError("SDF: no world loaded");
 
