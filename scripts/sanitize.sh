@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The ROS-free gtests (test_core, test_urdf, test_scene; ragdoll_check too, which test_urdf runs)
+# The ROS-free gtests (test_core, test_urdf, test_world_file, test_scene; ragdoll_check too, which
+# test_urdf and test_world_file run)
 # built with AddressSanitizer + UndefinedBehaviorSanitizer (gcc's runtimes, OpenMP on) in
 # .ws/sanitize, and run. Usage: sanitize.sh RESULTS_DIR. Each binary writes its gtest JUnit
 # report there; a run that a sanitizer ends (no report, or one without the failure) gets a
@@ -16,7 +17,7 @@ mkdir -p "$RESULTS"
 if ! cmake -S "$ROOT" -B "$BUILD" -DRAGDOLL_SIM_CORE_ONLY=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
       -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g" -DCMAKE_CXX_FLAGS="$SAN" \
       -DCMAKE_EXE_LINKER_FLAGS="$SAN" -DCMAKE_SHARED_LINKER_FLAGS="$SAN" >"$BUILD.cmake.log" 2>&1 ||
-   ! cmake --build "$BUILD" -j2 --target test_core test_urdf test_scene ragdoll_check \
+   ! cmake --build "$BUILD" -j2 --target test_core test_urdf test_world_file test_scene ragdoll_check \
       >"$BUILD.build.log" 2>&1; then
   echo "sanitize: build failed (see $BUILD.cmake.log, $BUILD.build.log):"
   tail -n 30 "$BUILD.build.log" 2>/dev/null
@@ -45,7 +46,7 @@ PY
 }
 
 rc=0
-for t in test_core test_urdf test_scene; do
+for t in test_core test_urdf test_world_file test_scene; do
   xml="$RESULTS/sanitize-$t.xml"
   log="$BUILD/$t.log"
   rm -f "$xml"

@@ -1,6 +1,5 @@
 // <include>: model:// through the search path, overrides, what cannot be resolved, cycles;
 // renamed duplicates; poses through frames and nested models; joints.
-#include <chrono>
 #include <cmath>
 
 #include "world_test_util.hpp"
@@ -52,14 +51,12 @@ TEST(WorldIncludes, StrictRefusesAnUnresolvedInclude) {
   EXPECT_NE(r.error.find("strict"), std::string::npos) << r.error;
 }
 
-TEST(WorldIncludes, CycleIsRefusedQuickly) {
-  const auto t0 = std::chrono::steady_clock::now();
+// SDFormat 12 would expand the cycle until it runs out of memory.
+TEST(WorldIncludes, CycleIsRefused) {
   const WorldLoadResult r = load("cycle.world");
-  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ASSERT_FALSE(r.ok);
   EXPECT_NE(r.error.find("a cycle of includes"), std::string::npos) << r.error;
   EXPECT_NE(r.error.find("model://cycle_a"), std::string::npos) << r.error;
-  EXPECT_LT(s, 2.0);
 }
 
 TEST(WorldIncludes, DepthIsBounded) {

