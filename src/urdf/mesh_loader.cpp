@@ -126,7 +126,7 @@ std::string resolveUri(const std::string& uri, const std::string& base_dir,
 }
 
 bool readVertices(const std::string& path, const Vec3& scale, std::vector<Vec3>* out,
-                  std::string* error) {
+                  std::string* error, double* volume) {
   Assimp::Importer importer;
   auto* io = new BoundedIOSystem;  // the importer owns it
   importer.SetIOHandler(io);
@@ -146,20 +146,35 @@ bool readVertices(const std::string& path, const Vec3& scale, std::vector<Vec3>*
     const aiScene* scene;
     const Vec3& scale;
     std::vector<Vec3>* out;
+    double* volume;
     void operator()(const aiNode* node, const aiMatrix4x4& parent) const {
       const aiMatrix4x4 T = parent * node->mTransformation;
       for (unsigned m = 0; m < node->mNumMeshes; ++m) {
         const aiMesh* mesh = scene->mMeshes[node->mMeshes[m]];
-        for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+        auto at = [&](unsigned v) {
           const aiVector3D p = T * mesh->mVertices[v];
-          const Vec3 x = Vec3(p.x, p.y, p.z).cwiseProduct(scale);
+          return Vec3(Vec3(p.x, p.y, p.z).cwiseProduct(scale));
+        };
+        for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+          const Vec3 x = at(v);
           if (x.allFinite()) out->push_back(x);
+        }
+        // Signed volume of the tetrahedra from the origin to each face (polygons as fans).
+        for (unsigned f = 0; volume && f < mesh->mNumFaces; ++f) {
+          const aiFace& face = mesh->mFaces[f];
+          for (unsigned k = 2; k < face.mNumIndices; ++k) {
+            const unsigned a = face.mIndices[0], b = face.mIndices[k - 1], c = face.mIndices[k];
+            if (a < mesh->mNumVertices && b < mesh->mNumVertices && c < mesh->mNumVertices)
+              *volume += at(a).dot(at(b).cross(at(c))) / 6.0;
+          }
         }
       }
       for (unsigned c = 0; c < node->mNumChildren; ++c) (*this)(node->mChildren[c], T);
     }
   };
-  Walk{scene, scale, out}(scene->mRootNode, aiMatrix4x4());
+  if (volume) *volume = 0;
+  Walk{scene, scale, out, volume}(scene->mRootNode, aiMatrix4x4());
+  if (volume) *volume = std::abs(*volume);
   if (out->empty()) {
     *error = path + " holds no vertices";
     return false;

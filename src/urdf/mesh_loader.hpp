@@ -23,9 +23,10 @@ std::string resolveUri(const std::string& uri, const std::string& base_dir,
 std::vector<std::string> packagePathFromEnv();
 
 // Every vertex of every mesh in the file, node transforms applied, times `scale`.
-// false with *error when assimp cannot read it or it holds no vertex.
+// false with *error when assimp cannot read it or it holds no vertex. `volume`, when given,
+// receives the volume its faces enclose (divergence theorem; meaningful for closed meshes).
 bool readVertices(const std::string& path, const Vec3& scale, std::vector<Vec3>* out,
-                  std::string* error);
+                  std::string* error, double* volume = nullptr);
 
 // The farthest point in each of ~`directions` directions spread over the sphere (duplicates
 // removed): their hull is the mesh's hull with few vertices, inside it and touching it in

@@ -17,6 +17,9 @@ namespace ragdoll_sim {
 namespace world_load {
 namespace {
 
+// A closed mesh enclosing less than this share of its convex hull's volume is clearly concave.
+constexpr double kConcaveRatio = 0.6;
+
 Vec3 vec(const ignition::math::Vector3d& v) { return Vec3(v.X(), v.Y(), v.Z()); }
 
 // Points on an ellipsoid's surface (latitude / longitude rings and the poles).
@@ -157,19 +160,27 @@ bool collisionShape(const sdf::Collision& c, const std::string& where, const Wor
       const sdf::Mesh& m = *g->MeshShape();
       std::string why, path;
       std::vector<Vec3> points;
+      double volume = 0;
       if (!ctx.options->load_meshes) {
         why = "mesh loading is off";
       } else {
         const std::string base = m.FilePath().empty() ? ctx.options->base_dir
                                                       : std::filesystem::path(m.FilePath()).parent_path().string();
         path = ctx.resolver->resource(m.Uri(), base, &why);
-        if (!path.empty()) mesh::readVertices(path, vec(m.Scale()), &points, &why);
+        if (!path.empty()) mesh::readVertices(path, vec(m.Scale()), &points, &why, &volume);
       }
       if (!points.empty()) {
         out = Geometry::convexHull(mesh::supportPoints(points, urdf_load::kHullDirections));
         if (out.hull) {
           def->source = "convex hull of " + m.Uri() + " (" + std::to_string(out.hull->vertices.size()) +
                         " of " + std::to_string(points.size()) + " vertices)";
+          // An open mesh encloses no definite volume; a closed one well inside its hull is a
+          // shape the hull fills in (a bowl, a chair, stairs).
+          const double hull = out.volume();
+          if (volume > 0 && hull > 0 && volume < kConcaveRatio * hull)
+            ctx.warnings->push_back(where + ": mesh " + m.Uri() + " is clearly concave (it encloses " +
+                                    std::to_string(int(std::lround(100 * volume / hull))) +
+                                    " % of its convex hull); collisions use the hull");
           break;
         }
         why = path + " is flat (no volume)";

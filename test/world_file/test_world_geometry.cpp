@@ -47,6 +47,12 @@ TEST(WorldGeometry, EveryKindMapsToItsShape) {
   ASSERT_EQ(mesh->shape.geometry.type, ShapeType::ConvexHull);
   EXPECT_EQ(mesh->shape.geometry.hull->vertices.size(), 8u);
   EXPECT_NE(mesh->source.find("convex hull of model://bar_mesh/meshes/cube.obj"), std::string::npos);
+  EXPECT_FALSE(contains(d.warnings, "cube.obj is clearly concave"));
+  const auto* concave = collision(*shapes, "concave");
+  ASSERT_NE(concave, nullptr);
+  EXPECT_NEAR(concave->shape.geometry.volume(), 5.08, 1e-6);  // the L's hull, not the L (1.16)
+  EXPECT_TRUE(contains(d.warnings, "collision 'concave': mesh model://bar_mesh/meshes/ell.obj is clearly "
+                                   "concave (it encloses 23 % of its convex hull); collisions use the hull"));
   // Static: a missing mesh and a heightmap are skipped with a warning, <empty> silently.
   EXPECT_EQ(collision(*shapes, "missing_mesh"), nullptr);
   EXPECT_EQ(collision(*shapes, "terrain"), nullptr);
@@ -116,7 +122,7 @@ TEST(WorldGeometry, PhysicsNotesAndCounts) {
   EXPECT_TRUE(contains(d.notes, "1 <gui> not simulated"));
   EXPECT_TRUE(contains(d.notes, "max_step_size> 0.002 s is reported, not obeyed"));
   EXPECT_EQ(worldSummaryLine(d),
-            "world=all_shapes status=ok models=3 static_shapes=7 dynamic_bodies=1 skipped=2 unresolved=0");
+            "world=all_shapes status=ok models=3 static_shapes=8 dynamic_bodies=1 skipped=2 unresolved=0");
 }
 
 TEST(WorldGeometry, SdfOnePointFourIdioms) {
