@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets (test/fuzz: fuzz_urdf, fuzz_commands; clang, ASan + UBSan) in
-# .ws/fuzz and runs each in turn. Prints each target's executions and any crash; exits non-zero
-# on a crash (the input is saved as .ws/fuzz/artifacts/<target>-crash-*).
+# Builds the libFuzzer targets (test/fuzz: fuzz_urdf, fuzz_commands, fuzz_world; clang, ASan +
+# UBSan) in .ws/fuzz and runs each in turn. Prints each target's executions and any crash; exits
+# non-zero on a crash (the input is saved as .ws/fuzz/artifacts/<target>-crash-*).
 #   fuzz.sh                      FUZZ_SECONDS (60) per target, random seed; what it finds new is
 #                                kept in .ws/fuzz/corpus/<target> for the next run (make fuzz)
 #   fuzz.sh --runs N --junit DIR every seed input, then up to N executions in all from seed 1
 #                                into a fresh corpus; one JUnit case per target in DIR (make test)
 # Seeds: test/fuzz/corpus/<target>; fuzz_urdf also reads urdf/ and test/urdf/fixtures/ in place
-# (the real ragdoll, the mesh fixture, the malformed fixtures) rather than copies of them.
+# (the real ragdoll, the mesh fixture, the malformed fixtures) rather than copies of them;
+# fuzz_world reads test/world_file/fixtures in place.
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
 SECONDS_EACH="${FUZZ_SECONDS:-60}"
@@ -29,7 +30,7 @@ if ! cmake -S "$ROOT" -B "$BUILD" -DCMAKE_CXX_COMPILER="$CXX_BIN" -DRAGDOLL_SIM_
       -DRAGDOLL_SIM_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g" \
       -DCMAKE_CXX_FLAGS="$SAN" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
       >"$WS/fuzz/cmake.log" 2>&1 ||
-   ! cmake --build "$BUILD" -j2 --target fuzz_urdf fuzz_commands >"$WS/fuzz/build.log" 2>&1; then
+   ! cmake --build "$BUILD" -j2 --target fuzz_urdf fuzz_commands fuzz_world >"$WS/fuzz/build.log" 2>&1; then
   echo "fuzz: build failed (see $WS/fuzz/cmake.log, $WS/fuzz/build.log):"
   tail -n 30 "$WS/fuzz/build.log" 2>/dev/null
   exit 1
@@ -38,6 +39,7 @@ fi
 seeds() {  # target -> SEEDS (array of corpus folders, read only)
   SEEDS=("$ROOT/test/fuzz/corpus/$1")
   if [[ "$1" == fuzz_urdf ]]; then SEEDS+=("$ROOT/urdf" "$ROOT/test/urdf/fixtures"); fi
+  if [[ "$1" == fuzz_world ]]; then SEEDS+=("$ROOT/test/world_file/fixtures"); fi
 }
 
 junit() {  # target ok(0/1) log
@@ -54,7 +56,7 @@ PY
 }
 
 rc=0
-for t in fuzz_urdf fuzz_commands; do
+for t in fuzz_urdf fuzz_commands fuzz_world; do
   log="$WS/fuzz/$t.log"
   if [[ -n "$RUNS" ]]; then
     corpus="$(mktemp -d)"

@@ -72,17 +72,20 @@ Resolver::Resolver(const WorldLoadOptions& options) {
 }
 
 std::string Resolver::modelDir(const std::string& name) const {
-  if (name.empty() || name == "." || name == "..") return "";
+  if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos) return "";
+  const auto cached = model_dirs_.find(name);
+  if (cached != model_dirs_.end()) return cached->second;
+  std::string& found = model_dirs_[name];
   for (const std::string& root : model_paths_) {
-    if (isDir(fs::path(root) / name)) return (fs::path(root) / name).string();
+    if (isDir(fs::path(root) / name)) return found = (fs::path(root) / name).string();
     // A ROS package exporting its models keeps them in <package>/models.
     std::error_code ec;
     for (fs::directory_iterator it(root, ec), end; !ec && it != end; it.increment(ec)) {
       const fs::path p = it->path() / "models" / name;
-      if (isDir(p)) return p.string();
+      if (isDir(p)) return found = p.string();
     }
   }
-  return "";
+  return found;
 }
 
 std::string Resolver::modelFile(const std::string& uri, const std::string& base_dir,

@@ -65,6 +65,7 @@ class Resolver {
  private:
   std::string modelDir(const std::string& name) const;  // "" when no search path holds it
   std::vector<std::string> model_paths_;
+  mutable std::map<std::string, std::string> model_dirs_;  // name -> modelDir (a world repeats them)
   std::vector<std::string> package_paths_;
 };
 

@@ -58,13 +58,14 @@ Transform transform(const ignition::math::Pose3d& p) {
                    Quat(p.Rot().W(), p.Rot().X(), p.Rot().Y(), p.Rot().Z()).normalized());
 }
 
-// Model `from` (walked at its own pose) moved to another model's name, pose and colours.
-WorldModelDef placed(const WorldModelDef& from, const PreparedModel& pm) {
+// Model `from` (walked, its <pose> `from_pose`) moved to another model's name, pose and colours.
+// The shift between the two <pose>s moves every frame of the model, whatever its placement.
+WorldModelDef placed(const WorldModelDef& from, const Transform& from_pose, const PreparedModel& pm) {
   WorldModelDef m = from;
   m.name = pm.name;
   m.file_name = pm.file_name;
-  const Transform shift = pm.pose * from.pose.inverse();
-  m.pose = pm.pose;
+  const Transform shift = pm.pose * from_pose.inverse();
+  m.pose = shift * from.pose;
   for (WorldLinkDef& l : m.links) {
     l.pose = shift * l.pose;
     const auto c = pm.colors.find(l.name);
@@ -153,7 +154,7 @@ WorldLoadResult load(const std::string& text, const std::string& file, const Wor
     WorldCounts& c = def.counts;
     for (size_t i = 0; i < n; ++i) {
       const size_t t = template_of[i];
-      def.models.push_back(t == i ? std::move(walked[i]) : placed(def.models[t], pw.models[i]));
+      def.models.push_back(t == i ? std::move(walked[i]) : placed(def.models[t], pw.models[t].pose, pw.models[i]));
       const WorldModelDef& m = def.models.back();
       c.skipped += skipped_in[t];
       for (const WorldLinkDef& l : m.links) {
