@@ -71,7 +71,7 @@ struct WorldFileDef {
 };
 
 struct WorldLoadOptions {
-  // An unresolved <include> (or a mesh that cannot be read, with no stand-in) is an error.
+  // An unresolved <include> is an error (else a warning, and the rest loads).
   bool strict = false;
   // model:// lookup roots; empty: $GAZEBO_MODEL_PATH, $SDF_PATH, $GZ_SIM_RESOURCE_PATH, then
   // $ROS_PACKAGE_PATH (each root R: R/NAME and R/*/models/NAME).
@@ -90,6 +90,12 @@ struct WorldLoadResult {
 
 WorldLoadResult loadWorldString(const std::string& xml, const WorldLoadOptions& options = {});
 WorldLoadResult loadWorldFile(const std::string& path, WorldLoadOptions options = {});
+
+// A model's links (root: the first, rest poses relative to it) and the joints between them
+// (joined pairs do not collide) as a RagdollDef: spawnRagdoll(world, def, m.links[0].pose)
+// places every link where the world file has it. Joints to the world (parent -1) are left out,
+// with a note: they pin the model (a fixed base).
+RagdollDef modelRagdollDef(const WorldModelDef& m);
 
 // "world=NAME status=ok models=N static_shapes=S dynamic_bodies=D skipped=K unresolved=U"
 std::string worldSummaryLine(const WorldFileDef& def);

@@ -5,6 +5,7 @@
 //   sdf_model.cpp         SDFormat DOM of one model -> WorldModelDef (poses, inertia, joints)
 //   sdf_geometry.cpp      <collision> geometry -> shapes (meshes through the URDF mesh loader)
 //   world_loader.cpp      entry points: pre-pass, SDFormat, identical models parsed once, counts
+//   model_ragdoll.cpp     a model as a RagdollDef
 #pragma once
 
 #include <array>
