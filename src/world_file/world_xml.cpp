@@ -241,8 +241,12 @@ XMLElement* expandInclude(XMLElement* inc, PrepareContext& ctx, std::string* inc
     if (XMLElement* own = child(model, "static")) model->DeleteChild(own);
     model->InsertEndChild(s->DeepClone(model->GetDocument()));
   }
-  for (const char* extra : {"plugin", "placement_frame"})
-    while (XMLElement* e = child(inc, extra)) dropElement(e, ctx);
+  // SDF 1.8 moved <include><placement_frame> onto the model; it changes what <pose> places.
+  if (XMLElement* pf = child(inc, "placement_frame")) {
+    model->SetAttribute("placement_frame", text(pf).c_str());
+    ctx.out->version = std::max(ctx.out->version, 1.8);
+  }
+  while (XMLElement* e = child(inc, "plugin")) dropElement(e, ctx);
   XMLElement* copy = model->DeepClone(inc->GetDocument())->ToElement();
   inc->Parent()->InsertAfterChild(inc, copy);
   inc->Parent()->DeleteChild(inc);
@@ -286,7 +290,6 @@ void prepareWorld(const std::string& content, const std::string& file, const Wor
     ctx.include_stack.push_back(fs::weakly_canonical(file, ec).string());
   }
   // Expand the world's own includes first, so that renaming sees every model.
-  std::vector<XMLElement*> top;
   for (XMLElement* e = world->FirstChildElement(); e;) {
     XMLElement* next = e->NextSiblingElement();
     const std::string n = e->Name();
@@ -314,8 +317,7 @@ void prepareWorld(const std::string& content, const std::string& file, const Wor
     const bool physical = prepareModel(m, ctx, "", &pm.colors);
     if (from != ctx.included_from.end()) ctx.include_stack.pop_back();
     if (!physical) {
-      out->warnings.push_back(describe(m) + ": nothing to simulate left in it (no link with a "
-                              "collision or an inertial); skipped");
+      out->warnings.push_back(describe(m) + ": nothing to simulate left in it (no link); skipped");
       ++out->skipped;
       continue;
     }

@@ -11,8 +11,8 @@ TEST(WorldIncludes, OverridesAndUnresolved) {
   const WorldLoadResult r = load("includes.world");
   ASSERT_TRUE(r.ok) << r.error;
   const WorldFileDef& d = r.def;
-  // crate, 'pinned crate' -> pinned_crate, a second 'crate' -> crate_2.
-  ASSERT_EQ(d.models.size(), 3u);
+  // crate, 'pinned crate' -> pinned_crate, a second 'crate' -> crate_2, placed.
+  ASSERT_EQ(d.models.size(), 4u);
   const WorldModelDef* first = model(d, "crate");
   ASSERT_NE(first, nullptr);
   EXPECT_FALSE(first->is_static);
@@ -32,6 +32,11 @@ TEST(WorldIncludes, OverridesAndUnresolved) {
   EXPECT_TRUE(second->links[0].pose.p.isApprox(Vec3(3, 0, 0.25)));
   EXPECT_TRUE(contains(d.warnings, "renamed to 'crate_2' (the name is taken)"));
   EXPECT_TRUE(contains(d.warnings, "renamed to 'pinned_crate' (spaces in the name)"));
+  // <placement_frame>: the <pose> places the link 'body', not the model frame.
+  const WorldModelDef* placed = model(d, "placed");
+  ASSERT_NE(placed, nullptr);
+  EXPECT_TRUE(placed->links[0].pose.p.isApprox(Vec3(5, 5, 1))) << placed->links[0].pose.p.transpose();
+  EXPECT_TRUE(placed->pose.p.isApprox(Vec3(5, 5, 0.75)));
   // The light in model://lamp is a note, not an unresolved include.
   EXPECT_TRUE(contains(d.notes, "1 <light> not simulated"));
   EXPECT_TRUE(contains(d.warnings, "https://fuel.gazebosim.org/1.0/OpenRobotics/models/Sun: online URI"));
@@ -39,7 +44,7 @@ TEST(WorldIncludes, OverridesAndUnresolved) {
   EXPECT_TRUE(contains(d.warnings, "model 'wrapper': nothing to simulate left in it"));
   EXPECT_EQ(d.counts.unresolved, 3);
   EXPECT_EQ(d.counts.skipped, 1);
-  EXPECT_EQ(d.counts.dynamic_bodies, 2);
+  EXPECT_EQ(d.counts.dynamic_bodies, 3);
   EXPECT_EQ(d.counts.static_shapes, 1);
 }
 

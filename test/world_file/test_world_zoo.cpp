@@ -87,7 +87,7 @@ TEST(WorldZoo, ThreeThousandShapesLoadInFiveSeconds) {
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   ASSERT_TRUE(r.ok) << r.error;
   std::printf("gz_3k_shapes: %.3f s\n", s);
-  EXPECT_LT(s, 5.0);  // issue 56's bound; SDFormat 12 alone takes tens of seconds
+  EXPECT_LT(s, 5.0);  // issue 56's bound
   EXPECT_EQ(r.def.counts.dynamic_bodies, 3003);
   // Models parsed once and placed from their own pose: spot checks against the file.
   const WorldModelDef* box0 = world_test::model(r.def, "box_0");
