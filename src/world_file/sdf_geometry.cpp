@@ -1,9 +1,7 @@
 // <collision> -> shape: SDF primitives map one to one, an ellipsoid becomes the hull of points on
 // its surface, a mesh the convex hull of its vertices (the URDF loader's mesh reader); a mesh
-// that cannot be read becomes a box fitted to a dynamic link's inertia, or is skipped.
+// that cannot be read is reported to the caller (sdf_model.cpp puts a stand-in or skips it).
 #include <sdf/sdf.hh>
-
-#include <Eigen/Eigenvalues>
 
 #include <cmath>
 #include <filesystem>
@@ -35,23 +33,6 @@ std::vector<Vec3> ellipsoidPoints(const Vec3& radii) {
     }
   }
   return pts;
-}
-
-// The box with the link's principal moments of inertia and mass, on its centre of mass.
-bool fittedBox(const WorldLinkDef& link, ShapeDef* s) {
-  Eigen::SelfAdjointEigenSolver<Mat3> eig(link.inertia);
-  const Vec3 I = eig.eigenvalues();
-  const double m = link.mass;
-  if (!(m > 0)) return false;
-  // Ixx = m (b^2 + c^2) / 12 ... for full sizes a, b, c.
-  const double s2 = 6.0 / m;
-  const Vec3 sq(s2 * (I.y() + I.z() - I.x()), s2 * (I.x() + I.z() - I.y()), s2 * (I.x() + I.y() - I.z()));
-  if (!(sq.minCoeff() > 0) || !sq.allFinite()) return false;
-  Mat3 R = eig.eigenvectors();
-  if (R.determinant() < 0) R.col(2) = -R.col(2);
-  s->geometry = Geometry::box(0.5 * sq.cwiseSqrt());
-  s->local = Transform(link.com, Quat(R));
-  return true;
 }
 
 // <surface> coefficients as written (the element tree: SDFormat 12 has no accessor for them).
@@ -96,9 +77,8 @@ void checkSizes(const std::string& where, const std::string& element, std::initi
 
 }  // namespace
 
-bool collisionShape(const sdf::Collision& c, const std::string& where, const WorldLinkDef& link,
-                    const std::string& link_frame, bool dynamic, WalkContext& ctx,
-                    WorldCollisionDef* def) {
+bool collisionShape(const sdf::Collision& c, const std::string& where, const std::string& link_frame,
+                    WalkContext& ctx, WorldCollisionDef* def, std::string* mesh_failure) {
   def->name = c.Name();
   ignition::math::Pose3d p;
   const sdf::Errors errs = c.SemanticPose().Resolve(p, link_frame);
@@ -185,13 +165,8 @@ bool collisionShape(const sdf::Collision& c, const std::string& where, const Wor
         }
         why = path + " is flat (no volume)";
       }
-      if (dynamic && link.has_inertial && fittedBox(link, &def->shape)) {
-        def->source = "box fitted to the inertia (mesh " + m.Uri() + ": " + why + ")";
-        ctx.warnings->push_back(where + ": mesh " + m.Uri() + " unusable (" + why +
-                                "); a box fitted to the link's inertia stands in");
-        break;
-      }
-      return skip("mesh " + m.Uri() + " unusable (" + why + ")");
+      *mesh_failure = "mesh " + m.Uri() + " unusable (" + why + ")";
+      return false;  // the caller skips it or puts one box for the link in its place
     }
     default:
       return skip("geometry not simulated");

@@ -3,6 +3,7 @@
 // through the URDF loader's mapping to RagdollJointDefs.
 #include <sdf/sdf.hh>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -59,11 +60,25 @@ struct Walker {
       if (!urdf_load::repairInertia(L.inertia, L.mass).empty())
         ctx.warnings->push_back(where + " <inertial>: inertia repaired (not physical)");
     }
+    std::string first_failure;
     for (uint64_t k = 0; k < l.CollisionCount(); ++k) {
       const sdf::Collision* c = l.CollisionByIndex(k);
+      const std::string wc = where + " collision " + quote(c->Name());
       WorldCollisionDef cd;
-      if (collisionShape(*c, where + " collision " + quote(c->Name()), L, l.Name(), dynamic, ctx, &cd))
+      std::string failure;
+      if (collisionShape(*c, wc, l.Name(), ctx, &cd, &failure)) {
         L.collisions.push_back(std::move(cd));
+      } else if (!failure.empty()) {
+        // As the URDF loader: one box fitted to a dynamic link's inertia stands in for its
+        // unreadable meshes; a static link has no inertia to size it.
+        if (first_failure.empty() && dynamic && L.has_inertial) {
+          first_failure = failure;
+          standIn(L, wc, failure);
+        } else {
+          ctx.warnings->push_back(wc + ": " + failure + "; skipped");
+          ++*ctx.skipped;
+        }
+      }
     }
     const auto color = colors.find(L.name);
     if (color != colors.end()) {
@@ -72,6 +87,34 @@ struct Walker {
     }
     link_index[L.name] = int(def->links.size());
     def->links.push_back(std::move(L));
+  }
+
+  // The box with the link's mass and principal moments on its centre of mass, or a cube of
+  // water density where that box would be implausible (placeholder inertias: SDF's default
+  // unit inertia on a light part gives a box metres wide).
+  void standIn(WorldLinkDef& L, const std::string& where, const std::string& failure) {
+    Eigen::SelfAdjointEigenSolver<Mat3> eig(L.inertia);
+    const Vec3 I = eig.eigenvalues();
+    const double s2 = 6.0 / L.mass;  // Ixx = m (b^2 + c^2) / 12 for full sizes a, b, c
+    Vec3 sq(s2 * (I.y() + I.z() - I.x()), s2 * (I.x() + I.z() - I.y()), s2 * (I.x() + I.y() - I.z()));
+    Mat3 R = eig.eigenvectors();
+    if (R.determinant() < 0) R.col(2) = -R.col(2);
+    WorldCollisionDef cd;
+    cd.name = "stand-in";
+    cd.shape.local = Transform(L.com, Quat(R).normalized());
+    std::string how = "fitted to the link's inertia";
+    const double density = sq.allFinite() && sq.minCoeff() > 0 ? L.mass / sq.cwiseSqrt().prod() : 0.0;
+    if (!(density >= urdf_load::kMinDensity && density <= urdf_load::kMaxDensity)) {
+      sq = Vec3::Constant(std::pow(L.mass / urdf_load::kDensity, 2.0 / 3.0));
+      cd.shape.local.q = Quat::Identity();
+      how = "of water density (the inertia gives an implausible box)";
+    }
+    const Vec3 size = sq.cwiseSqrt();
+    cd.shape.geometry = Geometry::box(0.5 * size);
+    cd.source = "box " + how + " (" + failure + ")";
+    ctx.warnings->push_back(where + ": " + failure + "; replaced by a " + num(size.x()) + " x " +
+                            num(size.y()) + " x " + num(size.z()) + " m box " + how);
+    L.collisions.push_back(std::move(cd));
   }
 
   int indexOf(const std::string& scoped, const std::string& where) const {

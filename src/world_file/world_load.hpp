@@ -142,12 +142,11 @@ struct WalkContext {
 // A loaded top-level model -> def (links relative to model_pose). Throws LoadError.
 void walkModel(const sdf::Model& model, const Transform& model_pose,
                const std::map<std::string, Rgba>& colors, WalkContext& ctx, WorldModelDef* def);
-// One collision -> def, or false (skipped: warned and counted). Throws LoadError for bad sizes.
-// link_frame: the link's name in its model's scope (the collision pose is resolved to it);
-// dynamic: the model is not static (a mesh that cannot be read may then become a fitted box).
-bool collisionShape(const sdf::Collision& c, const std::string& where, const WorldLinkDef& link,
-                    const std::string& link_frame, bool dynamic, WalkContext& ctx,
-                    WorldCollisionDef* def);
+// One collision -> def, or false: skipped (warned and counted), or a mesh that cannot be read
+// (*mesh_failure says why; the caller decides). Throws LoadError for bad sizes. link_frame: the
+// link's name in its model's scope (the collision pose is resolved to it).
+bool collisionShape(const sdf::Collision& c, const std::string& where, const std::string& link_frame,
+                    WalkContext& ctx, WorldCollisionDef* def, std::string* mesh_failure);
 
 }  // namespace world_load
 }  // namespace ragdoll_sim

@@ -93,18 +93,23 @@ TEST(WorldGeometry, DynamicLinkInertiaAndMeshStandIn) {
   EXPECT_TRUE(body.has_inertial);
   EXPECT_EQ(body.mass, 4);
   EXPECT_TRUE(body.com.isApprox(Vec3(0, 0, 0.1)));
-  EXPECT_NEAR(body.inertia(1, 1), 0.3, 1e-12);
+  EXPECT_NEAR(body.inertia(1, 1), 0.0666667, 1e-12);
   EXPECT_TRUE(body.pose.p.isApprox(Vec3(0, 0, 1)));
   EXPECT_NEAR(std::abs(body.pose.q.z()), std::sqrt(0.5), 1e-9);
-  // The missing mesh of a dynamic link: a box with the link's mass and principal moments.
+  // The missing meshes of a dynamic link: one box with the link's mass and principal moments
+  // (a 0.2 x 0.3 x 0.4 m box of 4 kg); the second mesh is skipped.
   ASSERT_EQ(body.collisions.size(), 1u);
+  EXPECT_TRUE(contains(r.def.warnings, "collision 'shell': mesh model://bar_mesh/meshes/absent.dae unusable"));
+  EXPECT_TRUE(contains(r.def.warnings, "replaced by a 0.4 x 0.3 x 0.2 m box fitted to the link's inertia"));
+  EXPECT_TRUE(contains(r.def.warnings, "collision 'handle': mesh model://bar_mesh/meshes/absent.stl unusable"));
   const Geometry& g = body.collisions[0].shape.geometry;
   ASSERT_EQ(g.type, ShapeType::Box);
   const Mat3 I = 4 * g.unitInertia() / g.volume();
   const Vec3 moments = I.diagonal();
-  std::vector<double> got{moments.x(), moments.y(), moments.z()}, want{0.2, 0.3, 0.4};
+  std::vector<double> got{moments.x(), moments.y(), moments.z()}, want{0.0433333, 0.0666667, 0.0833333};
   std::sort(got.begin(), got.end());
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(got[k], want[k], 1e-9);
+  EXPECT_NEAR(8 * g.half_extents.prod(), 0.024, 1e-6);
   EXPECT_TRUE(body.has_color);
   EXPECT_EQ(body.color[0], 1.0);  // ambient when no diffuse
 }
@@ -122,7 +127,7 @@ TEST(WorldGeometry, PhysicsNotesAndCounts) {
   EXPECT_TRUE(contains(d.notes, "1 <gui> not simulated"));
   EXPECT_TRUE(contains(d.notes, "max_step_size> 0.002 s is reported, not obeyed"));
   EXPECT_EQ(worldSummaryLine(d),
-            "world=all_shapes status=ok models=3 static_shapes=8 dynamic_bodies=1 skipped=2 unresolved=0");
+            "world=all_shapes status=ok models=3 static_shapes=8 dynamic_bodies=1 skipped=3 unresolved=0");
 }
 
 TEST(WorldGeometry, SdfOnePointFourIdioms) {
