@@ -9,8 +9,8 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <map>
-#include <memory>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -36,6 +36,10 @@ namespace world_load {
 
 // The newest SDF version SDFormat 12 reads; documents claiming a newer one are read as this.
 constexpr double kNewestSdfVersion = 1.9;
+// What a world's <include>s may expand to: a small file included thousands of times at each of
+// a few levels would otherwise grow without bound before anything is checked.
+constexpr size_t kMaxIncludedBytes = size_t(256) << 20;
+constexpr int kMaxIncludes = 20000;
 
 // Thrown with the message that becomes WorldLoadResult::error.
 struct LoadError : std::runtime_error {
@@ -108,7 +112,8 @@ struct PrepareContext {
   std::map<std::string, int> dropped_kinds;  // element kind -> how many were dropped
   std::vector<std::string> include_stack;    // files being expanded (cycle detection)
   std::map<const tinyxml2::XMLElement*, std::string> included_from;  // top-level model -> file
-  std::vector<std::unique_ptr<tinyxml2::XMLDocument>> pieces;  // included files' documents
+  size_t included_bytes = 0;  // read by all <include>s so far
+  int includes = 0;           // <include>s expanded so far
 };
 
 // "model 'a' link 'b' <collision> 'c'": the element and the named elements it sits in.

@@ -211,11 +211,16 @@ XMLElement* expandInclude(XMLElement* inc, PrepareContext& ctx, std::string* inc
     throw LoadError("<include> " + where + ": a cycle of includes (" + canon + " includes itself)");
   std::string content, error;
   if (!readInputFile(file, "included model", &content, &error)) return unresolved(error);
-  auto doc = std::make_unique<tinyxml2::XMLDocument>();
-  if (doc->Parse(content.data(), content.size()) != tinyxml2::XML_SUCCESS)
-    throw LoadError("<include> " + where + ": " + file + " is not well-formed XML: " + doc->ErrorName() +
-                    " at line " + std::to_string(doc->ErrorLineNum()));
-  XMLElement* sdf = doc->RootElement();
+  ctx.included_bytes += content.size();
+  if (++ctx.includes > kMaxIncludes || ctx.included_bytes > kMaxIncludedBytes)
+    throw LoadError("<include> " + where + ": the world's includes expand to more than " +
+                    std::to_string(kMaxIncludes) + " models or " + std::to_string(kMaxIncludedBytes >> 20) +
+                    " MiB");
+  tinyxml2::XMLDocument piece;
+  if (piece.Parse(content.data(), content.size()) != tinyxml2::XML_SUCCESS)
+    throw LoadError("<include> " + where + ": " + file + " is not well-formed XML: " + piece.ErrorName() +
+                    " at line " + std::to_string(piece.ErrorLineNum()));
+  XMLElement* sdf = piece.RootElement();
   XMLElement* model = sdf && std::strcmp(sdf->Name(), "sdf") == 0 ? sdf->FirstChildElement("model") : nullptr;
   if (!model) {
     // model://sun and the like: a light (or an actor) in a model folder.
@@ -251,7 +256,6 @@ XMLElement* expandInclude(XMLElement* inc, PrepareContext& ctx, std::string* inc
   inc->Parent()->InsertAfterChild(inc, copy);
   inc->Parent()->DeleteChild(inc);
   *included = canon;
-  ctx.pieces.push_back(std::move(doc));
   return copy;
 }
 
@@ -284,7 +288,7 @@ void prepareWorld(const std::string& content, const std::string& file, const Wor
   normalizeVersion(world, version);
   readPhysics(world, out);
 
-  PrepareContext ctx{&options, &resolver, out, {}, {}, {}, {}};
+  PrepareContext ctx{&options, &resolver, out, {}, {}, {}, 0, 0};
   if (!file.empty()) {
     std::error_code ec;
     ctx.include_stack.push_back(fs::weakly_canonical(file, ec).string());

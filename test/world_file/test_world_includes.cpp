@@ -75,6 +75,13 @@ TEST(WorldIncludes, DepthIsBounded) {
   EXPECT_NE(r.error.find("includes nested deeper than 0"), std::string::npos) << r.error;
 }
 
+TEST(WorldIncludes, ExpansionIsBounded) {
+  const WorldLoadResult r = load("fan_out.world");
+  ASSERT_FALSE(r.ok);
+  EXPECT_NE(r.error.find("the world's includes expand to more than 20000 models or 256 MiB"), std::string::npos)
+      << r.error;
+}
+
 TEST(WorldIncludes, DuplicateNamesAndSpacesAreRenamed) {
   const WorldLoadResult r = load("duplicates.world");
   ASSERT_TRUE(r.ok) << r.error;
