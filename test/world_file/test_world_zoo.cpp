@@ -69,6 +69,12 @@ TEST(WorldZoo, AtLeastTwelveOfFourteenLoad) {
       EXPECT_EQ(r.def.counts.static_shapes, e->second.static_shapes) << name;
       EXPECT_EQ(r.def.counts.dynamic_bodies, e->second.dynamic_bodies) << name;
     }
+    if (name == "gzclassic_friction_demo") {
+      EXPECT_TRUE(r.def.gravity.isApprox(Vec3(0, -1, -1)));  // tilted, in <physics> (SDF 1.5)
+      const WorldModelDef* box = world_test::model(r.def, "box_01_model");
+      ASSERT_NE(box, nullptr);
+      EXPECT_TRUE(box->links[0].collisions[0].has_friction);
+    }
     for (const WorldModelDef& m : r.def.models)
       for (const WorldLinkDef& l : m.links) {
         EXPECT_TRUE(l.pose.p.allFinite() && l.pose.q.coeffs().allFinite()) << name << " " << m.name;
