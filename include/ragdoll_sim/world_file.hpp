@@ -37,6 +37,9 @@ struct WorldLinkDef {
   std::vector<WorldCollisionDef> collisions;
   bool has_color = false;            // a <visual><material> diffuse (else ambient) colour
   std::array<double, 4> color = {0.5, 0.5, 0.5, 1.0};  // rgba
+  // The first visual's <material><script><name> ("Gazebo/Wood"): the only material name a
+  // Gazebo world usually gives, for a material table to go by; "" when none.
+  std::string visual_material;
 };
 
 struct WorldModelDef {

@@ -25,7 +25,7 @@ constexpr double kNoLimit = 1e15;
 
 struct Walker {
   WalkContext& ctx;
-  const std::map<std::string, Rgba>& colors;
+  const std::map<std::string, LinkLook>& looks;
   WorldModelDef* def;
   std::map<std::string, int> link_index;  // scoped name -> def->links index
 
@@ -80,10 +80,11 @@ struct Walker {
         }
       }
     }
-    const auto color = colors.find(L.name);
-    if (color != colors.end()) {
-      L.has_color = true;
-      L.color = color->second;
+    const auto look = looks.find(L.name);
+    if (look != looks.end()) {
+      L.has_color = look->second.has_color;
+      L.color = look->second.color;
+      L.visual_material = look->second.material;
     }
     link_index[L.name] = int(def->links.size());
     def->links.push_back(std::move(L));
@@ -220,10 +221,10 @@ struct Walker {
 }  // namespace
 
 void walkModel(const sdf::Model& model, const Transform& model_pose,
-               const std::map<std::string, Rgba>& colors, WalkContext& ctx, WorldModelDef* def) {
+               const std::map<std::string, LinkLook>& looks, WalkContext& ctx, WorldModelDef* def) {
   def->is_static = model.Static();
   def->pose = model_pose;
-  Walker w{ctx, colors, def, {}};
+  Walker w{ctx, looks, def, {}};
   w.model(model, model_pose, "", "model " + quote(def->name), false);
 }
 

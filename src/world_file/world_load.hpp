@@ -77,6 +77,13 @@ class Resolver {
 // ---- pre-pass (world_xml.cpp, xml_model.cpp)
 using Rgba = std::array<double, 4>;
 
+// What a link's visuals say that the loader keeps (the visuals themselves are dropped).
+struct LinkLook {
+  bool has_color = false;
+  Rgba color{};
+  std::string material;  // <material><script><name>
+};
+
 struct PreparedModel {
   std::string xml;        // the <model> element for SDFormat (includes expanded, extras dropped)
   std::string name;       // unique in the world
@@ -84,7 +91,7 @@ struct PreparedModel {
   std::string key;        // the element without its name and own <pose>: equal keys, equal models
   bool plain_pose = false;       // its own <pose> is six numbers relative to the world
   Transform pose;                // that pose, when plain_pose
-  std::map<std::string, Rgba> colors;  // scoped link name -> first visual's colour
+  std::map<std::string, LinkLook> looks;  // scoped link name -> what its visuals say
 };
 
 struct PreparedWorld {
@@ -126,7 +133,7 @@ void normalizeVersion(tinyxml2::XMLElement* root, double version);
 // Cleans a <model> in place (includes expanded, extras dropped, names fixed). Returns false when
 // nothing physical is left in it (the caller drops it).
 bool prepareModel(tinyxml2::XMLElement* model, PrepareContext& ctx, const std::string& scope,
-                  std::map<std::string, Rgba>* colors);
+                  std::map<std::string, LinkLook>* looks);
 // Replaces <include> `inc` by the model it names (overrides applied) and returns it, with
 // *file its canonical path (for the caller's include stack while it prepares the model);
 // nullptr when it cannot be resolved (warned and removed, or LoadError under strict).
@@ -146,7 +153,7 @@ struct WalkContext {
 
 // A loaded top-level model -> def (links relative to model_pose). Throws LoadError.
 void walkModel(const sdf::Model& model, const Transform& model_pose,
-               const std::map<std::string, Rgba>& colors, WalkContext& ctx, WorldModelDef* def);
+               const std::map<std::string, LinkLook>& looks, WalkContext& ctx, WorldModelDef* def);
 // One collision -> def, or false: skipped (warned and counted), or a mesh that cannot be read
 // (*mesh_failure says why; the caller decides). Throws LoadError for bad sizes. link_frame: the
 // link's name in its model's scope (the collision pose is resolved to it).

@@ -58,7 +58,7 @@ Transform transform(const ignition::math::Pose3d& p) {
                    Quat(p.Rot().W(), p.Rot().X(), p.Rot().Y(), p.Rot().Z()).normalized());
 }
 
-// Model `from` (walked, its <pose> `from_pose`) moved to another model's name, pose and colours.
+// Model `from` (walked, its <pose> `from_pose`) moved to another model's name, pose and looks.
 // The shift between the two <pose>s moves every frame of the model, whatever its placement.
 WorldModelDef placed(const WorldModelDef& from, const Transform& from_pose, const PreparedModel& pm) {
   WorldModelDef m = from;
@@ -68,9 +68,12 @@ WorldModelDef placed(const WorldModelDef& from, const Transform& from_pose, cons
   m.pose = shift * from.pose;
   for (WorldLinkDef& l : m.links) {
     l.pose = shift * l.pose;
-    const auto c = pm.colors.find(l.name);
-    l.has_color = c != pm.colors.end();
-    if (l.has_color) l.color = c->second;
+    const auto look = pm.looks.find(l.name);
+    const LinkLook none;
+    const LinkLook& k = look == pm.looks.end() ? none : look->second;
+    l.has_color = k.has_color;
+    l.color = k.has_color ? k.color : WorldLinkDef().color;
+    l.visual_material = k.material;
   }
   for (RagdollJointDef& j : m.joints)
     if (j.parent < 0) j.frame_parent = shift * j.frame_parent;
@@ -147,7 +150,7 @@ WorldLoadResult load(const std::string& text, const std::string& file, const Wor
       md.name = pm.name;
       md.file_name = pm.file_name;
       const int before = skipped;
-      walkModel(*m, transform(p), pm.colors, ctx, &md);
+      walkModel(*m, transform(p), pm.looks, ctx, &md);
       skipped_in[i] = skipped - before;
     }
     def.models.reserve(n);

@@ -318,7 +318,7 @@ void prepareWorld(const std::string& content, const std::string& file, const Wor
     PreparedModel pm;
     pm.file_name = written[m];
     pm.name = attr(m, "name");
-    const bool physical = prepareModel(m, ctx, "", &pm.colors);
+    const bool physical = prepareModel(m, ctx, "", &pm.looks);
     if (from != ctx.included_from.end()) ctx.include_stack.pop_back();
     if (!physical) {
       out->warnings.push_back(describe(m) + ": nothing to simulate left in it (no link); skipped");

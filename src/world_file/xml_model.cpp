@@ -55,6 +55,17 @@ bool readColor(const XMLElement* material, Rgba* out) {
   return false;
 }
 
+// <script><name>Gazebo/Wood</name>, or SDF 1.4's bare <script>Gazebo/Wood</script>; "" if none.
+std::string scriptName(const XMLElement* material) {
+  const XMLElement* script = material->FirstChildElement("script");
+  if (!script) return "";
+  const XMLElement* name = script->FirstChildElement("name");
+  const char* t = name ? name->GetText() : script->FirstChildElement() ? nullptr : script->GetText();
+  std::string s = t ? t : "";
+  const size_t b = s.find_first_not_of(" \t\r\n"), e = s.find_last_not_of(" \t\r\n");
+  return b == std::string::npos ? "" : s.substr(b, e - b + 1);
+}
+
 // One collision: false when it is skipped (removed here).
 bool prepareCollision(XMLElement* c, PrepareContext& ctx) {
   XMLElement* geometry = c->FirstChildElement("geometry");
@@ -77,16 +88,19 @@ bool prepareCollision(XMLElement* c, PrepareContext& ctx) {
 }
 
 void prepareLink(XMLElement* link, PrepareContext& ctx, const std::string& scope,
-                 std::map<std::string, Rgba>* colors) {
+                 std::map<std::string, LinkLook>* looks) {
   fixReservedName(link, "_link", ctx);
   const std::string name = scope + attr(link, "name");
   for (XMLElement* e = link->FirstChildElement(); e;) {
     XMLElement* next = e->NextSiblingElement();
     const std::string n = e->Name();
     if (n == "visual") {
-      Rgba rgba;
       XMLElement* m = e->FirstChildElement("material");
-      if (m && !colors->count(name) && readColor(m, &rgba)) (*colors)[name] = rgba;
+      if (m) {
+        LinkLook& look = (*looks)[name];
+        if (!look.has_color) look.has_color = readColor(m, &look.color);
+        if (look.material.empty()) look.material = scriptName(m);
+      }
       link->DeleteChild(e);  // drawn from the collisions, in its colour
     } else if (n == "collision") {
       prepareCollision(e, ctx);
@@ -115,7 +129,7 @@ void checkPoses(XMLElement* root) {
 }  // namespace
 
 bool prepareModel(XMLElement* model, PrepareContext& ctx, const std::string& scope,
-                  std::map<std::string, Rgba>* colors) {
+                  std::map<std::string, LinkLook>* looks) {
   checkPoses(model);
   // First the model's own children: includes expanded, what is not simulated dropped.
   std::vector<std::pair<XMLElement*, std::string>> nested;  // models, and their include's file
@@ -134,7 +148,7 @@ bool prepareModel(XMLElement* model, PrepareContext& ctx, const std::string& sco
   }
   uniqueModelNames(model, ctx);
   for (XMLElement* l = model->FirstChildElement("link"); l; l = l->NextSiblingElement("link"))
-    prepareLink(l, ctx, scope, colors);
+    prepareLink(l, ctx, scope, looks);
   // SDFormat 12 wants joint names apart from link, frame and nested model names.
   std::set<std::string> names;
   for (XMLElement* e = model->FirstChildElement(); e; e = e->NextSiblingElement())
@@ -153,7 +167,7 @@ bool prepareModel(XMLElement* model, PrepareContext& ctx, const std::string& sco
   bool physical = model->FirstChildElement("link") != nullptr;
   for (auto& [m, file] : nested) {
     if (!file.empty()) ctx.include_stack.push_back(file);
-    const bool ok = prepareModel(m, ctx, scope + attr(m, "name") + "::", colors);
+    const bool ok = prepareModel(m, ctx, scope + attr(m, "name") + "::", looks);
     if (!file.empty()) ctx.include_stack.pop_back();
     if (ok) {
       physical = true;

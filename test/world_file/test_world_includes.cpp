@@ -19,6 +19,8 @@ TEST(WorldIncludes, OverridesAndUnresolved) {
   EXPECT_TRUE(first->pose.p.isApprox(Vec3(0, 0, 5)));  // the model file's own pose
   EXPECT_TRUE(first->links[0].pose.p.isApprox(Vec3(0, 0, 5.25)));
   EXPECT_EQ(first->links[0].mass, 2);  // model.config's 1.6 file, not the 1.5 or the 1.11 one
+  EXPECT_EQ(first->links[0].visual_material, "Gazebo/Wood");
+  EXPECT_FALSE(first->links[0].has_color);
   const WorldModelDef* pinned = model(d, "pinned_crate");
   ASSERT_NE(pinned, nullptr);
   EXPECT_EQ(pinned->file_name, "pinned crate");

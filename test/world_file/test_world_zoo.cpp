@@ -74,6 +74,7 @@ TEST(WorldZoo, AtLeastTwelveOfFourteenLoad) {
       const WorldModelDef* box = world_test::model(r.def, "box_01_model");
       ASSERT_NE(box, nullptr);
       EXPECT_TRUE(box->links[0].collisions[0].has_friction);
+      EXPECT_EQ(box->links[0].visual_material, "Gazebo/Rocky");  // SDF 1.4's bare <script>
     }
     for (const WorldModelDef& m : r.def.models)
       for (const WorldLinkDef& l : m.links) {
