@@ -218,8 +218,8 @@ XMLElement* expandInclude(XMLElement* inc, PrepareContext& ctx, std::string* inc
                     " MiB");
   tinyxml2::XMLDocument piece;
   if (piece.Parse(content.data(), content.size()) != tinyxml2::XML_SUCCESS)
-    throw LoadError("<include> " + where + ": " + file + " is not well-formed XML: " + piece.ErrorName() +
-                    " at line " + std::to_string(piece.ErrorLineNum()));
+    return unresolved(file + " is not well-formed XML: " + piece.ErrorName() + " at line " +
+                      std::to_string(piece.ErrorLineNum()));
   XMLElement* sdf = piece.RootElement();
   XMLElement* model = sdf && std::strcmp(sdf->Name(), "sdf") == 0 ? sdf->FirstChildElement("model") : nullptr;
   if (!model) {

@@ -44,7 +44,9 @@ TEST(WorldIncludes, OverridesAndUnresolved) {
   EXPECT_TRUE(contains(d.warnings, "https://fuel.gazebosim.org/1.0/OpenRobotics/models/Sun: online URI"));
   EXPECT_TRUE(contains(d.warnings, "model://no_such_model: model 'no_such_model' not found in the model search path"));
   EXPECT_TRUE(contains(d.warnings, "model 'wrapper': nothing to simulate left in it"));
-  EXPECT_EQ(d.counts.unresolved, 3);
+  EXPECT_TRUE(contains(d.warnings, "model://broken: "));
+  EXPECT_TRUE(contains(d.warnings, "broken/model.sdf is not well-formed XML"));
+  EXPECT_EQ(d.counts.unresolved, 4);
   EXPECT_EQ(d.counts.skipped, 1);
   EXPECT_EQ(d.counts.dynamic_bodies, 3);
   EXPECT_EQ(d.counts.static_shapes, 1);
