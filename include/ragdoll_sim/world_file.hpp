@@ -83,6 +83,10 @@ struct WorldLoadOptions {
   std::string base_dir;                    // relative URIs (loadWorldFile: the file's folder)
   bool load_meshes = true;
   int max_include_depth = 16;              // deeper nesting of <include>s is refused
+  // SDFormat 12 holds about 3 MB per model, 1 MB per link and 0.2 MB per collision it parses
+  // (models that differ only in name and pose are parsed once); a world whose estimate is above
+  // this is refused before SDFormat sees it.
+  double max_sdf_megabytes = 3072;
 };
 
 struct WorldLoadResult {

@@ -38,8 +38,10 @@ namespace world_load {
 constexpr double kNewestSdfVersion = 1.9;
 // What a world's <include>s may expand to: a small file included thousands of times at each of
 // a few levels would otherwise grow without bound before anything is checked.
-constexpr size_t kMaxIncludedBytes = size_t(256) << 20;
+constexpr size_t kMaxIncludedBytes = size_t(64) << 20;
 constexpr int kMaxIncludes = 20000;
+// SDFormat 12's memory per element it parses (its description tree is copied for each).
+constexpr double kSdfModelMb = 3.0, kSdfLinkMb = 1.0, kSdfCollisionMb = 0.2;
 
 // Thrown with the message that becomes WorldLoadResult::error.
 struct LoadError : std::runtime_error {
@@ -92,6 +94,7 @@ struct PreparedModel {
   bool plain_pose = false;       // its own <pose> is six numbers relative to the world
   Transform pose;                // that pose, when plain_pose
   std::map<std::string, LinkLook> looks;  // scoped link name -> what its visuals say
+  int models = 0, links = 0, collisions = 0;  // in the element, nested models included
 };
 
 struct PreparedWorld {

@@ -109,6 +109,19 @@ WorldLoadResult load(const std::string& text, const std::string& file, const Wor
       }
       parsed.push_back(i);
     }
+    // SDFormat's memory grows with every element it instantiates; refuse before it runs.
+    int models = 0, links = 0, collisions = 0;
+    for (size_t i : parsed) {
+      models += pw.models[i].models;
+      links += pw.models[i].links;
+      collisions += pw.models[i].collisions;
+    }
+    const double megabytes = kSdfModelMb * models + kSdfLinkMb * links + kSdfCollisionMb * collisions;
+    if (megabytes > options.max_sdf_megabytes)
+      throw LoadError("the world needs SDFormat 12 to hold about " + std::to_string(int(megabytes)) + " MB (" +
+                      std::to_string(models) + " distinct models, " + std::to_string(links) + " links, " +
+                      std::to_string(collisions) + " collisions), more than max_sdf_megabytes " +
+                      num(options.max_sdf_megabytes) + "; many collisions in few links cost least");
     std::string doc = "<?xml version=\"1.0\"?>\n<sdf version=\"" + versionText(pw.version) +
                       "\"><world name=\"w\">" + pw.frames_xml;
     for (size_t i : parsed) doc += pw.models[i].xml;

@@ -95,6 +95,21 @@ void topLevelPose(XMLElement* model, PreparedModel* m) {
   m->pose = Transform(Vec3(v[0], v[1], v[2]), quatFromRpy(v[3], v[4], v[5]));
 }
 
+// Models (itself and nested ones), links and collisions in a prepared model.
+void countElements(const XMLElement* model, PreparedModel* pm) {
+  std::vector<const XMLElement*> todo{model};
+  while (!todo.empty()) {
+    const XMLElement* e = todo.back();
+    todo.pop_back();
+    const char* n = e->Name();
+    pm->models += std::strcmp(n, "model") == 0;
+    pm->links += std::strcmp(n, "link") == 0;
+    pm->collisions += std::strcmp(n, "collision") == 0;
+    if (std::strcmp(n, "model") == 0 || std::strcmp(n, "link") == 0)
+      for (const XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) todo.push_back(c);
+  }
+}
+
 }  // namespace
 
 std::string describe(const XMLElement* e) {
@@ -329,6 +344,7 @@ void prepareWorld(const std::string& content, const std::string& file, const Wor
     if (XMLElement* p = child(m, "pose"))
       if (p->Attribute("relative_to") && attr(p, "relative_to") != "world") out->models_independent = false;
     pm.xml = printed(m);
+    countElements(m, &pm);
     tinyxml2::XMLDocument scratch;
     XMLElement* bare = m->DeepClone(&scratch)->ToElement();
     bare->DeleteAttribute("name");

@@ -61,6 +61,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   options.load_meshes = false;
   options.model_paths = {RAGDOLL_SIM_SOURCE_DIR "/test/world_file/fixtures/models"};
   options.package_paths = {"/nonexistent"};
+  options.max_sdf_megabytes = 256;  // libFuzzer's memory limit is 2 GB, and ASan doubles it
   const WorldLoadResult r = loadWorldString(xml, options);
   if (!r.ok) {
     FUZZ_CHECK(!r.error.empty(), "refused without an error message");

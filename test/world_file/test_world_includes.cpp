@@ -82,8 +82,22 @@ TEST(WorldIncludes, DepthIsBounded) {
 TEST(WorldIncludes, ExpansionIsBounded) {
   const WorldLoadResult r = load("fan_out.world");
   ASSERT_FALSE(r.ok);
-  EXPECT_NE(r.error.find("the world's includes expand to more than 20000 models or 256 MiB"), std::string::npos)
+  EXPECT_NE(r.error.find("the world's includes expand to more than 20000 models or 64 MiB"), std::string::npos)
       << r.error;
+}
+
+// What SDFormat would hold is bounded before it runs (it copies its description per element).
+TEST(WorldIncludes, SdfMemoryIsBounded) {
+  WorldLoadOptions o = options();
+  o.max_sdf_megabytes = 10;
+  const WorldLoadResult r = loadWorldFile(fixture("all_shapes.world"), o);
+  ASSERT_FALSE(r.ok);
+  EXPECT_NE(r.error.find("the world needs SDFormat 12 to hold about 14 MB (3 distinct models, 3 links, "
+                         "11 collisions), more than max_sdf_megabytes 10"),
+            std::string::npos)
+      << r.error;
+  o.max_sdf_megabytes = 15;
+  EXPECT_TRUE(loadWorldFile(fixture("all_shapes.world"), o).ok);
 }
 
 TEST(WorldIncludes, DuplicateNamesAndSpacesAreRenamed) {
