@@ -48,7 +48,25 @@ struct LoadError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-inline std::string quote(const std::string& s) { return "'" + s + "'"; }
+// Text for a message of one line: whitespace runs (a pose split over lines) become one space,
+// other control characters '?', and a long text is cut.
+inline std::string oneLine(const std::string& s) {
+  constexpr size_t kMaxQuoted = 120;
+  std::string out;
+  for (char c : s) {
+    const bool space = c == ' ' || c == '\n' || c == '\r' || c == '\t';
+    if (space) {
+      if (!out.empty() && out.back() != ' ') out += ' ';
+    } else {
+      out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) ? '?' : c;
+    }
+    if (out.size() > kMaxQuoted) return out.substr(0, kMaxQuoted) + "...";
+  }
+  while (!out.empty() && out.back() == ' ') out.pop_back();
+  return out;
+}
+
+inline std::string quote(const std::string& s) { return "'" + oneLine(s) + "'"; }
 
 inline std::string num(double v) {
   std::ostringstream os;

@@ -185,6 +185,9 @@ WorldLoadResult load(const std::string& text, const std::string& file, const Wor
   } catch (const LoadError& e) {
     r.ok = false;
     r.error = e.what();
+    // One line whatever the file (or SDFormat) put in it.
+    for (char& c : r.error)
+      if (c == '\n' || c == '\r') c = ' ';
     r.def = WorldFileDef();
   }
   return r;

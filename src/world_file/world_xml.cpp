@@ -201,7 +201,7 @@ void uniqueModelNames(XMLElement* parent, PrepareContext& ctx) {
 
 XMLElement* expandInclude(XMLElement* inc, PrepareContext& ctx, std::string* included) {
   const std::string uri = text(child(inc, "uri"));
-  const std::string where = describe(inc) + " " + (uri.empty() ? "without <uri>" : uri);
+  const std::string where = describe(inc) + " " + (uri.empty() ? "without <uri>" : oneLine(uri));
   auto unresolved = [&](const std::string& why) -> XMLElement* {
     const std::string msg = "<include> " + where + ": " + why;
     if (ctx.options->strict) throw LoadError(msg + " (strict: unresolved includes are errors)");

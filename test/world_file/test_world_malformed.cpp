@@ -44,6 +44,8 @@ const std::vector<Case>& cases() {
        "collision 'c' <cylinder><radius> <length>: must be finite and > 0, got -0.1 1"},
       {"nan_pose", world(boxModel("1 1 1", "0 nan 0 0 0 0")),
        "world 'w' model 'm' <pose>: '0 nan 0 0 0 0' is not 6 finite numbers"},
+      {"nan_pose_over_lines", world(boxModel("1 1 1", "0\n  nan 0\n\t0 0 0")),
+       "world 'w' model 'm' <pose>: '0 nan 0 0 0 0' is not 6 finite numbers"},
       {"nan_gravity", world("<gravity>0 0 inf</gravity>"), "world 'w' <gravity>: '0 0 inf'"},
       {"unknown_geometry",
        world("<model name='m'><link name='l'><collision name='c'><geometry><cone><radius>1</radius></cone>"
