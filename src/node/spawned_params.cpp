@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include <ros/master.h>
 #include <ros/names.h>
 
 namespace ragdoll_sim {
@@ -52,6 +53,14 @@ void SpawnedParams::remove(const std::string& name) {
 }
 
 void SpawnedParams::removeAll() {
+  if (names_.empty()) return;
+  // A master gone first (roslaunch or rostest ending) would make every call wait for it.
+  ros::master::setRetryTimeout(ros::WallDuration(1.0));
+  if (!ros::master::check()) {
+    ROS_WARN("the master does not answer: the parameters of %zu spawned ragdoll(s) stay (the "
+             "next node in this namespace deletes them)", names_.size());
+    return;
+  }
   for (const std::string& name : names_) nh_.deleteParam(descriptionParam(name));
   names_.clear();
   pnh_.deleteParam(kRecord);
