@@ -67,9 +67,7 @@ Services::Services(NodeContext& ctx) : ctx_(ctx) {
   clear_srv_ = pnh.advertiseService("clear_forces", &Services::onClearForces, this);
 }
 
-void Services::advertiseStep() {
-  step_srv_ = ctx_.pnh.advertiseService("step", &Services::onStep, this);
-}
+void Services::advertiseStep() { ctx_.steps->advertise(); }
 
 template <class Res>
 bool Services::refuse(Res& res, const std::string& kind, const std::string& message) {
@@ -103,18 +101,21 @@ bool Services::onClearTargets(std_srvs::Empty::Request&, std_srvs::Empty::Respon
 }
 
 bool Services::onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  ctx_.steps->end("~pause");  // paused already: a pause during ~step stops it
   ctx_.paused = true;
   ROS_INFO("paused at sim time %.3f s", ctx_.scene->time());
   return true;
 }
 
 bool Services::onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  ctx_.steps->end("~unpause");
   ctx_.paused = false;
   ROS_INFO("unpaused at sim time %.3f s", ctx_.scene->time());
   return true;
 }
 
 bool Services::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  ctx_.steps->end("~reset");
   std::string error;
   if (!ctx_.scene->reset(&error)) ROS_ERROR("reset: %s", error.c_str());
   ctx_.structureChanged();
@@ -126,28 +127,6 @@ bool Services::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
 bool Services::onClearForces(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   ROS_INFO("cleared %zu active force(s)", ctx_.scene->clearForces());
   ctx_.visualizer->endForces(ctx_.scene->time());
-  return true;
-}
-
-bool Services::onStep(ragdoll_sim::Step::Request& req, ragdoll_sim::Step::Response& res) {
-  const int max_steps = ctx_.config.max_steps_per_call;
-  if (req.steps > static_cast<uint32_t>(max_steps)) {
-    refuse(res, "step/too many", "step rejected: " + std::to_string(req.steps) +
-                                     " steps exceed ~max_steps_per_call = " +
-                                     std::to_string(max_steps));
-  } else if (!ctx_.paused) {
-    res.success = false;
-    res.message = "the simulation is running; call ~pause first";
-  } else {
-    for (uint32_t i = 0; i < req.steps && ros::ok(); ++i) ctx_.stepOnce();
-    res.success = true;
-    res.message = "stepped " + std::to_string(req.steps) + " step(s)";
-  }
-  const Scene& scene = *ctx_.scene;
-  res.sim_time = scene.time();
-  res.pending_commands = static_cast<uint32_t>(scene.counters().queued);
-  res.awake_bodies = static_cast<uint32_t>(scene.world().awakeBodyCount());
-  res.resting_bodies = static_cast<uint32_t>(scene.world().islandCounters().resting_bodies);
   return true;
 }
 
@@ -196,7 +175,7 @@ bool Services::onSpawn(ragdoll_sim::SpawnRagdoll::Request& req,
   const std::string ns = ctx_.nh.resolveName(req.name);
   topics.joint_states_pub = ctx_.nh.advertise<sensor_msgs::JointState>(req.name + "/joint_states", 10);
   ctx_.publishers->addRagdoll(std::move(topics));
-  ctx_.nh.setParam(req.name + "/robot_description", xml);
+  ctx_.spawned_params->add(req.name, xml);
   ctx_.structureChanged();
   res.success = true;
   const RagdollDef& def = scene.def(k);
@@ -225,7 +204,7 @@ bool Services::onDelete(ragdoll_sim::DeleteRagdoll::Request& req,
     ROS_ERROR("%s", res.message.c_str());
     return true;
   }
-  if (topics.spawned) ctx_.nh.deleteParam(req.name + "/robot_description");
+  if (topics.spawned) ctx_.spawned_params->remove(req.name);
   ctx_.publishers->deleteAllMarkers();
   ctx_.structureChanged();
   res.success = true;
