@@ -21,6 +21,11 @@ struct SleepDef {
   bool enabled = true;
   double time = 0.5;    // s an island must stay slow before it sleeps
   double speed = 0.05;  // m/s, max(|v|, extent |w|) below this counts as slow (Box2D v3)
+  // m/s: every body of an island counts as slow while the island's kinetic energy is below
+  // that of its whole mass moving at island_speed (sum m v^2 + w.I.w < M island_speed^2). A
+  // light limb turning about a frictionless joint in a resting ragdoll loses no energy, so
+  // without it that island would never sleep; 0 turns this rule off.
+  double island_speed = 0.05;
   // An island whose bodies have all been slow for rest_time is solved with rest_substeps
   // substeps of rest_relax_iterations relax sweeps each, until one of its bodies moves faster,
   // is woken or it sleeps: the last part of the sleep time costs less. rest_substeps 0 (or not
@@ -37,8 +42,8 @@ struct SleepDef {
 };
 
 // "" when the settings can be used, else what is wrong with the first field that cannot, named
-// as in the struct ("speed must be a finite number >= 0, got -1"): time, speed and rest_time
-// finite and >= 0, rest_substeps and rest_relax_iterations >= 0.
+// as in the struct ("speed must be a finite number >= 0, got -1"): time, speed, island_speed and
+// rest_time finite and >= 0, rest_substeps and rest_relax_iterations >= 0.
 std::string sleepDefError(const SleepDef& sleep);
 
 // How the solver iterates and how soft and how far it corrects: the knobs one tunes while the
