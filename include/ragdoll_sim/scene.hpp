@@ -83,7 +83,8 @@ using SceneCommandVariant = std::variant<ImpulseCommand, ForceCommand, TargetPos
 inline Material defaultSurface() { return Material{0.8, 0.6, 0.0, 0.05}; }
 
 // What becomes of a ragdoll placed into static geometry (the ground plane, static shapes):
-// found with World::staticOverlap at its spawn pose, deeper than 0.1 mm.
+// found with World::staticOverlap at its spawn pose, deeper than 5 mm (shallower overlaps are
+// left to the contacts).
 enum class SpawnOverlap {
   Lift,    // moved up rigidly until its lowest shape point rests on it (along a plane's
            // normal), with a WARN naming the ragdoll and the lift; reset() goes back there

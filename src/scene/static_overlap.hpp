@@ -10,9 +10,10 @@
 namespace ragdoll_sim {
 namespace scene {
 
-// Overlaps up to this deep are left to the contacts: round-off in a pose computed to stand
-// exactly on the ground must not count as a spawn into it.
-constexpr double kStaticOverlapSlop = 1e-4;  // m
+// Overlaps up to this deep are left to the contacts, which push them out gently: a body
+// resting on the ground sinks a little into it, and its pose read back and set again must not
+// count as placed into the ground.
+constexpr double kStaticOverlapSlop = 0.005;  // m
 
 struct StaticLift {
   StaticOverlap first;       // the deepest overlap at the pose given (depth 0: none)

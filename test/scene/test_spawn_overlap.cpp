@@ -140,6 +140,12 @@ TEST(SpawnOverlap, ResetAndMovesKeepItOutOfTheGround) {
   EXPECT_NEAR(s.linear_velocity.x(), 1.0, 1e-9) << "the lift keeps the velocity";
   for (int i = 0; i < 2000; ++i) scene.step();
   EXPECT_EQ(scene.counters().body_faults, 0u);
+
+  // Resting on the ground it sinks a little into it: its own pose set again is no overlap.
+  log.messages.clear();
+  const Transform rest = scene.world().bodyPose(scene.bodies(0).bodies[0]);
+  scene.setRagdollState(0, rest, Vec3::Zero(), Vec3::Zero());
+  EXPECT_EQ(log.find("set_ragdoll_state/lifted"), nullptr) << log.messages[0].text;
 }
 
 // spawn_overlap = Refuse: a spawn into the ground is refused with a message that names the
