@@ -82,10 +82,20 @@ using SceneCommandVariant = std::variant<ImpulseCommand, ForceCommand, TargetPos
 // The surface of ragdolls and ground unless ~materials name others.
 inline Material defaultSurface() { return Material{0.8, 0.6, 0.0, 0.05}; }
 
+// What becomes of a ragdoll placed into static geometry (the ground plane, static shapes):
+// found with World::staticOverlap at its spawn pose, deeper than 5 mm (shallower overlaps are
+// left to the contacts).
+enum class SpawnOverlap {
+  Lift,    // moved up rigidly until its lowest shape point rests on it (along a plane's
+           // normal), with a WARN naming the ragdoll and the lift; reset() goes back there
+  Refuse,  // addRagdoll (and start, for those added before it) refuses it with a message
+};
+
 struct SceneDef {
   WorldDef world;                  // gravity, solver, speed caps, sleep, material table, threads
   int64_t dt_ns = 1000000;         // fixed step, ns
   bool ground = true;              // static ground plane z = 0
+  SpawnOverlap spawn_overlap = SpawnOverlap::Lift;  // a spawn into static geometry
   Material material = defaultSurface();  // the shared surface (setMaterials replaces it)
   Material ragdoll_surface = defaultSurface();
   Material ground_surface = defaultSurface();
@@ -172,17 +182,21 @@ class Scene {
   Scene& operator=(const Scene&) = delete;
 
   // --- ragdolls ---
-  // Before start(): readies the ragdoll (joint settings); after: spawns it into the World.
+  // Before start(): readies the ragdoll (joint settings); after: spawns it into the World,
+  // lifted out of static geometry or refused there (SceneDef::spawn_overlap).
   // False with *error (the model, its joint settings, a name in use, a pose the World refuses).
   SpawnResult addRagdoll(SpawnDef spawn, std::string* error);
-  // Builds the World: the ground and every ragdoll added so far, balance as they asked.
+  // Builds the World: the ground and every ragdoll added so far, balance as they asked; those
+  // placed into static geometry are lifted or, with SpawnOverlap::Refuse, fail the start.
   bool start(std::string* error);
   // Removes `name` and its bodies; other ragdolls keep their state and broken joints.
   bool removeRagdoll(const std::string& name, std::string* error);
-  // Every ragdoll back at its spawn pose with its joints whole; active forces end.
+  // Every ragdoll back at its spawn pose with its joints whole; active forces end. A ragdoll
+  // that overlaps static geometry there is lifted (WARN), whatever spawn_overlap says.
   bool reset(std::string* error);
   // Rigid move of ragdoll k: root link to `root`, every body with linear velocity
-  // v + w x (com - root.p) and angular velocity w.
+  // v + w x (com - root.p) and angular velocity w. A pose into static geometry is lifted out of
+  // it (WARN), whatever spawn_overlap says: the ragdoll exists, only its pose is corrected.
   void setRagdollState(int k, const Transform& root, const Vec3& v, const Vec3& w);
   LinkState linkState(int k, int link) const;
 

@@ -45,8 +45,13 @@ struct Scene::Impl {
   // scene.cpp
   bool makeInstance(SpawnDef spawn, scene::RagdollInstance* out, std::string* error);
   // A new World with the ground and every ragdoll at its spawn pose, joints whole (start, reset).
-  bool buildWorld(std::string* error);
-  bool spawnInWorld(scene::RagdollInstance& r, std::string* error);
+  // may_refuse: spawn_overlap's Refuse applies (start), else overlaps are lifted (reset).
+  bool buildWorld(bool may_refuse, std::string* error);
+  bool spawnInWorld(scene::RagdollInstance& r, bool may_refuse, std::string* error);
+  // The ragdoll's bodies out of static geometry: lifted (a WARN naming `what`, the spawn pose
+  // moved with them when `spawn`), or false with *error when refused or wedged.
+  bool clearStatics(scene::RagdollInstance& r, const std::string& what, bool may_refuse,
+                    bool spawn, std::string* error);
   int find(const std::string& name) const;
 
   // scene_motors.cpp

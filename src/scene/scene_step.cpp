@@ -51,13 +51,15 @@ void Scene::Impl::reportBodyFaults() {
   const std::vector<BodyFault> faults = world->takeBodyFaults();
   if (faults.empty()) return;
   body_faults += faults.size();
-  std::string input, solver;
+  std::string input, solver, range;
   for (const BodyFault& f : faults) {
     std::string where = "body " + std::to_string(f.body.index);
     for (const RagdollInstance& r : ragdolls)
       for (size_t l = 0; l < r.ragdoll.bodies.size(); ++l)
         if (r.ragdoll.bodies[l] == f.body) where = "'" + r.name + "/" + r.def.links[l].name + "'";
-    std::string& list = f.cause == BodyFaultCause::Input ? input : solver;
+    std::string& list = f.cause == BodyFaultCause::Input    ? input
+                        : f.cause == BodyFaultCause::Solver ? solver
+                                                            : range;
     list += (list.empty() ? "" : ", ") + where;
   }
   std::ostringstream at;
@@ -68,6 +70,10 @@ void Scene::Impl::reportBodyFaults() {
   if (!solver.empty())
     warn("body fault/solver", at.str() + "link(s) " + solver + " went non-finite in the step; "
          "reset to the last finite pose with zero velocity");
+  if (!range.empty())
+    warn("body fault/range", at.str() + "link(s) " + range + " left the world range (a "
+         "coordinate beyond kWorldRange = 1048576 m); reset to the last pose in range with zero "
+         "velocity");
 }
 
 void Scene::Impl::collectBrokenJoints() {
