@@ -100,7 +100,7 @@ struct SceneDef {
 };
 
 struct SpawnDef {
-  std::string name;            // unique
+  std::string name;            // unique; a ROS graph name token of <= 128 characters
   RagdollDef def;
   Transform pose;              // root link in the world (reset() goes back here)
   bool balance = false;        // balance controller (SceneDef::balance) on from the start
@@ -109,6 +109,7 @@ struct SpawnDef {
 
 enum class SpawnResult {
   Added,
+  BadName,       // not a valid name (src/scene/names.hpp)
   BadModel,      // no links, or joint settings that conflict
   NameInUse,
   WorldRefused,  // the World cannot simulate it there (e.g. a non-finite pose)

@@ -325,6 +325,8 @@ std::string validateNodeConfig(const NodeConfig& c) {
   if (!(e = param(nonNegativeError("clock_rate", c.clock_rate))).empty()) return e;
   if (!c.ragdoll_name.empty() && !scene::ragdollNameError(c.ragdoll_name).empty())
     return "parameter ~ragdoll_name: " + scene::ragdollNameError(c.ragdoll_name);
+  if (!scene::tfPrefixError(c.tf_prefix).empty())
+    return "parameter ~tf_prefix: " + scene::tfPrefixError(c.tf_prefix);
   const SpawnPose& s = c.spawn;
   for (double v : {s.x, s.y, s.z, s.roll, s.pitch, s.yaw})
     if (!std::isfinite(v)) return "parameters ~spawn/{x,y,z,roll,pitch,yaw} must be finite";

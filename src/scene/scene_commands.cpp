@@ -15,7 +15,7 @@ namespace {
 
 // ragdoll name for messages: "'name'" or "the first ragdoll"
 std::string which(const std::string& ragdoll) {
-  return ragdoll.empty() ? std::string("the first ragdoll") : "ragdoll '" + ragdoll + "'";
+  return ragdoll.empty() ? std::string("the first ragdoll") : "ragdoll " + scene::quoted(ragdoll);
 }
 
 const char* what(const SceneCommandVariant& c) {
@@ -34,7 +34,7 @@ bool Scene::submit(const std::string& ragdoll, SceneCommandVariant command, int6
   if (k < 0) {
     ++s.rejected;
     s.warn(kind + "/unknown ragdoll",
-           kind + " rejected: unknown ragdoll '" + ragdoll + "'" +
+           kind + " rejected: unknown ragdoll " + scene::quoted(ragdoll) +
                (s.ragdolls.empty() ? " (no ragdolls left)" : "") + "; command dropped");
     return false;
   }
