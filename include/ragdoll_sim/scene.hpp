@@ -23,12 +23,16 @@
 
 namespace ragdoll_sim {
 
-// Caps on what one command may ask for.
+// Caps on what one command may ask for, and on what the active forces on one link add up to.
 struct CommandLimits {
   double max_impulse = 1000.0;   // N*s
   double max_force = 1e5;        // N
   double max_torque = 1e5;       // N*m
   double max_lever_arm = 10.0;   // m, distance of the application point from the link origin
+  // Each step, the sums of |force| and of |torque| of the active forces on one link; above
+  // them every force (torque) on that link is scaled down by the same factor.
+  double max_body_force = 1e5;   // N
+  double max_body_torque = 1e5;  // N*m
 };
 
 // Gains of the position motors that drive joints to their targets (and hold the pose when the
@@ -101,7 +105,8 @@ struct SceneDef {
   Material ground_surface = defaultSurface();
   CommandLimits limits;
   int max_queued_commands = 4096;  // waiting commands; beyond, a submit is dropped
-  size_t max_active_forces = 256;  // over all ragdolls
+  int max_forces_per_ragdoll = 64;  // active forces of one ragdoll; beyond, refused
+  int max_active_forces = 4096;     // over all ragdolls (against a flood of ragdolls)
   MotorGains motor;                // every joint's target / hold motor unless `joints` say else
   JointSettings joint_defaults;    // springs and gains of every joint
   std::vector<std::pair<std::string, JointSettings>> joints;  // joint name -> settings
@@ -110,7 +115,7 @@ struct SceneDef {
 };
 
 struct SpawnDef {
-  std::string name;            // unique
+  std::string name;            // unique; a ROS graph name token of <= 128 characters
   RagdollDef def;
   Transform pose;              // root link in the world (reset() goes back here)
   bool balance = false;        // balance controller (SceneDef::balance) on from the start
@@ -119,6 +124,7 @@ struct SpawnDef {
 
 enum class SpawnResult {
   Added,
+  BadName,       // not a valid name (src/scene/names.hpp)
   BadModel,      // no links, or joint settings that conflict
   NameInUse,
   WorldRefused,  // the World cannot simulate it there (e.g. a non-finite pose)
@@ -149,10 +155,13 @@ struct BrokenJointReport {
   double break_force = 0.0, break_torque = 0.0;
 };
 
-// received = applied + rejected + dropped + queued
+// received = applied + rejected + dropped + queued; of the applied, `impulses` and `forces`
+// were impulse and force commands.
 struct SceneCounters {
   uint64_t received = 0, applied = 0, rejected = 0, dropped = 0, body_faults = 0;
+  uint64_t impulses = 0, forces = 0;
   size_t queued = 0, max_queued = 0, queue_capacity = 0;
+  size_t active_forces = 0;  // acting now
 };
 
 // A link's state for get_link_state.

@@ -337,6 +337,10 @@ bool loadNodeConfig(const ros::NodeHandle& node, NodeConfig* c, std::string* err
             read(pnh, "max_force", "a number (N)", &c->scene.limits.max_force, error) &&
             read(pnh, "max_torque", "a number (N*m)", &c->scene.limits.max_torque, error) &&
             read(pnh, "max_lever_arm", "a number (m)", &c->scene.limits.max_lever_arm, error) &&
+            read(pnh, "max_body_force", "a number (N)", &c->scene.limits.max_body_force, error) &&
+            read(pnh, "max_body_torque", "a number (N*m)", &c->scene.limits.max_body_torque, error) &&
+            read(pnh, "max_forces_per_ragdoll", "an integer", &c->scene.max_forces_per_ragdoll, error) &&
+            read(pnh, "max_active_forces", "an integer", &c->scene.max_active_forces, error) &&
             read(pnh, "max_catchup", "a number (s)", &c->max_catchup, error) &&
             read(pnh, "max_linear_speed", "a number (m/s)", &c->scene.world.solver.max_linear_speed, error) &&
             read(pnh, "max_angular_speed", "a number (rad/s)", &c->scene.world.solver.max_angular_speed, error) &&
@@ -397,6 +401,8 @@ std::string validateNodeConfig(const NodeConfig& c) {
   if (!(e = param(nonNegativeError("clock_rate", c.clock_rate))).empty()) return e;
   if (!c.ragdoll_name.empty() && !scene::ragdollNameError(c.ragdoll_name).empty())
     return "parameter ~ragdoll_name: " + scene::ragdollNameError(c.ragdoll_name);
+  if (!scene::tfPrefixError(c.tf_prefix).empty())
+    return "parameter ~tf_prefix: " + scene::tfPrefixError(c.tf_prefix);
   const SpawnPose& s = c.spawn;
   for (double v : {s.x, s.y, s.z, s.roll, s.pitch, s.yaw})
     if (!std::isfinite(v)) return "parameters ~spawn/{x,y,z,roll,pitch,yaw} must be finite";
@@ -407,6 +413,8 @@ std::string validateNodeConfig(const NodeConfig& c) {
         {"max_force", c.scene.limits.max_force},
         {"max_torque", c.scene.limits.max_torque},
         {"max_lever_arm", c.scene.limits.max_lever_arm},
+        {"max_body_force", c.scene.limits.max_body_force},
+        {"max_body_torque", c.scene.limits.max_body_torque},
         {"max_catchup", c.max_catchup},
         {"max_position", c.max_position}})
     if (!(e = param(positiveError(name, v))).empty()) return e;
@@ -414,6 +422,10 @@ std::string validateNodeConfig(const NodeConfig& c) {
     return e;
   if (!(e = param(intRangeError("max_queued_commands", c.scene.max_queued_commands, 1))).empty())
     return e;
+  for (const auto& [name, v] :
+       {std::pair<const char*, int>{"max_forces_per_ragdoll", c.scene.max_forces_per_ragdoll},
+        {"max_active_forces", c.scene.max_active_forces}})
+    if (!(e = param(intRangeError(name, v, 1))).empty()) return e;
   if (!(e = scene::validateMotorGains(c.scene.motor, "parameter ~motor")).empty()) return e;
   if (!std::isfinite(c.scene.balance.kp) || !std::isfinite(c.scene.balance.kd))
     return "parameters ~balance/kp and ~balance/kd must be finite";

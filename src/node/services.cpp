@@ -133,9 +133,11 @@ bool Services::onClearForces(std_srvs::Empty::Request&, std_srvs::Empty::Respons
 bool Services::onSpawn(ragdoll_sim::SpawnRagdoll::Request& req,
                        ragdoll_sim::SpawnRagdoll::Response& res) {
   Scene& scene = *ctx_.scene;
-  const std::string what = "spawn '" + req.name + "' rejected: ";
+  const std::string what = "spawn " + scene::quoted(req.name) + " rejected: ";
   std::string e = scene::ragdollNameError(req.name);
   if (!e.empty()) return refuse(res, "spawn/bad name", what + e);
+  if (!(e = scene::tfPrefixError(req.tf_prefix)).empty())
+    return refuse(res, "spawn/bad tf_prefix", what + e);
   if (scene.find(req.name) >= 0)
     return refuse(res, "spawn/name in use", what + "a ragdoll of that name exists");
   const std::string prefix = req.tf_prefix.empty() ? req.name : req.tf_prefix;
@@ -194,7 +196,7 @@ bool Services::onDelete(ragdoll_sim::DeleteRagdoll::Request& req,
   Scene& scene = *ctx_.scene;
   if (req.name.empty() || scene.find(req.name) < 0)
     return refuse(res, "delete/unknown ragdoll",
-                  "delete rejected: no ragdoll named '" + req.name + "'");
+                  "delete rejected: no ragdoll named " + scene::quoted(req.name));
   std::string e;
   const bool removed = scene.removeRagdoll(req.name, &e);
   const RagdollTopics topics = ctx_.publishers->removeRagdoll(req.name);
@@ -221,7 +223,7 @@ bool Services::onSetState(ragdoll_sim::SetRagdollState::Request& req,
   const int k = scene.find(req.ragdoll);
   if (k < 0)
     return refuse(res, "set_ragdoll_state/unknown ragdoll",
-                  "set_ragdoll_state rejected: no ragdoll named '" + req.ragdoll + "'");
+                  "set_ragdoll_state rejected: no ragdoll named " + scene::quoted(req.ragdoll));
   Transform target;
   std::string problem;
   const std::string e = poseFromMsg(req.pose, c.max_position, &target, &problem);
@@ -257,12 +259,12 @@ bool Services::onGetLinkState(ragdoll_sim::GetLinkState::Request& req,
   const int k = scene.find(req.ragdoll);
   if (k < 0)
     return refuse(res, "get_link_state/unknown ragdoll",
-                  "get_link_state: no ragdoll named '" + req.ragdoll + "'");
+                  "get_link_state: no ragdoll named " + scene::quoted(req.ragdoll));
   const int link = scene.findLink(k, req.link);
   if (link < 0)
     return refuse(res, "get_link_state/unknown link",
-                  "get_link_state: ragdoll '" + scene.name(k) + "' has no simulated link '" +
-                      req.link + "'");
+                  "get_link_state: ragdoll '" + scene.name(k) + "' has no simulated link " +
+                      scene::quoted(req.link));
   const LinkState s = scene.linkState(k, link);
   toMsg(s.pose, &res.pose);
   toMsg(s.linear_velocity, &res.twist.linear);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <thread>
 
+#include "names.hpp"
 #include "ragdoll_sim/urdf_loader.hpp"
 
 namespace ragdoll_sim {
@@ -37,7 +38,13 @@ bool SimNode::loadLaunchRagdoll(SpawnDef* spawn, std::string* source, std::strin
   for (const std::string& note : loaded.def.notes) ROS_INFO("URDF: %s", note.c_str());
   for (const std::string& w : loaded.def.warnings) ROS_WARN("URDF: %s", w.c_str());
   spawn->name = c.ragdoll_name;
-  if (spawn->name.empty()) spawn->name = loaded.def.name.empty() ? "ragdoll" : loaded.def.name;
+  if (spawn->name.empty()) {
+    spawn->name = "ragdoll";
+    const std::string e = scene::ragdollNameError(loaded.def.name);
+    if (e.empty()) spawn->name = loaded.def.name;
+    else if (!loaded.def.name.empty()) ROS_WARN("the URDF's robot name is no ragdoll name: %s; "
+                                                "naming it 'ragdoll' (set ~ragdoll_name)", e.c_str());
+  }
   spawn->def = std::move(loaded.def);
   spawn->pose = c.spawnTransform();
   spawn->balance = c.balance;

@@ -170,7 +170,9 @@ int Scene::Impl::find(const std::string& name) const {
 
 SpawnResult Scene::addRagdoll(SpawnDef spawn, std::string* error) {
   Impl& s = *impl_;
-  if (!spawn.name.empty() && s.find(spawn.name) >= 0) {
+  *error = scene::ragdollNameError(spawn.name);
+  if (!error->empty()) return SpawnResult::BadName;
+  if (s.find(spawn.name) >= 0) {
     *error = "a ragdoll named '" + spawn.name + "' exists";
     return SpawnResult::NameInUse;
   }
@@ -205,7 +207,7 @@ bool Scene::removeRagdoll(const std::string& name, std::string* error) {
   Impl& s = *impl_;
   const int k = name.empty() ? -1 : s.find(name);
   if (k < 0) {
-    *error = "no ragdoll named '" + name + "'";
+    *error = "no ragdoll named " + scene::quoted(name);
     return false;
   }
   RagdollInstance& r = s.ragdolls[static_cast<size_t>(k)];
