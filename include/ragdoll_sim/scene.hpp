@@ -215,6 +215,8 @@ class Scene {
   RagdollId id(int k) const;
   const std::string& name(int k) const;
   const RagdollDef& def(int k) const;
+  // Root link pose reset() goes back to: the spawn pose, lifted out of static geometry.
+  const Transform& spawnPose(int k) const;
   const Ragdoll& bodies(int k) const;       // ids in the World (new ids after a rebuild)
   int findLink(int k, const std::string& link) const;   // RagdollDef::links index, or -1
   const std::vector<std::string>& axisNames(int k) const;  // joint_states names

@@ -181,10 +181,15 @@ bool Services::onSpawn(ragdoll_sim::SpawnRagdoll::Request& req,
   ctx_.structureChanged();
   res.success = true;
   const RagdollDef& def = scene.def(k);
+  const Vec3 p = scene.spawnPose(k).p;
   std::ostringstream msg;
   msg << "spawned '" << req.name << "' (" << def.links.size() << " links, "
-      << def.joints.size() << " joints, " << def.totalMass() << " kg) at (" << at.x() << ", "
-      << at.y() << ", " << at.z() << "), TF prefix '" << prefix << "', joint_states on " << ns
+      << def.joints.size() << " joints, " << def.totalMass() << " kg) at (" << p.x() << ", "
+      << p.y() << ", " << p.z() << ")";
+  if (p != at)
+    msg << ", lifted " << (p - at).norm() << " m out of static geometry from (" << at.x() << ", "
+        << at.y() << ", " << at.z() << ")";
+  msg << ", TF prefix '" << prefix << "', joint_states on " << ns
       << "/joint_states, at sim time " << scene.time() << " s";
   res.message = msg.str();
   ROS_INFO("%s", res.message.c_str());

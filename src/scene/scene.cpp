@@ -266,6 +266,9 @@ int Scene::indexOf(RagdollId id) const {
 RagdollId Scene::id(int k) const { return impl_->ragdolls.at(static_cast<size_t>(k)).id; }
 const std::string& Scene::name(int k) const { return impl_->ragdolls.at(static_cast<size_t>(k)).name; }
 const RagdollDef& Scene::def(int k) const { return impl_->ragdolls.at(static_cast<size_t>(k)).def; }
+const Transform& Scene::spawnPose(int k) const {
+  return impl_->ragdolls.at(static_cast<size_t>(k)).spawn_pose;
+}
 const Ragdoll& Scene::bodies(int k) const {
   return impl_->ragdolls.at(static_cast<size_t>(k)).ragdoll;
 }
