@@ -7,21 +7,14 @@
 #include <vector>
 
 #include "ragdoll_sim/scene.hpp"
+#include "scene_recorder.hpp"
 #include "scene_views.hpp"
 
 using namespace ragdoll_sim;
 
 namespace {
 
-struct Recorder : SceneListener {
-  std::vector<SceneMessage> messages;
-  void message(const SceneMessage& m) override { messages.push_back(m); }
-  const SceneMessage* find(const std::string& kind) const {
-    for (const SceneMessage& m : messages)
-      if (m.kind == kind) return &m;
-    return nullptr;
-  }
-};
+using test::Recorder;
 
 SpawnDef stick(const std::string& name, double y, double z = 1.0) {
   SpawnDef s;

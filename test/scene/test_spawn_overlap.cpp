@@ -10,21 +10,14 @@
 #include <vector>
 
 #include "ragdoll_sim/scene.hpp"
+#include "scene_recorder.hpp"
 #include "ragdoll_sim/urdf_loader.hpp"
 
 using namespace ragdoll_sim;
 
 namespace {
 
-struct Recorder : SceneListener {
-  std::vector<SceneMessage> messages;
-  void message(const SceneMessage& m) override { messages.push_back(m); }
-  const SceneMessage* find(const std::string& kind) const {
-    for (const SceneMessage& m : messages)
-      if (m.kind == kind) return &m;
-    return nullptr;
-  }
-};
+using test::Recorder;
 
 RagdollDef bundled() {
   const UrdfLoadResult r = loadUrdfFile(std::string(RAGDOLL_SIM_SOURCE_DIR) + "/urdf/ragdoll.urdf");
