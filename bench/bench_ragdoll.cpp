@@ -240,6 +240,7 @@ int main(int argc, char** argv) {
         else if (k == "relax") wd.solver.contact_relax_iterations = int(v);
         else if (k == "joint_relax") wd.solver.joint_relax_iterations = int(v);
         else if (k == "sleep_speed") wd.sleep.speed = v;
+        else if (k == "island_speed") wd.sleep.island_speed = v;
         else if (k == "time_to_sleep") wd.sleep.time = v;
         else if (k == "rest_substeps") wd.sleep.rest_substeps = int(v);
         else if (k == "rest_time") wd.sleep.rest_time = v;

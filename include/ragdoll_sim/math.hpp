@@ -16,6 +16,12 @@ using Quat = Eigen::Quaterniond;
 // anchor errors computed from it would overflow.
 constexpr double kWorldRange = 1048576.0;  // 2^20 m
 
+// A point the World can hold: finite, every coordinate within kWorldRange (a body whose centre
+// of mass leaves it is a BodyFault, world.hpp).
+inline bool withinWorldRange(const Vec3& p) {
+  return p.allFinite() && p.cwiseAbs().maxCoeff() <= kWorldRange;
+}
+
 // Rigid transform: x_parent = q * x_child + p.
 struct Transform {
   Vec3 p = Vec3::Zero();

@@ -23,12 +23,16 @@
 
 namespace ragdoll_sim {
 
-// Caps on what one command may ask for.
+// Caps on what one command may ask for, and on what the active forces on one link add up to.
 struct CommandLimits {
   double max_impulse = 1000.0;   // N*s
   double max_force = 1e5;        // N
   double max_torque = 1e5;       // N*m
   double max_lever_arm = 10.0;   // m, distance of the application point from the link origin
+  // Each step, the sums of |force| and of |torque| of the active forces on one link; above
+  // them every force (torque) on that link is scaled down by the same factor.
+  double max_body_force = 1e5;   // N
+  double max_body_torque = 1e5;  // N*m
 };
 
 // Gains of the position motors that drive joints to their targets (and hold the pose when the
@@ -82,16 +86,27 @@ using SceneCommandVariant = std::variant<ImpulseCommand, ForceCommand, TargetPos
 // The surface of ragdolls and ground unless ~materials name others.
 inline Material defaultSurface() { return Material{0.8, 0.6, 0.0, 0.05}; }
 
+// What becomes of a ragdoll placed into static geometry (the ground plane, static shapes):
+// found with World::staticOverlap at its spawn pose, deeper than 5 mm (shallower overlaps are
+// left to the contacts).
+enum class SpawnOverlap {
+  Lift,    // moved up rigidly until its lowest shape point rests on it (along a plane's
+           // normal), with a WARN naming the ragdoll and the lift; reset() goes back there
+  Refuse,  // addRagdoll (and start, for those added before it) refuses it with a message
+};
+
 struct SceneDef {
   WorldDef world;                  // gravity, solver, speed caps, sleep, material table, threads
   int64_t dt_ns = 1000000;         // fixed step, ns
   bool ground = true;              // static ground plane z = 0
+  SpawnOverlap spawn_overlap = SpawnOverlap::Lift;  // a spawn into static geometry
   Material material = defaultSurface();  // the shared surface (setMaterials replaces it)
   Material ragdoll_surface = defaultSurface();
   Material ground_surface = defaultSurface();
   CommandLimits limits;
   int max_queued_commands = 4096;  // waiting commands; beyond, a submit is dropped
-  size_t max_active_forces = 256;  // over all ragdolls
+  int max_forces_per_ragdoll = 64;  // active forces of one ragdoll; beyond, refused
+  int max_active_forces = 4096;     // over all ragdolls (against a flood of ragdolls)
   MotorGains motor;                // every joint's target / hold motor unless `joints` say else
   JointSettings joint_defaults;    // springs and gains of every joint
   std::vector<std::pair<std::string, JointSettings>> joints;  // joint name -> settings
@@ -100,7 +115,7 @@ struct SceneDef {
 };
 
 struct SpawnDef {
-  std::string name;            // unique
+  std::string name;            // unique; a ROS graph name token of <= 128 characters
   RagdollDef def;
   Transform pose;              // root link in the world (reset() goes back here)
   bool balance = false;        // balance controller (SceneDef::balance) on from the start
@@ -109,6 +124,7 @@ struct SpawnDef {
 
 enum class SpawnResult {
   Added,
+  BadName,       // not a valid name (src/scene/names.hpp)
   BadModel,      // no links, or joint settings that conflict
   NameInUse,
   WorldRefused,  // the World cannot simulate it there (e.g. a non-finite pose)
@@ -139,10 +155,13 @@ struct BrokenJointReport {
   double break_force = 0.0, break_torque = 0.0;
 };
 
-// received = applied + rejected + dropped + queued
+// received = applied + rejected + dropped + queued; of the applied, `impulses` and `forces`
+// were impulse and force commands.
 struct SceneCounters {
   uint64_t received = 0, applied = 0, rejected = 0, dropped = 0, body_faults = 0;
+  uint64_t impulses = 0, forces = 0;
   size_t queued = 0, max_queued = 0, queue_capacity = 0;
+  size_t active_forces = 0;  // acting now
 };
 
 // A link's state for get_link_state.
@@ -172,17 +191,21 @@ class Scene {
   Scene& operator=(const Scene&) = delete;
 
   // --- ragdolls ---
-  // Before start(): readies the ragdoll (joint settings); after: spawns it into the World.
+  // Before start(): readies the ragdoll (joint settings); after: spawns it into the World,
+  // lifted out of static geometry or refused there (SceneDef::spawn_overlap).
   // False with *error (the model, its joint settings, a name in use, a pose the World refuses).
   SpawnResult addRagdoll(SpawnDef spawn, std::string* error);
-  // Builds the World: the ground and every ragdoll added so far, balance as they asked.
+  // Builds the World: the ground and every ragdoll added so far, balance as they asked; those
+  // placed into static geometry are lifted or, with SpawnOverlap::Refuse, fail the start.
   bool start(std::string* error);
   // Removes `name` and its bodies; other ragdolls keep their state and broken joints.
   bool removeRagdoll(const std::string& name, std::string* error);
-  // Every ragdoll back at its spawn pose with its joints whole; active forces end.
+  // Every ragdoll back at its spawn pose with its joints whole; active forces end. A ragdoll
+  // that overlaps static geometry there is lifted (WARN), whatever spawn_overlap says.
   bool reset(std::string* error);
   // Rigid move of ragdoll k: root link to `root`, every body with linear velocity
-  // v + w x (com - root.p) and angular velocity w.
+  // v + w x (com - root.p) and angular velocity w. A pose into static geometry is lifted out of
+  // it (WARN), whatever spawn_overlap says: the ragdoll exists, only its pose is corrected.
   void setRagdollState(int k, const Transform& root, const Vec3& v, const Vec3& w);
   LinkState linkState(int k, int link) const;
 
@@ -192,6 +215,8 @@ class Scene {
   RagdollId id(int k) const;
   const std::string& name(int k) const;
   const RagdollDef& def(int k) const;
+  // Root link pose reset() goes back to: the spawn pose, lifted out of static geometry.
+  const Transform& spawnPose(int k) const;
   const Ragdoll& bodies(int k) const;       // ids in the World (new ids after a rebuild)
   int findLink(int k, const std::string& link) const;   // RagdollDef::links index, or -1
   const std::vector<std::string>& axisNames(int k) const;  // joint_states names

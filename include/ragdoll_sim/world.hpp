@@ -21,6 +21,11 @@ struct SleepDef {
   bool enabled = true;
   double time = 0.5;    // s an island must stay slow before it sleeps
   double speed = 0.05;  // m/s, max(|v|, extent |w|) below this counts as slow (Box2D v3)
+  // m/s: every body of an island counts as slow while the island's kinetic energy is below
+  // that of its whole mass moving at island_speed (sum m v^2 + w.I.w < M island_speed^2). A
+  // light limb turning about a frictionless joint in a resting ragdoll loses no energy, so
+  // without it that island would never sleep; 0 turns this rule off.
+  double island_speed = 0.05;
   // An island whose bodies have all been slow for rest_time is solved with rest_substeps
   // substeps of rest_relax_iterations relax sweeps each, until one of its bodies moves faster,
   // is woken or it sleeps: the last part of the sleep time costs less. rest_substeps 0 (or not
@@ -37,8 +42,8 @@ struct SleepDef {
 };
 
 // "" when the settings can be used, else what is wrong with the first field that cannot, named
-// as in the struct ("speed must be a finite number >= 0, got -1"): time, speed and rest_time
-// finite and >= 0, rest_substeps and rest_relax_iterations >= 0.
+// as in the struct ("speed must be a finite number >= 0, got -1"): time, speed, island_speed and
+// rest_time finite and >= 0, rest_substeps and rest_relax_iterations >= 0.
 std::string sleepDefError(const SleepDef& sleep);
 
 // How the solver iterates and how soft and how far it corrects: the knobs one tunes while the
@@ -121,12 +126,25 @@ struct IslandCounters {
   int resting_bodies = 0;   // bodies in those
 };
 
-// A body whose state was not finite (NaN / inf), found and undone by World::step: the body is
-// back at its last finite pose with zero velocity, its forces dropped, and the warm-start
-// impulses of its joints and contacts cleared. The rest of the world goes on.
+// The deepest overlap of some bodies' shapes with static shapes (World::staticOverlap).
+struct StaticOverlap {
+  double depth = 0.0;              // m; 0 when no shape reaches into a static one
+  Vec3 direction = Vec3::UnitZ();  // unit: the bodies moved by depth * direction clear that pair
+  BodyId body;                     // the deepest pair: one of the bodies, its shape index in
+  int shape = -1;                  // bodyShapes(body), and the static body
+  BodyId static_body;
+};
+
+// A body whose state was not finite (NaN / inf), or whose centre of mass left the world range
+// (a coordinate beyond +-kWorldRange, math.hpp), found and undone by World::step: the body is
+// back at its last good pose (finite and in range) with zero velocity, its forces dropped, and
+// the warm-start impulses of its joints and contacts cleared. The rest of the world goes on.
 enum class BodyFaultCause : uint8_t {
   Input,   // before the step: its state, force or torque (set since the last step) was not finite
   Solver,  // the step itself produced it (overflow in the solver)
+  // Its centre of mass is beyond kWorldRange: put there by setBodyState, or carried there by
+  // the step (a body flung out, or a solve that diverged to huge but finite coordinates).
+  OutOfRange,
 };
 
 struct BodyFault {
@@ -145,8 +163,8 @@ class World {
 
   // --- building -------------------------------------------------------------------------
   // Throws std::invalid_argument, creating nothing, for a non-finite pose, velocity, centre of
-  // mass or gravity_scale, a negative or non-finite damping, or a dynamic body without a
-  // positive mass and a positive definite inertia.
+  // mass or gravity_scale, a centre of mass beyond kWorldRange, a negative or non-finite
+  // damping, or a dynamic body without a positive mass and a positive definite inertia.
   BodyId createBody(const BodyDef& def);
   // Throws std::invalid_argument, adding nothing, for a geometry that geometryError refuses, a
   // non-finite local pose, or a material that materialError refuses.
@@ -213,6 +231,8 @@ class World {
   void applyAngularImpulse(BodyId body, const Vec3& impulse);
   void applyForce(BodyId body, const Vec3& force, const Vec3& world_point);
   void applyTorque(BodyId body, const Vec3& torque);
+  // A non-finite state, or a centre of mass beyond kWorldRange, is undone by the next step as
+  // a BodyFault (Input, OutOfRange).
   void setBodyState(BodyId body, const Transform& pose, const Vec3& com_velocity,
                     const Vec3& angular_velocity);
 
@@ -252,6 +272,13 @@ class World {
   // Motor of one joint angle (hinge: axis 0; ball: Euler axes 0..2; prismatic: axis 0, linear).
   // Throws std::invalid_argument, changing nothing, for a motor that jointMotorError refuses.
   void setJointMotor(JointId joint, int axis, const JointMotor& motor);
+
+  // How deep the shapes of `bodies` reach into the shapes of static bodies, at their current
+  // poses: the deepest pair (for spawn checks; Scene lifts a ragdoll out by it). Against a
+  // plane it is exact: the depth of the shape's lowest point below it, along its normal; other
+  // pairs take the narrowphase's deepest point and normal. Throws std::out_of_range for an
+  // invalid body.
+  StaticOverlap staticOverlap(const std::vector<BodyId>& bodies) const;
 
   Vec3 linearMomentum() const;
   Vec3 angularMomentum(const Vec3& about) const;

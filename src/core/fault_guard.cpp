@@ -1,5 +1,5 @@
 // The fault guard around the step: inputs checked and clamped before it, bodies the solver left
-// non-finite reset after it, and their warm starts cleared. Data: fault_guard.hpp.
+// non-finite or out of range reset after it, and their warm starts cleared. Data: fault_guard.hpp.
 #include "world_impl.hpp"
 
 namespace ragdoll_sim {
@@ -17,19 +17,24 @@ void clearContactWarmStart(Contact& c) {
 
 
 // Before the step: what was set since the last one (impulses, forces, setBodyState) must be
-// finite, and velocities are clamped. A finite pose is the body's last finite one (it may come
-// from setBodyState); a body with a bad velocity, force or torque keeps it.
+// finite and in range, and velocities are clamped. A good pose is the body's last good one (it
+// may come from setBodyState); a body with a bad velocity, force or torque keeps it.
 void World::Impl::guardInputs() {
   for (size_t i = 0; i < bodies.size(); ++i) {
     if (!bodies[i].alive) continue;
     BodyMotion& m = motions[i];
     if (inputsFinite(m)) {
+      if (!withinWorldRange(m.x)) {
+        resetBody(int(i), BodyFaultCause::OutOfRange);
+        continue;
+      }
       clampNorm(m.v, def.solver.max_linear_speed);
       clampNorm(m.w, def.solver.max_angular_speed);
       last_finite[i] = {m.x, m.q};
       continue;
     }
-    if (m.x.allFinite() && m.q.coeffs().allFinite()) last_finite[i] = {m.x, m.q};
+    if (m.x.allFinite() && m.q.coeffs().allFinite() && withinWorldRange(m.x))
+      last_finite[i] = {m.x, m.q};
     resetBody(int(i), BodyFaultCause::Input);
   }
 }
@@ -47,16 +52,12 @@ void World::Impl::resetBody(int b, BodyFaultCause cause) {
   m.torque.setZero();
   ++fault_count;
   if (faults.size() < World::kMaxPendingFaults) faults.push_back({BodyId{b}, cause, time});
-  if (cause == BodyFaultCause::Solver) {
-    solver_reset[b] = 1;
-    any_solver_reset = true;
-  }
 }
 
 
 // An awake body takes the step's deltas and velocities; forces are cleared. A body the
-// solver left non-finite is only marked here (islands finish on their own threads):
-// resetFaulted resets the marked ones, in body order.
+// solver left non-finite or out of range is only marked here (islands finish on their own
+// threads): resetFaulted resets the marked ones, in body order.
 void World::Impl::finishBody(int i) {
   BodyMotion& m = motions[i];
   const SolverBody& s = solver[i];
@@ -68,12 +69,14 @@ void World::Impl::finishBody(int i) {
     m.q = (s.dq * m.q).normalized();
     m.v = s.v;
     m.w = s.w;
-    if (motionFinite(m)) {
+    if (!motionFinite(m)) {
+      solver_fault[i] = kSolverFault;
+    } else if (!withinWorldRange(m.x)) {
+      solver_fault[i] = kRangeFault;
+    } else {
       clampNorm(m.v, def.solver.max_linear_speed);
       clampNorm(m.w, def.solver.max_angular_speed);
       last_finite[i] = {m.x, m.q};
-    } else {
-      solver_fault[i] = 1;
     }
   }
   m.force.setZero();
@@ -83,8 +86,11 @@ void World::Impl::finishBody(int i) {
 void World::Impl::resetFaulted() {
   for (size_t i = 0; i < bodies.size(); ++i)
     if (solver_fault[i]) {
+      const bool range = solver_fault[i] == kRangeFault;
       solver_fault[i] = 0;
-      resetBody(int(i), BodyFaultCause::Solver);
+      resetBody(int(i), range ? BodyFaultCause::OutOfRange : BodyFaultCause::Solver);
+      solver_reset[i] = 1;
+      any_solver_reset = true;
     }
 }
 
@@ -100,8 +106,8 @@ void World::Impl::finishOutsideBodies() {
     if (island_of_body[i] < 0 && bodies[i].alive) finishBody(i);
 }
 
-// After a solver fault the impulses accumulated by the reset bodies' joints and contacts are
-// garbage (NaN) and would poison the next warm start.
+// After a solver or range fault the impulses accumulated by the reset bodies' joints and
+// contacts are garbage (NaN, or the huge ones that flung it) and would poison the next warm start.
 void World::Impl::clearWarmStart() {
   for (size_t k = 0; k < joints.size(); ++k) {
     Joint& j = joints[k];

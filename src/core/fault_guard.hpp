@@ -1,8 +1,9 @@
 // The fault guard's data (fault_guard.cpp). Before the step every body whose state, force or
-// torque is not finite goes back to its last finite pose (kept per body, no allocation) with
-// zero velocity, and every velocity is clamped to the caps (a huge impulse never reaches the
-// solver); after the solve a body the solver left non-finite is reset the same way, and the
-// warm-start impulses of its joints and contacts are cleared. Each reset is a BodyFault.
+// torque is not finite, or whose centre of mass is beyond kWorldRange, goes back to its last
+// good pose (finite and in range; kept per body, no allocation) with zero velocity, and every
+// velocity is clamped to the caps (a huge impulse never reaches the solver); after the solve a
+// body the solver left non-finite or out of range is reset the same way, and the warm-start
+// impulses of its joints and contacts are cleared. Each reset is a BodyFault.
 #pragma once
 
 #include <cmath>
@@ -15,8 +16,8 @@
 namespace ragdoll_sim {
 
 struct FaultGuardData {
-  // Per body its last finite pose (saved before and after each step; a reset zeroes the
-  // velocity, so none is kept).
+  // Per body its last good pose, finite and in range (saved before and after each step; a
+  // reset zeroes the velocity, so none is kept).
   struct FinitePose {
     Vec3 x;
     Quat q;
@@ -26,7 +27,10 @@ struct FaultGuardData {
   int64_t fault_count = 0;
   std::vector<char> solver_reset;  // per body: reset by this step's solver
   bool any_solver_reset = false;
-  std::vector<char> solver_fault;  // finishBody left it non-finite: resetFaulted resets it
+  // finishBody found it non-finite (kSolverFault) or out of range (kRangeFault): resetFaulted
+  // resets it.
+  std::vector<char> solver_fault;
+  static constexpr char kSolverFault = 1, kRangeFault = 2;
 };
 
 // One test instead of one per component: NaN or inf anywhere makes the sum non-finite. Finite

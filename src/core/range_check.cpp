@@ -70,9 +70,6 @@ const std::string& worldRangeText() {
   }();
   return text;
 }
-bool withinWorldRange(const Vec3& p) {
-  return p.allFinite() && p.cwiseAbs().maxCoeff() <= kWorldRange;
-}
 }  // namespace
 
 std::string lengthError(std::string_view name, double v, bool zero_allowed) {

@@ -30,15 +30,32 @@ void World::Impl::markResting(bool rest_mode) {
 void World::Impl::updateSleep(double dt) {
   if (!def.sleep.enabled) return;
   const int n = int(bodies.size());
+  // Per island root: twice its kinetic energy and its mass (the energy rule, SleepDef).
+  const double island_speed = def.sleep.island_speed;
+  if (island_speed > 0.0) {
+    island_energy.assign(n, 0.0);
+    island_mass.assign(n, 0.0);
+    for (int i = 0; i < n; ++i) {
+      const BodyMotion& m = motions[i];
+      if (!m.awake || !(m.inv_mass > 0.0)) continue;
+      const int root = islands.find(i);
+      const Vec3 wl = m.q.conjugate() * m.w;
+      island_energy[root] += m.v.squaredNorm() / m.inv_mass + wl.dot(m.inertia_local * wl);
+      island_mass[root] += 1.0 / m.inv_mass;
+    }
+  }
   // island root's sleep_time becomes the island minimum (roots have the smallest index)
   std::vector<double>& slow = island_slow;
   slow.assign(n, 1e300);
   for (int i = 0; i < n; ++i) {
     BodyMotion& m = motions[i];
     if (!m.awake) continue;
+    const int root = islands.find(i);
     const double speed = std::max(m.v.norm(), m.extent * m.w.norm());  // as Box2D v3
-    m.sleep_time = speed < def.sleep.speed ? m.sleep_time + dt : 0.0;
-    double& r = slow[islands.find(i)];
+    const bool island_calm =
+        island_speed > 0.0 && island_energy[root] < island_mass[root] * island_speed * island_speed;
+    m.sleep_time = speed < def.sleep.speed || island_calm ? m.sleep_time + dt : 0.0;
+    double& r = slow[root];
     r = std::min(r, m.sleep_time);
   }
   for (int i = 0; i < n; ++i) {

@@ -24,6 +24,8 @@ BodyId World::createBody(const BodyDef& def) {
   if (!m.x.allFinite() || !def.com.allFinite())
     throw std::invalid_argument("ragdoll_sim: body '" + def.name +
                                 "' has a non-finite centre of mass position");
+  if (const std::string e = worldPointError("centre of mass", m.x); !e.empty())
+    throw std::invalid_argument("ragdoll_sim: body '" + def.name + "': " + e);
   const std::string e = firstError({nonNegativeError("linear_damping", def.linear_damping),
                                     nonNegativeError("angular_damping", def.angular_damping),
                                     finiteError("gravity_scale", def.gravity_scale)});

@@ -11,6 +11,7 @@ namespace ragdoll_sim {
 
 std::string sleepDefError(const SleepDef& s) {
   return firstError({nonNegativeError("time", s.time), nonNegativeError("speed", s.speed),
+                     nonNegativeError("island_speed", s.island_speed),
                      nonNegativeError("rest_time", s.rest_time),
                      intRangeError("rest_substeps", s.rest_substeps, 0, INT_MAX, " (0 = off)"),
                      intRangeError("rest_relax_iterations", s.rest_relax_iterations, 0)});

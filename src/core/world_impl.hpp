@@ -7,6 +7,7 @@
 //   sleep.cpp            markResting, updateSleep, World::setSleep
 //   world_create.cpp     the create and destroy API, breakJoints
 //   world_query.cpp      commands and queries
+//   static_overlap.cpp   World::staticOverlap (spawn checks)
 //   world.cpp            the constructor, World::step (the phase list) and the settings
 //   world_tuning.hpp     the internal switches that check an optimisation (WorldInternals)
 #pragma once

@@ -12,7 +12,7 @@ namespace {
 
 // ragdoll name for messages: "'name'" or "the first ragdoll"
 std::string which(const std::string& ragdoll) {
-  return ragdoll.empty() ? std::string("the first ragdoll") : "ragdoll '" + ragdoll + "'";
+  return ragdoll.empty() ? std::string("the first ragdoll") : "ragdoll " + scene::quoted(ragdoll);
 }
 
 }  // namespace

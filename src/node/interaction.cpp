@@ -188,6 +188,7 @@ void Interaction::onDragFeedback(const visualization_msgs::InteractiveMarkerFeed
         release(d);
         return;
       }
+      if (!d->active) ++drags_started_;
       if (!d->active)
         ROS_INFO("drag of '%s' link '%s' started at sim time %.3f s", d->marker.c_str(),
                  ragdolls_[static_cast<size_t>(d->ragdoll)].def->links[static_cast<size_t>(d->link)].name.c_str(),
@@ -271,9 +272,12 @@ void Interaction::onClickedPoint(const geometry_msgs::PointStamped::ConstPtr& ms
     return;
   }
   world_->applyLinearImpulse(body, cmd.impulse, point);
+  ++pokes_;
   if (visualizer_) visualizer_->addImpulse(*world_, body, point, cmd.impulse, sim_time_);
-  ROS_INFO("poke: %g N*s on '%s' of '%s' at %s towards its centre of mass", settings_.poke.impulse,
-           cmd.link.c_str(), view.name.c_str(), fmt(point).c_str());
+  ROS_INFO_THROTTLE(1.0, "poke: %g N*s on '%s' of '%s' at %s towards its centre of mass (%llu "
+                    "pokes so far; at most one such line a second)", settings_.poke.impulse,
+                    cmd.link.c_str(), view.name.c_str(), fmt(point).c_str(),
+                    static_cast<unsigned long long>(pokes_));
 }
 
 void Interaction::beforeStep(double sim_time) {

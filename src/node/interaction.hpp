@@ -9,9 +9,11 @@
 //     link again. The handle floats ~drag/handle_height above the link (not hidden inside it);
 //     the spring pulls the link's centre of mass towards the handle minus that offset.
 // Both build the same ImpulseCommand / ForceCommand the command topics do and pass the same
-// checks (commands.hpp): bad input only warns (throttled) and is dropped.
+// checks (commands.hpp): bad input only warns (throttled) and is dropped. A poke's INFO line is
+// throttled too (a click publisher at 1 kHz would flood the log); ~stats counts every one.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -54,6 +56,11 @@ class Interaction {
   // At the publish rate: idle drag handles follow their links; active ones show their pull.
   void update(double sim_time);
 
+  // Pokes applied and drags started since start-up (~stats). They are counted here, where they
+  // are applied: they act on the World directly, not through the Scene's commands.
+  uint64_t pokes() const { return pokes_; }
+  uint64_t drags() const { return drags_started_; }
+
  private:
   struct Drag {
     std::string marker;       // interactive marker name (= ragdoll name)
@@ -83,6 +90,7 @@ class Interaction {
   std::vector<scene::LinkTable> link_tables_;  // one per ragdoll, for the command checks
   std::vector<Drag> drags_;
   double sim_time_ = 0.0;
+  uint64_t pokes_ = 0, drags_started_ = 0;
 
   ros::Subscriber clicked_sub_;
   std::unique_ptr<interactive_markers::InteractiveMarkerServer> server_;

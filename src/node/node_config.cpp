@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <sstream>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "ragdoll_sim/range_check.hpp"
 #include "pacing.hpp"
 #include "commands.hpp"
+#include "physics_ranges.hpp"
 
 namespace ragdoll_sim {
 namespace node {
@@ -21,15 +23,46 @@ Transform NodeConfig::spawnTransform() const {
 
 namespace {
 
+// Where the parameters come from, and what of them differs from the defaults.
+struct Source {
+  const ros::NodeHandle& pnh;
+  std::vector<std::string>* differing;
+};
+
+template <class T>
+void show(std::ostream& s, const T& v) { s << v; }
+void show(std::ostream& s, bool v) { s << (v ? "true" : "false"); }
+void show(std::ostream& s, const std::string& v) { s << "'" << v << "'"; }
+template <class T>
+void show(std::ostream& s, const std::vector<T>& v) {
+  s << "[";
+  for (size_t i = 0; i < v.size(); ++i) {
+    if (i) s << ", ";
+    show(s, v[i]);
+  }
+  s << "]";
+}
+
 // A parameter that is absent keeps its default; one that is present with the wrong type is an
 // error (ros::NodeHandle::param would silently fall back to the default).
 template <class T>
-bool read(const ros::NodeHandle& pnh, const std::string& name, const char* type, T* value,
-          std::string* error) {
-  if (!pnh.hasParam(name)) return true;
-  if (pnh.getParam(name, *value)) return true;
-  *error = "parameter " + pnh.resolveName(name) + " must be " + type;
-  return false;
+bool read(Source& src, const std::string& name, const char* type, T* value, std::string* error) {
+  if (!src.pnh.hasParam(name)) return true;
+  const T before = *value;
+  if (!src.pnh.getParam(name, *value)) {
+    *error = "parameter " + src.pnh.resolveName(name) + " must be " + type;
+    return false;
+  }
+  if (!(*value == before)) {
+    std::ostringstream s;
+    s << "~" << name << " ";
+    show(s, *value);
+    s << " (default ";
+    show(s, before);
+    s << ")";
+    src.differing->push_back(s.str());
+  }
+  return true;
 }
 
 double number(XmlRpc::XmlRpcValue& v) {
@@ -192,7 +225,7 @@ bool loadJointSettings(const ros::NodeHandle& pnh, NodeConfig* c, std::string* e
 }
 
 // ~markers, ~poke, ~drag (rviz_settings.hpp).
-bool loadRvizSettings(const ros::NodeHandle& pnh, NodeConfig* c, std::string* error) {
+bool loadRvizSettings(Source& pnh, NodeConfig* c, std::string* error) {
   return read(pnh, "markers/contacts", "a bool", &c->markers.contacts, error) &&
          read(pnh, "markers/arrow_fade", "a number (s)", &c->markers.arrow_fade, error) &&
          read(pnh, "markers/impulse_scale", "a number (m/(N*s))", &c->markers.impulse_scale, error) &&
@@ -226,11 +259,56 @@ bool surface(const MaterialTable& t, const std::string& name, const char* param,
   return true;
 }
 
+// The physics settings dynamic_reconfigure also sets, checked against the same ranges; the
+// message names the start-up parameter.
+std::string physicsRangeError(const NodeConfig& c) {
+  ragdoll_sim::PhysicsConfig p;
+  const Vec3& g = c.scene.world.gravity;
+  p.gravity_x = g.x();
+  p.gravity_y = g.y();
+  p.gravity_z = g.z();
+  p.time_step = 1.0 / c.physics_rate;
+  p.substeps = c.scene.world.solver.substeps;
+  p.position_iterations = c.scene.world.solver.position_iterations;
+  p.static_friction = c.scene.material.static_friction;
+  p.kinetic_friction = c.scene.material.kinetic_friction;
+  p.restitution = c.scene.material.restitution;
+  p.real_time_factor = c.real_time_factor;
+  const SleepDef& s = c.scene.world.sleep;
+  p.sleep_enabled = s.enabled;
+  p.sleep_time = s.time;
+  p.sleep_speed = s.speed;
+  p.rest_time = s.rest_time;
+  p.rest_substeps = s.rest_substeps;
+  p.rest_relax_iterations = s.rest_relax_iterations;
+  const RangeProblem r = physicsRangeProblem(p);
+  if (r.ok()) return "";
+  std::ostringstream e;
+  if (r.field == "time_step") {
+    e << "parameter ~physics_rate " << c.physics_rate << " Hz gives a step of " << r.value
+      << " s, outside the range of time_step " << r.rule << " s; got " << c.physics_rate;
+    return e.str();
+  }
+  const std::map<std::string, std::string> names = {
+      {"gravity_x", "gravity[0]"},  {"gravity_y", "gravity[1]"},
+      {"gravity_z", "gravity[2]"},  {"sleep_time", "sleep/time"},
+      {"sleep_speed", "sleep/speed"}, {"rest_time", "sleep/rest_time"},
+      {"rest_substeps", "sleep/rest_substeps"},
+      {"rest_relax_iterations", "sleep/rest_relax_iterations"}};
+  const auto it = names.find(r.field);
+  e << "parameter ~" << (it == names.end() ? r.field : it->second) << " must be in " << r.rule
+    << " (the range of dynamic_reconfigure's " << r.field << "), got " << r.value;
+  return e.str();
+}
+
 }  // namespace
 
-bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* c, std::string* error) {
+bool loadNodeConfig(const ros::NodeHandle& node, NodeConfig* c, std::string* error) {
   const Vec3& g = c->scene.world.gravity;
   std::vector<double> gravity{g.x(), g.y(), g.z()};
+  Source pnh{node, &c->differing_from_defaults};
+  for (const char* dict : {"materials", "joint_defaults", "joints"})
+    if (node.hasParam(dict)) c->differing_from_defaults.push_back(std::string("~") + dict + " (set)");
   bool ok = read(pnh, "physics_rate", "a number (Hz)", &c->physics_rate, error) &&
             read(pnh, "real_time_factor", "a number", &c->real_time_factor, error) &&
             read(pnh, "clock_rate", "a number (Hz)", &c->clock_rate, error) &&
@@ -259,6 +337,10 @@ bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* c, std::string* erro
             read(pnh, "max_force", "a number (N)", &c->scene.limits.max_force, error) &&
             read(pnh, "max_torque", "a number (N*m)", &c->scene.limits.max_torque, error) &&
             read(pnh, "max_lever_arm", "a number (m)", &c->scene.limits.max_lever_arm, error) &&
+            read(pnh, "max_body_force", "a number (N)", &c->scene.limits.max_body_force, error) &&
+            read(pnh, "max_body_torque", "a number (N*m)", &c->scene.limits.max_body_torque, error) &&
+            read(pnh, "max_forces_per_ragdoll", "an integer", &c->scene.max_forces_per_ragdoll, error) &&
+            read(pnh, "max_active_forces", "an integer", &c->scene.max_active_forces, error) &&
             read(pnh, "max_catchup", "a number (s)", &c->max_catchup, error) &&
             read(pnh, "max_linear_speed", "a number (m/s)", &c->scene.world.solver.max_linear_speed, error) &&
             read(pnh, "max_angular_speed", "a number (rad/s)", &c->scene.world.solver.max_angular_speed, error) &&
@@ -283,11 +365,11 @@ bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* c, std::string* erro
             read(pnh, "sleep/rest_substeps", "an integer", &c->scene.world.sleep.rest_substeps, error) &&
             read(pnh, "sleep/rest_relax_iterations", "an integer",
                  &c->scene.world.sleep.rest_relax_iterations, error) &&
-            loadMaterials(pnh, &c->scene.world.materials, error) && loadJointSettings(pnh, c, error) &&
+            loadMaterials(node, &c->scene.world.materials, error) && loadJointSettings(node, c, error) &&
             loadRvizSettings(pnh, c, error);
   if (!ok) return false;
   if (gravity.size() != 3) {
-    *error = "parameter " + pnh.resolveName("gravity") + " must be a list of 3 numbers, got " +
+    *error = "parameter " + node.resolveName("gravity") + " must be a list of 3 numbers, got " +
              std::to_string(gravity.size());
     return false;
   }
@@ -295,6 +377,7 @@ bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* c, std::string* erro
   *error = validateNodeConfig(*c);
   if (!error->empty()) return false;
   c->scene.dt_ns = std::max<int64_t>(1, std::llround(1e9 / c->physics_rate));
+  if (!(*error = physicsRangeError(*c)).empty()) return false;
   return
          surface(c->scene.world.materials, c->ragdoll_material, "ragdoll_material",
                  c->scene.material, &c->scene.ragdoll_surface, error) &&
@@ -313,18 +396,13 @@ std::string validateNodeConfig(const NodeConfig& c) {
   };
   std::string e;
   if (!(e = param(positiveError("physics_rate", c.physics_rate))).empty()) return e;
-  if (c.physics_rate > 1e6) return "parameter ~physics_rate must be <= 1e6 Hz";
   if (!(e = param(positiveError("publish_rate", c.publish_rate))).empty()) return e;
   if (!(e = param(worldDefError(c.scene.world))).empty()) return e;
-  if (*scene::realTimeFactorError(c.real_time_factor)) {
-    std::ostringstream s;
-    s << "parameter ~real_time_factor " << scene::realTimeFactorError(c.real_time_factor) << ", got "
-      << c.real_time_factor;
-    return s.str();
-  }
   if (!(e = param(nonNegativeError("clock_rate", c.clock_rate))).empty()) return e;
   if (!c.ragdoll_name.empty() && !scene::ragdollNameError(c.ragdoll_name).empty())
     return "parameter ~ragdoll_name: " + scene::ragdollNameError(c.ragdoll_name);
+  if (!scene::tfPrefixError(c.tf_prefix).empty())
+    return "parameter ~tf_prefix: " + scene::tfPrefixError(c.tf_prefix);
   const SpawnPose& s = c.spawn;
   for (double v : {s.x, s.y, s.z, s.roll, s.pitch, s.yaw})
     if (!std::isfinite(v)) return "parameters ~spawn/{x,y,z,roll,pitch,yaw} must be finite";
@@ -335,6 +413,8 @@ std::string validateNodeConfig(const NodeConfig& c) {
         {"max_force", c.scene.limits.max_force},
         {"max_torque", c.scene.limits.max_torque},
         {"max_lever_arm", c.scene.limits.max_lever_arm},
+        {"max_body_force", c.scene.limits.max_body_force},
+        {"max_body_torque", c.scene.limits.max_body_torque},
         {"max_catchup", c.max_catchup},
         {"max_position", c.max_position}})
     if (!(e = param(positiveError(name, v))).empty()) return e;
@@ -342,6 +422,10 @@ std::string validateNodeConfig(const NodeConfig& c) {
     return e;
   if (!(e = param(intRangeError("max_queued_commands", c.scene.max_queued_commands, 1))).empty())
     return e;
+  for (const auto& [name, v] :
+       {std::pair<const char*, int>{"max_forces_per_ragdoll", c.scene.max_forces_per_ragdoll},
+        {"max_active_forces", c.scene.max_active_forces}})
+    if (!(e = param(intRangeError(name, v, 1))).empty()) return e;
   if (!(e = scene::validateMotorGains(c.scene.motor, "parameter ~motor")).empty()) return e;
   if (!std::isfinite(c.scene.balance.kp) || !std::isfinite(c.scene.balance.kd))
     return "parameters ~balance/kp and ~balance/kd must be finite";

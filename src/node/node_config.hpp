@@ -50,12 +50,16 @@ struct NodeConfig {
   scene::MarkerSettings markers;              // ~markers/... (publish_markers switches them all)
   scene::PokeSettings poke;                   // ~poke/...
   scene::DragSettings drag;                   // ~drag/...
+  // What loadNodeConfig read that differs from the defaults above, e.g. "~substeps 8
+  // (default 3)": start-up logs it, so values inherited from the parameter server show.
+  std::vector<std::string> differing_from_defaults;
 
   Transform spawnTransform() const;
 };
 
 // Reads every parameter (defaults above for the missing ones). Returns false and sets *error
-// (naming the parameter) when a value is present but invalid.
+// (naming the parameter) when a value is present but invalid; the physics settings that
+// dynamic_reconfigure also sets are checked against the same ranges (physics_ranges.hpp).
 bool loadNodeConfig(const ros::NodeHandle& pnh, NodeConfig* config, std::string* error);
 
 // Range checks, ROS-free. Returns "" when valid, else a message naming the parameter. The

@@ -3,7 +3,10 @@
 // turns ROS input into Scene calls or Scene state into messages; none holds scene rules.
 #pragma once
 
+#include <chrono>
+#include <condition_variable>
 #include <memory>
+#include <mutex>
 #include <string>
 
 #include <ros/ros.h>
@@ -15,10 +18,34 @@
 #include "ragdoll_sim/scene.hpp"
 #include "scene_log.hpp"
 #include "sim_clock.hpp"
+#include "spawned_params.hpp"
+#include "step_service.hpp"
 #include "visualization.hpp"
 
 namespace ragdoll_sim {
 namespace node {
+
+// The loop's sleep between iterations, cut short when a ~step call arrives on its thread.
+class LoopWakeup {
+ public:
+  void notify() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      pending_ = true;
+    }
+    cv_.notify_one();
+  }
+  void sleepUntil(std::chrono::steady_clock::time_point t) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    cv_.wait_until(lock, t, [this] { return pending_; });
+    pending_ = false;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  bool pending_ = false;
+};
 
 struct NodeContext {
   ros::NodeHandle nh, pnh;
@@ -29,9 +56,12 @@ struct NodeContext {
   std::unique_ptr<Visualizer> visualizer;     // ~markers: shapes, contacts, arrows
   std::unique_ptr<Interaction> interaction;   // /clicked_point pokes, ~drag marker
   std::unique_ptr<Publishers> publishers;
+  std::unique_ptr<SpawnedParams> spawned_params;  // <name>/robot_description of ~spawn
   scene::Pacer pacer;
   bool paused = false;
   bool pacing_dirty = false;     // restart the pacer at the next loop iteration
+  LoopWakeup wakeup;
+  std::unique_ptr<StepService> steps;  // last: its thread stops before the rest goes
 
   NodeContext(const ros::NodeHandle& n, const ros::NodeHandle& p) : nh(n), pnh(p) {}
 

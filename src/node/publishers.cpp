@@ -279,6 +279,11 @@ void Publishers::publishStats(const ros::Time& stamp) {
   m.max_queued = static_cast<uint32_t>(n.max_queued);
   m.queue_capacity = static_cast<uint32_t>(n.queue_capacity);
   m.body_faults = n.body_faults;
+  m.impulses = n.impulses;
+  m.forces = n.forces;
+  m.active_forces = static_cast<uint32_t>(n.active_forces);
+  m.pokes = ctx_.interaction->pokes();
+  m.drags = ctx_.interaction->drags();
   m.steps = static_cast<uint64_t>(s.steps());
   m.skipped_steps = static_cast<uint64_t>(ctx_.pacer.droppedSteps());
   m.sim_time = s.time();

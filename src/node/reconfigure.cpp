@@ -5,18 +5,49 @@
 #include <sstream>
 
 #include "node_context.hpp"
+#include "physics_ranges.hpp"
 
 namespace ragdoll_sim {
 namespace node {
 
 Reconfigure::Reconfigure(NodeContext& ctx) : ctx_(ctx) {
-  server_ = std::make_unique<dynamic_reconfigure::Server<ragdoll_sim::PhysicsConfig>>(mutex_,
-                                                                                      ctx_.pnh);
-  ragdoll_sim::PhysicsConfig c = current();
-  server_->updateConfig(c);
-  server_->setCallback(
-      [this](ragdoll_sim::PhysicsConfig& cfg, uint32_t level) { onReconfigure(cfg, level); });
-  ready_ = true;
+  // Latched, as dynamic_reconfigure::Server does: clients (dynparam, rqt_reconfigure) read
+  // the description and the values in force when they connect.
+  descriptions_pub_ =
+      ctx_.pnh.advertise<dynamic_reconfigure::ConfigDescription>("parameter_descriptions", 1, true);
+  descriptions_pub_.publish(ragdoll_sim::PhysicsConfig::__getDescriptionMessage__());
+  updates_pub_ = ctx_.pnh.advertise<dynamic_reconfigure::Config>("parameter_updates", 1, true);
+  publish();
+  set_srv_ = ctx_.pnh.advertiseService("set_parameters", &Reconfigure::onSetParameters, this);
+}
+
+void Reconfigure::publish() {
+  const ragdoll_sim::PhysicsConfig c = current();
+  c.__toServer__(ctx_.pnh);
+  dynamic_reconfigure::Config msg;
+  c.__toMessage__(msg);
+  updates_pub_.publish(msg);
+}
+
+bool Reconfigure::onSetParameters(dynamic_reconfigure::Reconfigure::Request& req,
+                                  dynamic_reconfigure::Reconfigure::Response& res) {
+  // Runs in spinOnce, between steps: changes take effect at the next step. The request names
+  // some fields; the others keep the values in force.
+  const ragdoll_sim::PhysicsConfig in_force = current();
+  ragdoll_sim::PhysicsConfig cfg = in_force;
+  cfg.__fromMessage__(req.config);
+  const RangeProblem p = physicsRangeProblem(cfg, &in_force);
+  if (!p.ok()) {
+    std::ostringstream m;
+    m << "reconfigure refused: " << p.field << " = " << p.value << " is outside its range "
+      << p.rule << "; no parameter changed";
+    ctx_.warn("reconfigure/" + p.field + " out of range", m.str());
+  } else {
+    apply(cfg);
+    publish();
+  }
+  current().__toMessage__(res.config);  // the values in force
+  return true;
 }
 
 ragdoll_sim::PhysicsConfig Reconfigure::current() const {
@@ -43,21 +74,9 @@ ragdoll_sim::PhysicsConfig Reconfigure::current() const {
   return c;
 }
 
-void Reconfigure::onReconfigure(ragdoll_sim::PhysicsConfig& cfg, uint32_t) {
-  // Runs in spinOnce, between steps: changes take effect at the next step.
+void Reconfigure::apply(const ragdoll_sim::PhysicsConfig& cfg) {
   Scene& scene = *ctx_.scene;
   const ragdoll_sim::PhysicsConfig old = current();
-  // The server clamps to the .cfg ranges, but NaN passes every comparison: refuse it whole
-  // (the answer then holds the values in force).
-  for (double v : {cfg.gravity_x, cfg.gravity_y, cfg.gravity_z, cfg.time_step,
-                   cfg.static_friction, cfg.kinetic_friction, cfg.restitution,
-                   cfg.real_time_factor, cfg.sleep_time, cfg.sleep_speed, cfg.rest_time}) {
-    if (std::isfinite(v)) continue;
-    ctx_.warn("reconfigure/not finite", "reconfigure rejected: a value is not finite (NaN or "
-                                        "inf); the physics parameters stay as they were");
-    cfg = old;
-    return;
-  }
   std::ostringstream log;
   const Vec3 g(cfg.gravity_x, cfg.gravity_y, cfg.gravity_z);
   if (g != scene.def().world.gravity) {
@@ -71,10 +90,11 @@ void Reconfigure::onReconfigure(ragdoll_sim::PhysicsConfig& cfg, uint32_t) {
     ctx_.config.physics_rate = 1.0 / scene.dt();
     ctx_.restartPacing();
   }
-  if (cfg.real_time_factor != old.real_time_factor) {
-    log << " real_time_factor " << cfg.real_time_factor
-        << (cfg.real_time_factor == 0.0 ? " (as fast as possible)" : "");
-    ctx_.config.real_time_factor = cfg.real_time_factor;
+  // +inf is taken as 0, the one spelling of "as fast as possible" in the answer.
+  const double rtf = std::isinf(cfg.real_time_factor) ? 0.0 : cfg.real_time_factor;
+  if (rtf != old.real_time_factor) {
+    log << " real_time_factor " << rtf << (rtf == 0.0 ? " (as fast as possible)" : "");
+    ctx_.config.real_time_factor = rtf;
     ctx_.restartPacing();
   }
   // Sleep and rest settings change in place (nothing wakes unless sleep goes off); solver
@@ -109,7 +129,7 @@ void Reconfigure::onReconfigure(ragdoll_sim::PhysicsConfig& cfg, uint32_t) {
         << " relax sweeps after " << cfg.rest_time << " s slow"
         << (sleep.restOn(cfg.substeps) ? "" : " (off)");
   }
-  // The .cfg ranges keep every value >= 0, and NaN was refused above: it cannot throw.
+  // The ranges were checked (physics_ranges.hpp): every value >= 0 and finite; it cannot throw.
   scene.setSleep(sleep);
   if (solver) {
     SolverSettings settings = scene.def().world.solver;
@@ -125,7 +145,7 @@ void Reconfigure::onReconfigure(ragdoll_sim::PhysicsConfig& cfg, uint32_t) {
   }
   if (solver || friction) ctx_.structureChanged();
   const std::string changes = log.str();
-  if (!changes.empty() && ready_)
+  if (!changes.empty())
     ROS_INFO("reconfigure at sim time %.3f s:%s", scene.time(), changes.c_str());
 }
 

@@ -1,12 +1,12 @@
 // dynamic_reconfigure (cfg/Physics.cfg): gravity, time step, real-time factor, solver,
-// friction and sleep, applied through the Scene between steps.
+// friction and sleep, applied through the Scene between steps. The node serves the protocol
+// itself (~set_parameters, ~parameter_descriptions, ~parameter_updates) because
+// dynamic_reconfigure::Server clamps a request before its callback could refuse it: here a
+// value outside its range (physics_ranges.hpp) refuses the whole request with a WARN.
 #pragma once
 
-#include <cstdint>
-#include <memory>
-
-#include <boost/thread/recursive_mutex.hpp>
-#include <dynamic_reconfigure/server.h>
+#include <dynamic_reconfigure/Reconfigure.h>
+#include <ros/ros.h>
 
 #include "ragdoll_sim/PhysicsConfig.h"
 
@@ -21,13 +21,17 @@ class Reconfigure {
   explicit Reconfigure(NodeContext& ctx);
 
  private:
-  void onReconfigure(ragdoll_sim::PhysicsConfig& cfg, uint32_t level);
+  bool onSetParameters(dynamic_reconfigure::Reconfigure::Request& req,
+                       dynamic_reconfigure::Reconfigure::Response& res);
+  // Applies a configuration inside the ranges; logs what changed.
+  void apply(const ragdoll_sim::PhysicsConfig& cfg);
+  // The values in force to ~parameter_updates and the parameter server.
+  void publish();
   ragdoll_sim::PhysicsConfig current() const;
 
   NodeContext& ctx_;
-  boost::recursive_mutex mutex_;
-  std::unique_ptr<dynamic_reconfigure::Server<ragdoll_sim::PhysicsConfig>> server_;
-  bool ready_ = false;  // the server's first (initial) callback has run
+  ros::ServiceServer set_srv_;
+  ros::Publisher descriptions_pub_, updates_pub_;
 };
 
 }  // namespace node

@@ -67,9 +67,7 @@ Services::Services(NodeContext& ctx) : ctx_(ctx) {
   clear_srv_ = pnh.advertiseService("clear_forces", &Services::onClearForces, this);
 }
 
-void Services::advertiseStep() {
-  step_srv_ = ctx_.pnh.advertiseService("step", &Services::onStep, this);
-}
+void Services::advertiseStep() { ctx_.steps->advertise(); }
 
 template <class Res>
 bool Services::refuse(Res& res, const std::string& kind, const std::string& message) {
@@ -103,18 +101,21 @@ bool Services::onClearTargets(std_srvs::Empty::Request&, std_srvs::Empty::Respon
 }
 
 bool Services::onPause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  ctx_.steps->end("~pause");  // paused already: a pause during ~step stops it
   ctx_.paused = true;
   ROS_INFO("paused at sim time %.3f s", ctx_.scene->time());
   return true;
 }
 
 bool Services::onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  ctx_.steps->end("~unpause");
   ctx_.paused = false;
   ROS_INFO("unpaused at sim time %.3f s", ctx_.scene->time());
   return true;
 }
 
 bool Services::onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  ctx_.steps->end("~reset");
   std::string error;
   if (!ctx_.scene->reset(&error)) ROS_ERROR("reset: %s", error.c_str());
   ctx_.structureChanged();
@@ -129,34 +130,14 @@ bool Services::onClearForces(std_srvs::Empty::Request&, std_srvs::Empty::Respons
   return true;
 }
 
-bool Services::onStep(ragdoll_sim::Step::Request& req, ragdoll_sim::Step::Response& res) {
-  const int max_steps = ctx_.config.max_steps_per_call;
-  if (req.steps > static_cast<uint32_t>(max_steps)) {
-    refuse(res, "step/too many", "step rejected: " + std::to_string(req.steps) +
-                                     " steps exceed ~max_steps_per_call = " +
-                                     std::to_string(max_steps));
-  } else if (!ctx_.paused) {
-    res.success = false;
-    res.message = "the simulation is running; call ~pause first";
-  } else {
-    for (uint32_t i = 0; i < req.steps && ros::ok(); ++i) ctx_.stepOnce();
-    res.success = true;
-    res.message = "stepped " + std::to_string(req.steps) + " step(s)";
-  }
-  const Scene& scene = *ctx_.scene;
-  res.sim_time = scene.time();
-  res.pending_commands = static_cast<uint32_t>(scene.counters().queued);
-  res.awake_bodies = static_cast<uint32_t>(scene.world().awakeBodyCount());
-  res.resting_bodies = static_cast<uint32_t>(scene.world().islandCounters().resting_bodies);
-  return true;
-}
-
 bool Services::onSpawn(ragdoll_sim::SpawnRagdoll::Request& req,
                        ragdoll_sim::SpawnRagdoll::Response& res) {
   Scene& scene = *ctx_.scene;
-  const std::string what = "spawn '" + req.name + "' rejected: ";
+  const std::string what = "spawn " + scene::quoted(req.name) + " rejected: ";
   std::string e = scene::ragdollNameError(req.name);
   if (!e.empty()) return refuse(res, "spawn/bad name", what + e);
+  if (!(e = scene::tfPrefixError(req.tf_prefix)).empty())
+    return refuse(res, "spawn/bad tf_prefix", what + e);
   if (scene.find(req.name) >= 0)
     return refuse(res, "spawn/name in use", what + "a ragdoll of that name exists");
   const std::string prefix = req.tf_prefix.empty() ? req.name : req.tf_prefix;
@@ -196,14 +177,19 @@ bool Services::onSpawn(ragdoll_sim::SpawnRagdoll::Request& req,
   const std::string ns = ctx_.nh.resolveName(req.name);
   topics.joint_states_pub = ctx_.nh.advertise<sensor_msgs::JointState>(req.name + "/joint_states", 10);
   ctx_.publishers->addRagdoll(std::move(topics));
-  ctx_.nh.setParam(req.name + "/robot_description", xml);
+  ctx_.spawned_params->add(req.name, xml);
   ctx_.structureChanged();
   res.success = true;
   const RagdollDef& def = scene.def(k);
+  const Vec3 p = scene.spawnPose(k).p;
   std::ostringstream msg;
   msg << "spawned '" << req.name << "' (" << def.links.size() << " links, "
-      << def.joints.size() << " joints, " << def.totalMass() << " kg) at (" << at.x() << ", "
-      << at.y() << ", " << at.z() << "), TF prefix '" << prefix << "', joint_states on " << ns
+      << def.joints.size() << " joints, " << def.totalMass() << " kg) at (" << p.x() << ", "
+      << p.y() << ", " << p.z() << ")";
+  if (p != at)
+    msg << ", lifted " << (p - at).norm() << " m out of static geometry from (" << at.x() << ", "
+        << at.y() << ", " << at.z() << ")";
+  msg << ", TF prefix '" << prefix << "', joint_states on " << ns
       << "/joint_states, at sim time " << scene.time() << " s";
   res.message = msg.str();
   ROS_INFO("%s", res.message.c_str());
@@ -215,7 +201,7 @@ bool Services::onDelete(ragdoll_sim::DeleteRagdoll::Request& req,
   Scene& scene = *ctx_.scene;
   if (req.name.empty() || scene.find(req.name) < 0)
     return refuse(res, "delete/unknown ragdoll",
-                  "delete rejected: no ragdoll named '" + req.name + "'");
+                  "delete rejected: no ragdoll named " + scene::quoted(req.name));
   std::string e;
   const bool removed = scene.removeRagdoll(req.name, &e);
   const RagdollTopics topics = ctx_.publishers->removeRagdoll(req.name);
@@ -225,7 +211,7 @@ bool Services::onDelete(ragdoll_sim::DeleteRagdoll::Request& req,
     ROS_ERROR("%s", res.message.c_str());
     return true;
   }
-  if (topics.spawned) ctx_.nh.deleteParam(req.name + "/robot_description");
+  if (topics.spawned) ctx_.spawned_params->remove(req.name);
   ctx_.publishers->deleteAllMarkers();
   ctx_.structureChanged();
   res.success = true;
@@ -242,7 +228,7 @@ bool Services::onSetState(ragdoll_sim::SetRagdollState::Request& req,
   const int k = scene.find(req.ragdoll);
   if (k < 0)
     return refuse(res, "set_ragdoll_state/unknown ragdoll",
-                  "set_ragdoll_state rejected: no ragdoll named '" + req.ragdoll + "'");
+                  "set_ragdoll_state rejected: no ragdoll named " + scene::quoted(req.ragdoll));
   Transform target;
   std::string problem;
   const std::string e = poseFromMsg(req.pose, c.max_position, &target, &problem);
@@ -278,12 +264,12 @@ bool Services::onGetLinkState(ragdoll_sim::GetLinkState::Request& req,
   const int k = scene.find(req.ragdoll);
   if (k < 0)
     return refuse(res, "get_link_state/unknown ragdoll",
-                  "get_link_state: no ragdoll named '" + req.ragdoll + "'");
+                  "get_link_state: no ragdoll named " + scene::quoted(req.ragdoll));
   const int link = scene.findLink(k, req.link);
   if (link < 0)
     return refuse(res, "get_link_state/unknown link",
-                  "get_link_state: ragdoll '" + scene.name(k) + "' has no simulated link '" +
-                      req.link + "'");
+                  "get_link_state: ragdoll '" + scene.name(k) + "' has no simulated link " +
+                      scene::quoted(req.link));
   const LinkState s = scene.linkState(k, link);
   toMsg(s.pose, &res.pose);
   toMsg(s.linear_velocity, &res.twist.linear);

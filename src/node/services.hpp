@@ -15,7 +15,6 @@
 #include "ragdoll_sim/GetLinkState.h"
 #include "ragdoll_sim/SetRagdollState.h"
 #include "ragdoll_sim/SpawnRagdoll.h"
-#include "ragdoll_sim/Step.h"
 
 namespace ragdoll_sim {
 namespace node {
@@ -25,7 +24,7 @@ struct NodeContext;
 class Services {
  public:
   explicit Services(NodeContext& ctx);
-  // ~step, advertised last: tests take it as "the node is up".
+  // ~step (step_service.hpp), advertised last: tests take it as "the node is up".
   void advertiseStep();
 
  private:
@@ -38,7 +37,6 @@ class Services {
   bool onUnpause(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
   bool onClearForces(std_srvs::Empty::Request&, std_srvs::Empty::Response&);
-  bool onStep(ragdoll_sim::Step::Request& req, ragdoll_sim::Step::Response& res);
   bool onSpawn(ragdoll_sim::SpawnRagdoll::Request& req, ragdoll_sim::SpawnRagdoll::Response& res);
   bool onDelete(ragdoll_sim::DeleteRagdoll::Request& req, ragdoll_sim::DeleteRagdoll::Response& res);
   bool onSetState(ragdoll_sim::SetRagdollState::Request& req,
@@ -48,7 +46,7 @@ class Services {
 
   NodeContext& ctx_;
   ros::ServiceServer balance_srv_, clear_targets_srv_, spawn_srv_, delete_srv_, set_state_srv_;
-  ros::ServiceServer get_link_srv_, pause_srv_, unpause_srv_, reset_srv_, clear_srv_, step_srv_;
+  ros::ServiceServer get_link_srv_, pause_srv_, unpause_srv_, reset_srv_, clear_srv_;
 };
 
 }  // namespace node

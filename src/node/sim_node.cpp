@@ -5,6 +5,7 @@
 #include <cmath>
 #include <thread>
 
+#include "names.hpp"
 #include "ragdoll_sim/urdf_loader.hpp"
 
 namespace ragdoll_sim {
@@ -37,7 +38,13 @@ bool SimNode::loadLaunchRagdoll(SpawnDef* spawn, std::string* source, std::strin
   for (const std::string& note : loaded.def.notes) ROS_INFO("URDF: %s", note.c_str());
   for (const std::string& w : loaded.def.warnings) ROS_WARN("URDF: %s", w.c_str());
   spawn->name = c.ragdoll_name;
-  if (spawn->name.empty()) spawn->name = loaded.def.name.empty() ? "ragdoll" : loaded.def.name;
+  if (spawn->name.empty()) {
+    spawn->name = "ragdoll";
+    const std::string e = scene::ragdollNameError(loaded.def.name);
+    if (e.empty()) spawn->name = loaded.def.name;
+    else if (!loaded.def.name.empty()) ROS_WARN("the URDF's robot name is no ragdoll name: %s; "
+                                                "naming it 'ragdoll' (set ~ragdoll_name)", e.c_str());
+  }
   spawn->def = std::move(loaded.def);
   spawn->pose = c.spawnTransform();
   spawn->balance = c.balance;
@@ -48,6 +55,9 @@ bool SimNode::loadLaunchRagdoll(SpawnDef* spawn, std::string* source, std::strin
 bool SimNode::init(std::string* error) {
   NodeConfig& config = ctx_.config;
   if (!loadNodeConfig(ctx_.pnh, &config, error)) return false;
+  logParameters();
+  ctx_.spawned_params = std::make_unique<SpawnedParams>(ctx_.nh, ctx_.pnh);
+  ctx_.spawned_params->deleteLeftovers();
 
   // --- the Scene and the launch-time ragdoll ---
   SpawnDef spawn;
@@ -79,6 +89,7 @@ bool SimNode::init(std::string* error) {
       [this](World&, double sim_time) { ctx_.interaction->beforeStep(sim_time); });
   ctx_.structureChanged();
   topics_ = std::make_unique<CommandTopics>(ctx_);
+  ctx_.steps = std::make_unique<StepService>(ctx_);
   services_ = std::make_unique<Services>(ctx_);
   reconfigure_ = std::make_unique<Reconfigure>(ctx_);
   services_->advertiseStep();  // last: tests take it as "the node is up"
@@ -108,7 +119,22 @@ bool SimNode::init(std::string* error) {
   return true;
 }
 
-int SimNode::run() {
+void SimNode::logParameters() const {
+  const std::vector<std::string>& d = ctx_.config.differing_from_defaults;
+  if (d.empty()) return;
+  std::string list;
+  for (const std::string& p : d) list += (list.empty() ? "" : ", ") + p;
+  // ~time_step is written only by the reconfigure server: an earlier node ran here, and what
+  // it reconfigured under a start-up name (~substeps, ~real_time_factor, ...) is read now.
+  if (ctx_.pnh.hasParam("time_step"))
+    ROS_WARN("start-up parameters that differ from the defaults: %s (the parameter server holds "
+             "an earlier node's reconfigured values; they are inherited where the names are "
+             "start-up parameters)", list.c_str());
+  else
+    ROS_INFO("start-up parameters that differ from the defaults: %s", list.c_str());
+}
+
+int SimNode::run(const std::atomic<bool>& stop) {
   using Clock = scene::Pacer::Clock;
   NodeContext& c = ctx_;
   const Clock::duration publish_period =
@@ -118,7 +144,7 @@ int SimNode::run() {
   int64_t reported_drops = 0;
   c.clock.publish(c.scene->timeNs(), /*force=*/true, c.config.clock_rate);
 
-  while (ros::ok()) {
+  while (ros::ok() && !stop) {
     ros::spinOnce();
     c.scene->applyDueCommands();  // what the callbacks queued (also while paused)
     Clock::time_point now = Clock::now();
@@ -126,7 +152,12 @@ int SimNode::run() {
       c.pacer.restart(now);  // real time counts from here (unpause, new dt or factor)
       c.pacing_dirty = false;
     }
-    if (!c.paused) {
+    if (c.paused) {
+      // ~step calls run here, a slice at a time, so callbacks are served in between.
+      c.steps->serve(now + std::chrono::milliseconds(10));
+      now = Clock::now();
+    } else {
+      c.steps->serve(now);  // a call arriving unpaused is refused
       if (c.pacer.asFastAsPossible()) {
         // Steps until the next publish (10 ms at most, so callbacks are served), at least one.
         const Clock::time_point until = std::min(next_publish, now + std::chrono::milliseconds(10));
@@ -153,9 +184,13 @@ int SimNode::run() {
       if (next_publish <= now) next_publish = now + publish_period;
     }
 
-    const Clock::time_point wake = c.paused ? next_publish : std::min(c.pacer.next(now), next_publish);
-    if (wake > Clock::now()) std::this_thread::sleep_until(wake);
+    const Clock::time_point wake = c.steps->busy() ? now
+                                   : c.paused  ? next_publish
+                                               : std::min(c.pacer.next(now), next_publish);
+    if (wake > Clock::now()) c.wakeup.sleepUntil(wake);
   }
+  c.steps->end("shutdown");
+  c.spawned_params->removeAll();  // the master is still there (the signal only set `stop`)
   return 0;
 }
 

@@ -4,6 +4,7 @@
 // at a real-time factor or as fast as possible.
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <string>
 
@@ -27,10 +28,13 @@ class SimNode {
   // false with *error naming the problem.
   bool init(std::string* error);
 
-  // Steps until ROS shuts down. Returns the process exit code.
-  int run();
+  // Steps until ROS shuts down or `stop` (SIGINT, SIGTERM), then deletes the spawned
+  // ragdolls' parameters. Returns the process exit code.
+  int run(const std::atomic<bool>& stop);
 
  private:
+  // The parameters read that differ from the defaults (an inherited value shows here).
+  void logParameters() const;
   // The launch-time ragdoll from ~urdf_file or robot_description.
   bool loadLaunchRagdoll(SpawnDef* spawn, std::string* source, std::string* error);
 

@@ -67,15 +67,15 @@ bool resolveLinkAndFrame(const std::string& kind, const std::string& link,
   int index = links.find(link);
   if (index < 0) {
     if (const std::string* joint = links.chainJointOf(link)) {
-      *check = fail("dummy link", kind + " rejected: link '" + link +
-                    "' is a massless dummy link inside ball joint '" + *joint +
+      *check = fail("dummy link", kind + " rejected: link " + quoted(link) +
+                    " is a massless dummy link inside ball joint '" + *joint +
                     "'; use one of the links it connects");
       return false;
     }
     std::string known;
     for (const std::string& n : links.names()) known += (known.empty() ? "" : ", ") + n;
     *check = fail("unknown link",
-                  kind + " rejected: unknown link '" + link + "' (links: " + known + ")");
+                  kind + " rejected: unknown link " + quoted(link) + " (links: " + known + ")");
     return false;
   }
   CommandFrame f;
@@ -132,13 +132,13 @@ bool checkPoint(const std::string& kind, const Vec3& point, const CommandCheck& 
 
 CommandCheck resolveImpulseLink(const ImpulseCommand& cmd, const LinkTable& links) {
   CommandCheck c;
-  c.ok = resolveLinkAndFrame("impulse on '" + cmd.link + "'", cmd.link, cmd.frame, links, &c);
+  c.ok = resolveLinkAndFrame("impulse on " + quoted(cmd.link), cmd.link, cmd.frame, links, &c);
   return c;
 }
 
 CommandCheck resolveForceLink(const ForceCommand& cmd, const LinkTable& links) {
   CommandCheck c;
-  c.ok = resolveLinkAndFrame("force on '" + cmd.link + "'", cmd.link, cmd.frame, links, &c);
+  c.ok = resolveLinkAndFrame("force on " + quoted(cmd.link), cmd.link, cmd.frame, links, &c);
   return c;
 }
 
@@ -155,7 +155,7 @@ CommandCheck checkForce(const ForceCommand& cmd, const LinkTable& links,
 CommandCheck checkImpulse(const ImpulseCommand& cmd, const CommandCheck& resolved,
                           const CommandLimits& limits, const LinkPoseFn& link_pose) {
   if (!resolved.ok) return resolved;
-  const std::string kind = "impulse on '" + cmd.link + "'";
+  const std::string kind = "impulse on " + quoted(cmd.link);
   CommandCheck c = resolved;
   if (!checkVector(kind, "impulse", cmd.impulse, limits.max_impulse, "N*s", "max_impulse", &c))
     return c;
@@ -167,7 +167,7 @@ CommandCheck checkImpulse(const ImpulseCommand& cmd, const CommandCheck& resolve
 CommandCheck checkForce(const ForceCommand& cmd, const CommandCheck& resolved,
                         const CommandLimits& limits, const LinkPoseFn& link_pose) {
   if (!resolved.ok) return resolved;
-  const std::string kind = "force on '" + cmd.link + "'";
+  const std::string kind = "force on " + quoted(cmd.link);
   CommandCheck c = resolved;
   if (!checkVector(kind, "force", cmd.force, limits.max_force, "N", "max_force", &c)) return c;
   if (!checkVector(kind, "torque", cmd.torque, limits.max_torque, "N*m", "max_torque", &c))
@@ -220,16 +220,6 @@ ActiveForce toActiveForce(const ForceCommand& cmd, const CommandCheck& check,
   }
   f.steps_left = forceStepCount(cmd.duration, dt);
   return f;
-}
-
-std::string ragdollNameError(const std::string& name) {
-  if (name.empty()) return "the ragdoll name is empty";
-  if (std::isdigit(static_cast<unsigned char>(name[0])))
-    return "ragdoll name '" + name + "' starts with a digit";
-  for (char c : name)
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_')
-      return "ragdoll name '" + name + "' may hold only letters, digits and '_'";
-  return "";
 }
 
 }  // namespace scene

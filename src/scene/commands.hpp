@@ -20,6 +20,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "names.hpp"
 #include "ragdoll_sim/math.hpp"
 #include "ragdoll_sim/scene.hpp"
 
@@ -105,10 +106,6 @@ int64_t forceStepCount(double duration, double dt);
 
 ActiveForce toActiveForce(const ForceCommand& cmd, const CommandCheck& check,
                           const Transform& link_pose, double dt);
-
-// A valid ragdoll name: non-empty, letters, digits and '_' only, not starting with a digit
-// (it becomes a topic namespace and a TF prefix). Returns "" or the problem.
-std::string ragdollNameError(const std::string& name);
 
 // Splits "<ragdoll>/<rest>" when the part before the first '/' is the name of a ragdoll
 // (is_ragdoll); otherwise ragdoll = "" and rest = qualified.

@@ -5,12 +5,12 @@
 #include <cmath>
 #include <sstream>
 
+#include "names.hpp"
+
 namespace ragdoll_sim {
 namespace scene {
 
 namespace {
-
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
 std::string num(double v) {
   std::ostringstream s;

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "scene_impl.hpp"
+#include "static_overlap.hpp"
 
 namespace ragdoll_sim {
 
@@ -79,7 +80,7 @@ bool Scene::Impl::makeInstance(SpawnDef spawn, RagdollInstance* out, std::string
   return true;
 }
 
-bool Scene::Impl::spawnInWorld(RagdollInstance& r, std::string* error) {
+bool Scene::Impl::spawnInWorld(RagdollInstance& r, bool may_refuse, std::string* error) {
   try {  // the World refuses what it cannot simulate (e.g. a non-finite pose) by throwing
     r.ragdoll = spawnRagdoll(*world, r.def, r.spawn_pose, &def.ragdoll_surface);
   } catch (const std::exception& e) {
@@ -94,10 +95,46 @@ bool Scene::Impl::spawnInWorld(RagdollInstance& r, std::string* error) {
              std::to_string(r.def.joints.size()) + " joints";
     return false;
   }
+  return clearStatics(r, may_refuse ? "spawn" : "reset", may_refuse, /*spawn=*/true, error);
+}
+
+bool Scene::Impl::clearStatics(RagdollInstance& r, const std::string& what, bool may_refuse,
+                               bool spawn, std::string* error) {
+  StaticOverlap o;
+  if (!scene::overlapsStatics(*world, r.ragdoll.bodies, &o)) return true;
+  std::string link = "?";
+  for (size_t l = 0; l < r.ragdoll.bodies.size(); ++l)
+    if (r.ragdoll.bodies[l] == o.body) link = r.def.links[l].name;
+  const std::string into = scene::format(
+      "%s: ragdoll '%s' reaches %.4g m into static geometry (link '%s' in '%s')", what.c_str(),
+      r.name.c_str(), o.depth, link.c_str(), world->bodyDef(o.static_body).name.c_str());
+  if (may_refuse && def.spawn_overlap == SpawnOverlap::Refuse) {
+    *error = into + scene::format("; refused (spawn_overlap: refuse): place it at least %.4g m "
+                                  "higher, clear of the static geometry", o.depth);
+    return false;
+  }
+  const scene::StaticLift lift = scene::liftOutOfStatics(*world, r.ragdoll.bodies);
+  if (!lift.clear) {
+    const std::string e = into + scene::format("; lifted %.4g m, it is still inside static "
+                                               "geometry: wedged where no lift frees it",
+                                               lift.lift.norm());
+    if (!may_refuse) {  // reset and moves keep the ragdoll: the contacts push it out
+      warn(what + "/wedged", e);
+      return true;
+    }
+    *error = e;
+    return false;
+  }
+  if (spawn) r.spawn_pose.p += lift.lift;
+  const Vec3& d = lift.first.direction;
+  warn(what + "/lifted",
+       into + scene::format("; lifted %.4g m along (%.3g, %.3g, %.3g) to rest on it%s",
+                            lift.lift.norm(), d.x(), d.y(), d.z(),
+                            spawn ? " (its spawn pose now)" : ""));
   return true;
 }
 
-bool Scene::Impl::buildWorld(std::string* error) {
+bool Scene::Impl::buildWorld(bool may_refuse, std::string* error) {
   for (RagdollInstance& r : ragdolls) r.balance.reset();  // they drive the old world's joints
 
   try {  // validated before, and settings changed at run time keep their ranges: a guard
@@ -118,7 +155,7 @@ bool Scene::Impl::buildWorld(std::string* error) {
     world->addShape(ground, sd);
   }
   for (RagdollInstance& r : ragdolls) {
-    if (!spawnInWorld(r, error)) return false;
+    if (!spawnInWorld(r, may_refuse, error)) return false;
     setBalance(r, r.balance_on, /*log=*/false);
   }
   return true;
@@ -133,7 +170,9 @@ int Scene::Impl::find(const std::string& name) const {
 
 SpawnResult Scene::addRagdoll(SpawnDef spawn, std::string* error) {
   Impl& s = *impl_;
-  if (!spawn.name.empty() && s.find(spawn.name) >= 0) {
+  *error = scene::ragdollNameError(spawn.name);
+  if (!error->empty()) return SpawnResult::BadName;
+  if (s.find(spawn.name) >= 0) {
     *error = "a ragdoll named '" + spawn.name + "' exists";
     return SpawnResult::NameInUse;
   }
@@ -144,7 +183,7 @@ SpawnResult Scene::addRagdoll(SpawnDef spawn, std::string* error) {
   if (!s.world) return SpawnResult::Added;  // start() spawns it
   RagdollInstance& added = s.ragdolls.back();
   const int first_new = s.world->bodyCount();  // ids append, so what it created is above this
-  if (!s.spawnInWorld(added, error)) {
+  if (!s.spawnInWorld(added, /*may_refuse=*/true, error)) {
     for (int b = first_new; b < s.world->bodyCount(); ++b)
       if (s.world->isValid(BodyId{b})) s.world->destroyBody(BodyId{b});
     s.ragdolls.pop_back();
@@ -157,7 +196,7 @@ SpawnResult Scene::addRagdoll(SpawnDef spawn, std::string* error) {
 
 bool Scene::start(std::string* error) {
   Impl& s = *impl_;
-  if (!s.buildWorld(error)) return false;
+  if (!s.buildWorld(/*may_refuse=*/true, error)) return false;
   for (RagdollInstance& r : s.ragdolls) s.setBalance(r, r.balance_on, /*log=*/true);
   return true;
 }
@@ -168,7 +207,7 @@ bool Scene::removeRagdoll(const std::string& name, std::string* error) {
   Impl& s = *impl_;
   const int k = name.empty() ? -1 : s.find(name);
   if (k < 0) {
-    *error = "no ragdoll named '" + name + "'";
+    *error = "no ragdoll named " + scene::quoted(name);
     return false;
   }
   RagdollInstance& r = s.ragdolls[static_cast<size_t>(k)];
@@ -184,7 +223,7 @@ bool Scene::removeRagdoll(const std::string& name, std::string* error) {
 bool Scene::reset(std::string* error) {
   // A fresh world with every ragdoll at its spawn pose rejoins broken joints.
   for (RagdollInstance& r : impl_->ragdolls) r.forces.clear();
-  return impl_->buildWorld(error);
+  return impl_->buildWorld(/*may_refuse=*/false, error);
 }
 
 void Scene::setRagdollState(int k, const Transform& target, const Vec3& v, const Vec3& w) {
@@ -200,6 +239,9 @@ void Scene::setRagdollState(int k, const Transform& target, const Vec3& v, const
     const Vec3 com = poses[i].apply(world.bodyDef(b).com);
     world.setBodyState(b, poses[i], v + w.cross(com - target.p), w);
   }
+  std::string unused;  // never refused: may_refuse is false
+  impl_->clearStatics(impl_->ragdolls.at(static_cast<size_t>(k)), "set_ragdoll_state",
+                      /*may_refuse=*/false, /*spawn=*/false, &unused);
 }
 
 LinkState Scene::linkState(int k, int link) const {
@@ -224,6 +266,9 @@ int Scene::indexOf(RagdollId id) const {
 RagdollId Scene::id(int k) const { return impl_->ragdolls.at(static_cast<size_t>(k)).id; }
 const std::string& Scene::name(int k) const { return impl_->ragdolls.at(static_cast<size_t>(k)).name; }
 const RagdollDef& Scene::def(int k) const { return impl_->ragdolls.at(static_cast<size_t>(k)).def; }
+const Transform& Scene::spawnPose(int k) const {
+  return impl_->ragdolls.at(static_cast<size_t>(k)).spawn_pose;
+}
 const Ragdoll& Scene::bodies(int k) const {
   return impl_->ragdolls.at(static_cast<size_t>(k)).ragdoll;
 }

@@ -15,7 +15,7 @@ namespace {
 
 // ragdoll name for messages: "'name'" or "the first ragdoll"
 std::string which(const std::string& ragdoll) {
-  return ragdoll.empty() ? std::string("the first ragdoll") : "ragdoll '" + ragdoll + "'";
+  return ragdoll.empty() ? std::string("the first ragdoll") : "ragdoll " + scene::quoted(ragdoll);
 }
 
 const char* what(const SceneCommandVariant& c) {
@@ -34,7 +34,7 @@ bool Scene::submit(const std::string& ragdoll, SceneCommandVariant command, int6
   if (k < 0) {
     ++s.rejected;
     s.warn(kind + "/unknown ragdoll",
-           kind + " rejected: unknown ragdoll '" + ragdoll + "'" +
+           kind + " rejected: unknown ragdoll " + scene::quoted(ragdoll) +
                (s.ragdolls.empty() ? " (no ragdolls left)" : "") + "; command dropped");
     return false;
   }
@@ -103,50 +103,12 @@ bool Scene::Impl::applyImpulse(RagdollInstance& r, const ImpulseCommand& cmd,
   scene::WorldImpulse w = toWorldImpulse(cmd, check, pose(check.link));
   const BodyId body = r.ragdoll.bodies[static_cast<size_t>(w.link)];
   world->applyLinearImpulse(body, w.impulse, w.point);
+  ++impulses;
   if (listener) listener->impulseApplied(*world, body, w.point, w.impulse, simTime());
   debug(scene::format("impulse (%g, %g, %g) N*s on '%s/%s' at (%g, %g, %g), sim time %.6f s",
                       w.impulse.x(), w.impulse.y(), w.impulse.z(), r.name.c_str(),
                       cmd.link.c_str(), w.point.x(), w.point.y(), w.point.z(), simTime()));
   return true;
-}
-
-size_t Scene::Impl::activeForceCount() const {
-  size_t n = 0;
-  for (const RagdollInstance& r : ragdolls) n += r.forces.size();
-  return n;
-}
-
-bool Scene::Impl::applyForce(RagdollInstance& r, const ForceCommand& cmd,
-                             const CommandCheck& link) {
-  auto pose = [&](int link) { return world->bodyPose(r.ragdoll.bodies[static_cast<size_t>(link)]); };
-  CommandCheck check = checkForce(cmd, link, def.limits, pose);
-  if (!check.ok) {
-    warn("force/" + check.problem, check.error + " (ragdoll '" + r.name + "'); command dropped");
-    return false;
-  }
-  if (activeForceCount() >= def.max_active_forces) {
-    warn("force/too many", "force on '" + r.name + "/" + cmd.link + "' rejected: " +
-                               std::to_string(activeForceCount()) +
-                               " forces are already active (call ~clear_forces)");
-    return false;
-  }
-  r.forces.push_back(toActiveForce(cmd, check, pose(check.link), dt));
-  const ActiveForce& f = r.forces.back();
-  if (listener)
-    listener->forceApplied(*world, r.ragdoll.bodies[static_cast<size_t>(f.link)],
-                           pose(f.link).apply(f.local_point), f.force, simTime(),
-                           f.steps_left < 0 ? -1.0 : static_cast<double>(f.steps_left) * dt);
-  debug(scene::format("force on '%s/%s' for %lld steps from sim time %.6f s", r.name.c_str(),
-                      cmd.link.c_str(), static_cast<long long>(f.steps_left), simTime()));
-  return true;
-}
-
-size_t Scene::activeForceCount() const { return impl_->activeForceCount(); }
-
-size_t Scene::clearForces() {
-  const size_t n = impl_->activeForceCount();
-  for (RagdollInstance& r : impl_->ragdolls) r.forces.clear();
-  return n;
 }
 
 SceneCounters Scene::counters() const {
@@ -157,6 +119,9 @@ SceneCounters Scene::counters() const {
   c.rejected = s.rejected;
   c.dropped = s.queue.dropped();
   c.body_faults = s.body_faults;
+  c.impulses = s.impulses;
+  c.forces = s.forces;
+  c.active_forces = s.activeForceCount();
   c.queued = s.queue.size();
   c.max_queued = s.queue.maxSize();
   c.queue_capacity = s.queue.capacity();

@@ -1,6 +1,6 @@
 // The Scene's state and its internal steps, shared by the files that implement it, one concept
 // each: scene.cpp (ragdolls and the World), scene_commands.cpp (queue and commands),
-// scene_motors.cpp (targets and balance), scene_step.cpp (settings, the step, reports).
+// scene_forces.cpp (timed forces, their budgets and caps), scene_motors.cpp (targets and balance), scene_step.cpp (settings, the step, reports).
 #pragma once
 
 #include <cstdint>
@@ -29,6 +29,8 @@ struct Scene::Impl {
   uint64_t next_serial = 1;
   scene::CommandQueue queue;
   uint64_t received = 0, applied = 0, rejected = 0, body_faults = 0;
+  uint64_t impulses = 0, forces = 0;  // applied commands of each kind
+  std::vector<double> force_sum, torque_sum;  // per link, scratch of applyActiveForces
   int64_t sim_ns = 0, steps = 0;
   double dt = 1e-3;
   std::function<void(World&, double)> before_forces;
@@ -45,8 +47,13 @@ struct Scene::Impl {
   // scene.cpp
   bool makeInstance(SpawnDef spawn, scene::RagdollInstance* out, std::string* error);
   // A new World with the ground and every ragdoll at its spawn pose, joints whole (start, reset).
-  bool buildWorld(std::string* error);
-  bool spawnInWorld(scene::RagdollInstance& r, std::string* error);
+  // may_refuse: spawn_overlap's Refuse applies (start), else overlaps are lifted (reset).
+  bool buildWorld(bool may_refuse, std::string* error);
+  bool spawnInWorld(scene::RagdollInstance& r, bool may_refuse, std::string* error);
+  // The ragdoll's bodies out of static geometry: lifted (a WARN naming `what`, the spawn pose
+  // moved with them when `spawn`), or false with *error when refused or wedged.
+  bool clearStatics(scene::RagdollInstance& r, const std::string& what, bool may_refuse,
+                    bool spawn, std::string* error);
   int find(const std::string& name) const;
 
   // scene_motors.cpp
@@ -62,9 +69,14 @@ struct Scene::Impl {
   // `link`: the command's link and frame as resolved on receipt
   bool applyImpulse(scene::RagdollInstance& r, const ImpulseCommand& cmd,
                     const scene::CommandCheck& link);
+
+  // scene_forces.cpp
   bool applyForce(scene::RagdollInstance& r, const ForceCommand& cmd,
                   const scene::CommandCheck& link);
   size_t activeForceCount() const;
+  // Every active force of `r` on the World, each link's sums capped; then one step less left.
+  void applyActiveForces(scene::RagdollInstance& r);
+  void expireForces(scene::RagdollInstance& r);
 
   // scene_step.cpp
   void reportBodyFaults();

@@ -7,7 +7,6 @@
 
 namespace ragdoll_sim {
 
-using scene::ActiveForce;
 using scene::RagdollInstance;
 
 void Scene::setBeforeForces(std::function<void(World&, double)> fn) {
@@ -20,11 +19,7 @@ void Scene::step() {
   applyDueCommands();
   if (s.before_forces) s.before_forces(world, s.simTime());
   for (RagdollInstance& r : s.ragdolls) {
-    for (const ActiveForce& f : r.forces) {
-      BodyId body = r.ragdoll.bodies[static_cast<size_t>(f.link)];
-      world.applyForce(body, f.force, world.bodyPose(body).apply(f.local_point));
-      if (!f.torque.isZero(0.0)) world.applyTorque(body, f.torque);
-    }
+    s.applyActiveForces(r);
     for (int i : r.moving_targets) s.applyAxisMotor(r, i);  // targets that move with their velocity
     // applyAxisMotor drops a target that overflowed: it moves no more.
     r.moving_targets.erase(std::remove_if(r.moving_targets.begin(), r.moving_targets.end(),
@@ -36,14 +31,7 @@ void Scene::step() {
   s.sim_ns += s.def.dt_ns;
   ++s.steps;
   s.reportBodyFaults();
-  for (RagdollInstance& r : s.ragdolls) {
-    if (r.forces.empty()) continue;
-    for (ActiveForce& f : r.forces)
-      if (f.steps_left > 0) --f.steps_left;
-    r.forces.erase(std::remove_if(r.forces.begin(), r.forces.end(),
-                                  [](const ActiveForce& f) { return f.steps_left == 0; }),
-                   r.forces.end());
-  }
+  for (RagdollInstance& r : s.ragdolls) s.expireForces(r);
   s.collectBrokenJoints();
 }
 
@@ -51,13 +39,15 @@ void Scene::Impl::reportBodyFaults() {
   const std::vector<BodyFault> faults = world->takeBodyFaults();
   if (faults.empty()) return;
   body_faults += faults.size();
-  std::string input, solver;
+  std::string input, solver, range;
   for (const BodyFault& f : faults) {
     std::string where = "body " + std::to_string(f.body.index);
     for (const RagdollInstance& r : ragdolls)
       for (size_t l = 0; l < r.ragdoll.bodies.size(); ++l)
         if (r.ragdoll.bodies[l] == f.body) where = "'" + r.name + "/" + r.def.links[l].name + "'";
-    std::string& list = f.cause == BodyFaultCause::Input ? input : solver;
+    std::string& list = f.cause == BodyFaultCause::Input    ? input
+                        : f.cause == BodyFaultCause::Solver ? solver
+                                                            : range;
     list += (list.empty() ? "" : ", ") + where;
   }
   std::ostringstream at;
@@ -68,6 +58,10 @@ void Scene::Impl::reportBodyFaults() {
   if (!solver.empty())
     warn("body fault/solver", at.str() + "link(s) " + solver + " went non-finite in the step; "
          "reset to the last finite pose with zero velocity");
+  if (!range.empty())
+    warn("body fault/range", at.str() + "link(s) " + range + " left the world range (a "
+         "coordinate beyond kWorldRange = 1048576 m); reset to the last pose in range with zero "
+         "velocity");
 }
 
 void Scene::Impl::collectBrokenJoints() {

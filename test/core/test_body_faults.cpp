@@ -2,7 +2,8 @@
 // the core API, an infinite impulse, an overflow inside the solver) is reset to its last finite
 // pose with zero velocity and reported; bodies of other islands go on exactly as without it;
 // velocities stay within WorldDef's caps (a huge impulse is clamped before the solver), also
-// for a 1e6:1 mass ratio.
+// for a 1e6:1 mass ratio. A body whose centre of mass leaves the world range (kWorldRange) is a
+// fault too: it never reports a coordinate beyond it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -247,4 +248,78 @@ TEST(BodyFaults, NonFiniteBodyDefIsRefused) {
   d.com = Vec3(1.7e308, 0, 0);
   EXPECT_THROW(w.createBody(d), std::invalid_argument);
   EXPECT_EQ(w.bodyCount(), 0);
+}
+
+// The largest |coordinate| of any body's centre of mass.
+double farthest(const World& w) {
+  double d = 0.0;
+  for (int i = 0; i < w.bodyCount(); ++i)
+    if (w.isValid(BodyId{i})) d = std::max(d, w.comPosition(BodyId{i}).cwiseAbs().maxCoeff());
+  return d;
+}
+
+// Bodies flung outwards at the speed cap from just inside the world range (a free body, and a
+// chain whose joints carry warm starts): the step that would take them out resets them to
+// their pose at its start with zero velocity, reported as OutOfRange; no body ever reports a
+// coordinate beyond kWorldRange, and the chain's joints hold afterwards.
+TEST(BodyFaults, BodyFlungOutOfTheWorldRangeIsReset) {
+  WorldDef def;
+  def.gravity.setZero();
+  World w(def);
+  const double edge = kWorldRange - 0.5;
+  const double cap = def.solver.max_linear_speed;
+  const BodyId free = addDynamic(w, 1.0, Mat3::Identity() * 0.1,
+                                 Transform(Vec3(edge, 0, 0), Quat::Identity()), Vec3::Zero(),
+                                 Vec3(2 * cap, 0, 0), Vec3(0, 0, 3));
+  std::vector<BodyId> chain;
+  std::vector<JointId> joints;
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 at(-(kWorldRange - 2.0) + 0.3 * k, 5, 0);
+    chain.push_back(addBox(w, Vec3(0.15, 0.05, 0.05), 1.0, at));
+    w.setBodyState(chain.back(), Transform(at, Quat::Identity()), Vec3(-cap, 0, 0), Vec3::Zero());
+    if (k > 0) joints.push_back(chainLink(w, chain[k - 1], chain[k], 0.15));
+  }
+  std::vector<BodyFault> faults;
+  for (int i = 0; i < 100; ++i) {
+    w.step(kDt);
+    ASSERT_LE(farthest(w), kWorldRange) << "step " << i;
+    for (const BodyFault& f : w.takeBodyFaults()) faults.push_back(f);
+  }
+  ASSERT_FALSE(faults.empty());
+  bool free_reset = false;
+  for (const BodyFault& f : faults) {
+    EXPECT_EQ(f.cause, BodyFaultCause::OutOfRange) << "body " << f.body.index;
+    free_reset |= f.body == free;
+  }
+  EXPECT_TRUE(free_reset);
+  EXPECT_EQ(w.bodyFaultCount(), int64_t(faults.size()));
+  const BodyState s = w.bodyState(free);
+  EXPECT_EQ(s.linear_velocity, Vec3::Zero());
+  EXPECT_EQ(s.angular_velocity, Vec3::Zero());
+  EXPECT_GT(s.com_position.x(), edge) << "reset to its last pose in range, not to the start";
+  for (JointId j : joints) EXPECT_LT(w.jointAnchorError(j).norm(), 0.01);
+}
+
+// setBodyState beyond the range (a 1e160 m coordinate is finite: the non-finite check lets it
+// through) is undone before the step: the body is back at its last pose in range.
+TEST(BodyFaults, BodyStateBeyondTheWorldRangeIsAnInputFault) {
+  World w;
+  const BodyId b = addDynamic(w, 1.0, Mat3::Identity() * 0.1,
+                              Transform(Vec3(1, 2, 3), Quat::Identity()));
+  w.step(kDt);
+  const Vec3 before = w.comPosition(b);
+  for (const Vec3& far : {Vec3(1e160, 0, 0), Vec3(0, -2 * kWorldRange, 0),
+                          Vec3(0, 0, kWorldRange + 1.0)}) {
+    w.setBodyState(b, Transform(far, Quat::Identity()), Vec3(1, 0, 0), Vec3::Zero());
+    w.step(kDt);
+    const std::vector<BodyFault> faults = w.takeBodyFaults();
+    ASSERT_EQ(faults.size(), 1u) << far.transpose();
+    EXPECT_EQ(faults[0].cause, BodyFaultCause::OutOfRange);
+    EXPECT_LT((w.comPosition(b) - before).norm(), 1e-4) << far.transpose();
+    EXPECT_LE(farthest(w), kWorldRange);
+  }
+  EXPECT_EQ(w.bodyFaultCount(), 3);
+  BodyDef d;
+  d.pose.p = Vec3(0, 0, 1.5 * kWorldRange);
+  EXPECT_THROW(w.createBody(d), std::invalid_argument) << "created beyond the range";
 }

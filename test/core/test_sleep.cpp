@@ -278,3 +278,48 @@ TEST(Sleeping, SettingsChangedInPlace) {
   EXPECT_EQ(w.def().sleep.time, t_on);
   EXPECT_EQ(w.awakeBodyCount(), 0);
 }
+
+// A resting box on the ground carries a light bar on a frictionless vertical hinge at the
+// bar's end, turning at 1 rad/s: gravity has no torque about the axis and nothing dissipates
+// the turn, so the bar's ends move at 0.3 m/s for ever and every per-body speed test keeps the
+// island awake. Its kinetic energy is far below that of the island's mass at the sleep speed:
+// the island sleeps within a second of sleep time, and wakes on an impulse.
+TEST(Sleep, LimbTurningAboutAFrictionlessJointStillSleeps) {
+  World w;
+  addGround(w);
+  const Vec3 half(0.3, 0.2, 0.1);
+  const BodyId box = addBox(w, half, 20.0, Vec3(0, 0, 0.1));
+  const BodyId bar = addBox(w, Vec3(0.15, 0.02, 0.02), 0.5, Vec3(0.45, 0, 0.35));
+  HingeJointDef h;
+  h.body_a = box;
+  h.body_b = bar;
+  h.frame_a = Transform(Vec3(0.3, 0, 0.25), Quat::Identity());  // a post above the box's edge
+  h.frame_b = Transform(Vec3(-0.15, 0, 0), Quat::Identity());
+  h.axis = Vec3::UnitZ();
+  w.createHingeJoint(h);
+  for (int i = 0; i < 300; ++i) w.step(kDt);  // the box settles
+  const BodyState s = w.bodyState(bar);
+  w.setBodyState(bar, s.pose, Vec3(0, 0.15, 0), Vec3(0, 0, 1.0));  // 1 rad/s about the hinge
+  int steps = 0;
+  double turned = 0.0;
+  while (w.isAwake(bar) && steps < 5000) {
+    w.step(kDt);
+    turned += w.bodyState(bar).angular_velocity.z() * kDt;
+    ++steps;
+  }
+  std::printf("[ spin     ] the bar turned %.2f rad and slept after %d steps\n", turned, steps);
+  EXPECT_LT(steps, 1500) << "the island never sleeps";
+  EXPECT_GT(turned, 0.3) << "it slept before the turn was seen";
+  EXPECT_FALSE(w.isAwake(box));
+  w.applyLinearImpulse(bar, Vec3(0, 0.1, 0), w.comPosition(bar));
+  w.step(kDt);
+  EXPECT_TRUE(w.isAwake(box));
+
+  // The rule off (island_speed 0): the same turn keeps the island awake (what it fixes).
+  SleepDef off = w.def().sleep;
+  off.island_speed = 0.0;
+  w.setSleep(off);
+  w.setBodyState(bar, w.bodyPose(bar), w.bodyState(bar).linear_velocity, Vec3(0, 0, 1.0));
+  for (int i = 0; i < 1500; ++i) w.step(kDt);
+  EXPECT_TRUE(w.isAwake(bar));
+}

@@ -244,10 +244,12 @@ struct Sim {
 };
 
 void checkName(const std::string& name) {
-  bool valid = !name.empty() && !std::isdigit(static_cast<unsigned char>(name[0]));
+  bool valid = !name.empty() && name.size() <= kMaxNameLength &&
+               std::isalpha(static_cast<unsigned char>(name[0]));
   for (char ch : name) valid = valid && (std::isalnum(static_cast<unsigned char>(ch)) || ch == '_');
   const std::string err = ragdollNameError(name);
   FUZZ_CHECK(err.empty() == valid, "name '%s': '%s'", name.c_str(), err.c_str());
+  FUZZ_CHECK(err.size() < 512, "name of %zu characters: a message of %zu", name.size(), err.size());
   std::string ragdoll, rest;
   splitQualifiedName(name, [](const std::string& n) { return n == "ragdoll" || n == "bob"; },
                      &ragdoll, &rest);

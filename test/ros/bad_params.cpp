@@ -36,6 +36,16 @@ TEST(BadParams, NodeExitsNonZeroNamingTheParameter) {
       {"_max_angular_speed:=0.0", {"~max_angular_speed", "> 0", "got 0"}},
       {"_restitution:=1.5", {"~restitution", "[0, 1]", "got 1.5"}},
       {"_sleep/rest_time:=-0.25", {"~sleep/rest_time", "got -0.25"}},
+      // The ranges of dynamic_reconfigure (cfg/Physics.cfg) hold at start-up too.
+      {"_real_time_factor:=0.001", {"~real_time_factor", "0 (as fast as possible) or [0.01, 1000]",
+                                    "got 0.001"}},
+      {"_real_time_factor:=5000.0", {"~real_time_factor", "got 5000"}},
+      {"_real_time_factor:=-1.0", {"~real_time_factor", "got -1"}},
+      {"_substeps:=100", {"~substeps", "[1, 64]", "got 100"}},
+      {"_physics_rate:=10.0", {"~physics_rate", "[1e-05, 0.05]", "got 10"}},
+      {"_sleep/speed:=20.0", {"~sleep/speed", "[0, 10]", "got 20"}},
+      {"_static_friction:=20.0", {"~static_friction", "[0, 10]", "got 20"}},
+      {"_sleep/time:=100.0", {"~sleep/time", "[0, 60]", "got 100"}},
   };
   int k = 0;
   for (const auto& [args, words] : cases) {

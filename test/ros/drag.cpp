@@ -7,12 +7,14 @@
 // context menu moves it to another link.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
 
 #include <ragdoll_sim/ApplyImpulse.h>
+#include <ragdoll_sim/NodeStats.h>
 #include <visualization_msgs/InteractiveMarkerFeedback.h>
 #include <visualization_msgs/InteractiveMarkerInit.h>
 #include <visualization_msgs/InteractiveMarkerUpdate.h>
@@ -34,7 +36,8 @@ struct Fixture {
   const LinkMass* torso = nullptr;
   std::unique_ptr<TfSnapshots> tf;
   ros::Publisher feedback_pub, impulse_pub;
-  ros::Subscriber init_sub, update_sub;
+  ros::Subscriber init_sub, update_sub, stats_sub;
+  std::atomic<int64_t> drags{-1};  // ~stats drags; -1 until the first message
   std::unique_ptr<NodeWarnings> warnings;
   std::unique_ptr<MarkerLog> markers;
   std::mutex mutex;
@@ -54,6 +57,9 @@ struct Fixture {
     update_sub = nh.subscribe("/ragdoll_sim/drag/update", 50, &Fixture::onUpdate, this);
     warnings = std::make_unique<NodeWarnings>(nh, "/ragdoll_sim");
     markers = std::make_unique<MarkerLog>(nh, "/ragdoll_sim/markers");
+    stats_sub = nh.subscribe<ragdoll_sim::NodeStats>(
+        "/ragdoll_sim/stats", 10,
+        [this](const ragdoll_sim::NodeStats::ConstPtr& m) { drags = int64_t(m->drags); });
   }
 
   void setHandle(const std::string& name, const geometry_msgs::Pose& p) {
@@ -186,6 +192,10 @@ TEST(Drag, B_DraggedTheTorsoFollows) {
   EXPECT_LT(closest, 0.1) << "the torso never came near the dragged handle";
   EXPECT_LT(final_distance, 0.2) << "the torso does not stay near the handle: "
                                  << str(comOf(end, *fx->torso)) << " vs " << str(g_target);
+  // ~stats counts the drag once (it started with the mouse down, the pose update moved it).
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(5.0);
+  while (fx->drags < 1 && ros::WallTime::now() < deadline) ros::WallDuration(0.02).sleep();
+  EXPECT_EQ(fx->drags, 1) << "~stats drags";
   RecordProperty("closest_m", std::to_string(closest));
   RecordProperty("after_3s_m", std::to_string(final_distance));
 }

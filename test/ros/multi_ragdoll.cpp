@@ -319,6 +319,23 @@ TEST(MultiRagdoll, H_Delete) {
   EXPECT_TRUE(fx->spawn("second", "", urdfPath(), kSecondSpawn));
 }
 
+TEST(MultiRagdoll, I_SpawnIntoTheGroundIsLifted) {
+  // Its root 1 m below the ground: lifted to rest on the ground, and the reply says so.
+  std::string message;
+  ASSERT_TRUE(fx->spawn("sunk", "", urdfPath(), Vec3(8, 0, -1), &message)) << message;
+  EXPECT_NE(message.find("lifted"), std::string::npos) << message;
+  const auto root = fx->sim.link("sunk", fx->root);
+  ASSERT_TRUE(root.success) << root.message;
+  EXPECT_GT(position(root).z(), 0.3);
+  ASSERT_EQ(fx->sim.step(3000).steps_done, 3000u);
+  for (const LinkMass& l : fx->links) {
+    const auto s = fx->sim.link("sunk", l.name);
+    if (!s.success) continue;  // a massless link lumped into its parent
+    EXPECT_GT(position(s).z(), -0.01) << l.name;
+    EXPECT_LT(position(s).z(), 2.0) << l.name;
+  }
+}
+
 int main(int argc, char** argv) {
   return runFixtureTests(argc, argv, "multi_ragdoll_test", 2, fx);
 }

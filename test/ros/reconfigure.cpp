@@ -3,8 +3,11 @@
 // World is rebuilt with every body's state carried over), friction, real-time factor.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
+#include <vector>
 
 #include <ragdoll_sim/SetRagdollState.h>
 
@@ -134,6 +137,60 @@ TEST(Reconfigure, F_SlowMotion) {
   EXPECT_GT(t2 - t1, 0.0);
   std::printf("[ pacing   ] 0.2x: %.3f s of sim time in 2 s of wall clock; as fast as possible: "
               "%.3f s in ~1 s\n", t1 - t0, t2 - t1);
+}
+
+TEST(Reconfigure, G_OutOfRangeRefusedWithTheReason) {
+  // The values in force before; every refused request leaves them all as they are.
+  std::map<std::string, double> before, now;
+  ASSERT_TRUE(reconfigure({}, {}, &before));
+  ros::NodeHandle nh;
+  NodeWarnings warnings(nh, kNode);
+  ros::WallDuration(0.5).sleep();  // /rosout connected
+  struct Case {
+    std::string field;
+    double value;
+    std::string range;
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::vector<Case> cases = {
+      {"real_time_factor", 1e-300, "0 (as fast as possible) or [0.01, 1000]"},
+      {"real_time_factor", 1e-12, ""},
+      {"real_time_factor", 0.001, ""},
+      {"real_time_factor", -1.0, ""},
+      {"real_time_factor", 5000.0, ""},
+      {"substeps", 1000, "[1, 64]"},
+      {"time_step", 1e-9, "[1e-05, 0.05]"},
+      {"gravity_z", 1e9, "[-100, 100]"},
+      {"gravity_x", inf, "[-100, 100]"},
+      {"gravity_y", std::nan(""), "[-100, 100]"},
+      {"restitution", 1e9, "[0, 1]"},
+      {"static_friction", -1.0, "[0, 10]"},
+  };
+  for (const Case& c : cases) {
+    // With a valid change in the same request: the whole request is refused.
+    const bool is_int = c.field == "substeps";
+    std::map<std::string, double> d = {{"kinetic_friction", 0.3}};
+    std::map<std::string, int> i;
+    if (is_int) i[c.field] = static_cast<int>(c.value);
+    else d[c.field] = c.value;
+    ASSERT_TRUE(reconfigure(d, i, &now)) << c.field << " " << c.value;
+    EXPECT_EQ(now, before) << c.field << " = " << c.value
+                           << ": the answer holds the values in force";
+    now.clear();
+    ASSERT_TRUE(reconfigure({}, {}, &now));
+    EXPECT_EQ(now, before) << c.field << " = " << c.value << ": nothing changed";
+    if (!c.range.empty())  // the first refusal per field (the WARN is throttled per field)
+      EXPECT_TRUE(warnings.wait({"reconfigure refused", c.field + " = ", c.range}, 5.0))
+          << c.field << " = " << c.value;
+  }
+  EXPECT_TRUE(warnings.wait({"real_time_factor = 1e-300", "outside"}, 5.0));
+  // The ends of the ranges are taken.
+  ASSERT_TRUE(reconfigure({{"real_time_factor", 0.01}}, {{"substeps", 64}}, &now));
+  EXPECT_DOUBLE_EQ(now["real_time_factor"], 0.01);
+  EXPECT_EQ(now["substeps"], 64);
+  ASSERT_TRUE(reconfigure({{"real_time_factor", before["real_time_factor"]}},
+                          {{"substeps", static_cast<int>(before["substeps"])}}, &now));
+  EXPECT_EQ(now, before);
 }
 
 int main(int argc, char** argv) {

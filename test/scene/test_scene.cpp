@@ -7,28 +7,14 @@
 #include <vector>
 
 #include "ragdoll_sim/scene.hpp"
+#include "scene_recorder.hpp"
 #include "scene_views.hpp"
 
 using namespace ragdoll_sim;
 
 namespace {
 
-struct Recorder : SceneListener {
-  std::vector<SceneMessage> messages;
-  int impulses = 0, forces = 0;
-  void message(const SceneMessage& m) override { messages.push_back(m); }
-  void impulseApplied(const World&, BodyId, const Vec3&, const Vec3&, double) override {
-    ++impulses;
-  }
-  void forceApplied(const World&, BodyId, const Vec3&, const Vec3&, double, double) override {
-    ++forces;
-  }
-  bool saw(const std::string& kind) const {
-    for (const SceneMessage& m : messages)
-      if (m.kind == kind) return true;
-    return false;
-  }
-};
+using test::Recorder;
 
 SceneDef zeroGravity() {
   SceneDef d;
