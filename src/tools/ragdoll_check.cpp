@@ -97,11 +97,7 @@ int main(int argc, char** argv) {
     }
   }
   if (!world.empty()) {
-    // Dropping a model into the world needs the Scene to hold the world's objects.
-    if (!file.empty()) {
-      std::fprintf(stderr, "ragdoll_check: --world with a model is not supported yet\n");
-      return 2;
-    }
+    if (!file.empty()) return usage();
     return checkWorld(world, strict);
   }
   if (file.empty() || strict) return usage();
