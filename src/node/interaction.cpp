@@ -188,11 +188,12 @@ void Interaction::onDragFeedback(const visualization_msgs::InteractiveMarkerFeed
         release(d);
         return;
       }
-      if (!d->active) ++drags_started_;
-      if (!d->active)
+      if (!d->active) {
+        ++drags_started_;
         ROS_INFO("drag of '%s' link '%s' started at sim time %.3f s", d->marker.c_str(),
                  ragdolls_[static_cast<size_t>(d->ragdoll)].def->links[static_cast<size_t>(d->link)].name.c_str(),
                  sim_time_);
+      }
       d->active = true;
       d->target = target;
       d->shown = handle;

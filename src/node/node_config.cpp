@@ -262,25 +262,8 @@ bool surface(const MaterialTable& t, const std::string& name, const char* param,
 // The physics settings dynamic_reconfigure also sets, checked against the same ranges; the
 // message names the start-up parameter.
 std::string physicsRangeError(const NodeConfig& c) {
-  ragdoll_sim::PhysicsConfig p;
-  const Vec3& g = c.scene.world.gravity;
-  p.gravity_x = g.x();
-  p.gravity_y = g.y();
-  p.gravity_z = g.z();
-  p.time_step = 1.0 / c.physics_rate;
-  p.substeps = c.scene.world.solver.substeps;
-  p.position_iterations = c.scene.world.solver.position_iterations;
-  p.static_friction = c.scene.material.static_friction;
-  p.kinetic_friction = c.scene.material.kinetic_friction;
-  p.restitution = c.scene.material.restitution;
-  p.real_time_factor = c.real_time_factor;
-  const SleepDef& s = c.scene.world.sleep;
-  p.sleep_enabled = s.enabled;
-  p.sleep_time = s.time;
-  p.sleep_speed = s.speed;
-  p.rest_time = s.rest_time;
-  p.rest_substeps = s.rest_substeps;
-  p.rest_relax_iterations = s.rest_relax_iterations;
+  const ragdoll_sim::PhysicsConfig p =
+      physicsConfigOf(c.scene, 1.0 / c.physics_rate, c.scene.material, c.real_time_factor);
   const RangeProblem r = physicsRangeProblem(p);
   if (r.ok()) return "";
   std::ostringstream e;

@@ -63,5 +63,28 @@ RangeProblem physicsRangeProblem(const Config& c, const Config* in_force) {
   return RangeProblem{};
 }
 
+PhysicsConfig physicsConfigOf(const SceneDef& d, double time_step, const Material& surface,
+                              double real_time_factor) {
+  PhysicsConfig c;
+  c.gravity_x = d.world.gravity.x();
+  c.gravity_y = d.world.gravity.y();
+  c.gravity_z = d.world.gravity.z();
+  c.time_step = time_step;
+  c.substeps = d.world.solver.substeps;
+  c.position_iterations = d.world.solver.position_iterations;
+  c.static_friction = surface.static_friction;
+  c.kinetic_friction = surface.kinetic_friction;
+  c.restitution = surface.restitution;
+  c.real_time_factor = real_time_factor;
+  const SleepDef& s = d.world.sleep;
+  c.sleep_enabled = s.enabled;
+  c.sleep_time = s.time;
+  c.sleep_speed = s.speed;
+  c.rest_time = s.rest_time;
+  c.rest_substeps = s.rest_substeps;
+  c.rest_relax_iterations = s.rest_relax_iterations;
+  return c;
+}
+
 }  // namespace node
 }  // namespace ragdoll_sim

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "ragdoll_sim/PhysicsConfig.h"
+#include "ragdoll_sim/scene.hpp"
 
 namespace ragdoll_sim {
 namespace node {
@@ -23,6 +24,11 @@ struct RangeProblem {
 // hold a friction beyond the .cfg's range).
 RangeProblem physicsRangeProblem(const ragdoll_sim::PhysicsConfig& c,
                                  const ragdoll_sim::PhysicsConfig* in_force = nullptr);
+
+// The settings of `d` as the .cfg's fields: the step `time_step` (s), friction and restitution
+// of `surface`, and `real_time_factor` as given.
+ragdoll_sim::PhysicsConfig physicsConfigOf(const SceneDef& d, double time_step,
+                                           const Material& surface, double real_time_factor);
 
 // The rule of a .cfg field as text, e.g. "[1e-05, 0.05]"; "" for an unknown field.
 std::string physicsRangeRule(const std::string& field);

@@ -52,26 +52,9 @@ bool Reconfigure::onSetParameters(dynamic_reconfigure::Reconfigure::Request& req
 
 ragdoll_sim::PhysicsConfig Reconfigure::current() const {
   const Scene& scene = *ctx_.scene;
-  const SceneDef& d = scene.def();
-  ragdoll_sim::PhysicsConfig c;
-  c.gravity_x = d.world.gravity.x();
-  c.gravity_y = d.world.gravity.y();
-  c.gravity_z = d.world.gravity.z();
-  c.time_step = scene.dt();
-  c.substeps = d.world.solver.substeps;
-  c.position_iterations = d.world.solver.position_iterations;
-  c.static_friction = d.ragdoll_surface.static_friction;
-  c.kinetic_friction = d.ragdoll_surface.kinetic_friction;
-  c.restitution = d.ragdoll_surface.restitution;
-  const double rtf = ctx_.config.real_time_factor;
-  c.real_time_factor = std::isfinite(rtf) ? rtf : 0.0;
-  c.sleep_enabled = d.world.sleep.enabled;
-  c.sleep_time = d.world.sleep.time;
-  c.sleep_speed = d.world.sleep.speed;
-  c.rest_time = d.world.sleep.rest_time;
-  c.rest_substeps = d.world.sleep.rest_substeps;
-  c.rest_relax_iterations = d.world.sleep.rest_relax_iterations;
-  return c;
+  const double rtf = ctx_.config.real_time_factor;  // .inf at start-up means 0 here
+  return physicsConfigOf(scene.def(), scene.dt(), scene.def().ragdoll_surface,
+                         std::isfinite(rtf) ? rtf : 0.0);
 }
 
 void Reconfigure::apply(const ragdoll_sim::PhysicsConfig& cfg) {

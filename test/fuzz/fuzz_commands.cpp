@@ -28,20 +28,13 @@
 #include "ragdoll_sim/ragdoll.hpp"
 #include "ragdoll_sim/urdf_loader.hpp"
 
+#define FUZZ_TARGET_NAME "fuzz_commands"
+#include "fuzz_check.hpp"
+
 using namespace ragdoll_sim;
 using namespace ragdoll_sim::scene;
 
 namespace {
-
-#define FUZZ_CHECK(cond, ...)                                             \
-  do {                                                                    \
-    if (!(cond)) {                                                        \
-      std::fprintf(stderr, "fuzz_commands: check failed: %s: ", #cond);  \
-      std::fprintf(stderr, __VA_ARGS__);                                  \
-      std::fprintf(stderr, "\n");                                         \
-      std::abort();                                                       \
-    }                                                                     \
-  } while (0)
 
 constexpr double kDt = 1e-3;          // the node's default step
 // A step costs milliseconds under ASan + UBSan: few per input keep the search fast.

@@ -13,22 +13,14 @@
 #include "ragdoll_sim/drop_check.hpp"
 #include "ragdoll_sim/urdf_loader.hpp"
 
+#define FUZZ_TARGET_NAME "fuzz_urdf"
+#include "fuzz_check.hpp"
+
 using namespace ragdoll_sim;
 
 namespace {
 
-// A broken invariant is a crash for libFuzzer (it saves the input as an artifact).
-#define FUZZ_CHECK(cond, ...)                                             \
-  do {                                                                    \
-    if (!(cond)) {                                                        \
-      std::fprintf(stderr, "fuzz_urdf: check failed: %s: ", #cond);      \
-      std::fprintf(stderr, __VA_ARGS__);                                  \
-      std::fprintf(stderr, "\n");                                         \
-      std::abort();                                                       \
-    }                                                                     \
-  } while (0)
-
-bool finite(const Transform& t) { return t.p.allFinite() && t.q.coeffs().allFinite(); }
+using fuzz::finite;
 
 void checkShape(const LinkDef& l, const ShapeDef& s) {
   const Geometry& g = s.geometry;

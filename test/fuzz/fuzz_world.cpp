@@ -12,21 +12,14 @@
 #include "ragdoll_sim/material.hpp"
 #include "ragdoll_sim/world_file.hpp"
 
+#define FUZZ_TARGET_NAME "fuzz_world"
+#include "fuzz_check.hpp"
+
 using namespace ragdoll_sim;
 
 namespace {
 
-#define FUZZ_CHECK(cond, ...)                                             \
-  do {                                                                    \
-    if (!(cond)) {                                                        \
-      std::fprintf(stderr, "fuzz_world: check failed: %s: ", #cond);     \
-      std::fprintf(stderr, __VA_ARGS__);                                  \
-      std::fprintf(stderr, "\n");                                         \
-      std::abort();                                                       \
-    }                                                                     \
-  } while (0)
-
-bool finite(const Transform& t) { return t.p.allFinite() && t.q.coeffs().allFinite(); }
+using fuzz::finite;
 
 void checkModel(const WorldModelDef& m, WorldCounts* counts) {
   const int n = static_cast<int>(m.links.size());
