@@ -35,6 +35,7 @@ struct RagdollInstance {
   bool balance_on = false;
 
   std::vector<ActiveForce> forces;   // re-applied every step
+  bool forces_capped_said = false;   // the cap's WARN for this set of forces was given
 };
 
 }  // namespace scene

@@ -43,6 +43,7 @@ bool Scene::Impl::applyForce(RagdollInstance& r, const ForceCommand& cmd,
     return false;
   }
   r.forces.push_back(toActiveForce(cmd, check, pose(check.link), dt));
+  r.forces_capped_said = false;
   ++forces;
   const ActiveForce& f = r.forces.back();
   if (listener)
@@ -64,21 +65,25 @@ void Scene::Impl::applyActiveForces(RagdollInstance& r) {
     torque_sum[static_cast<size_t>(f.link)] += f.torque.norm();
   }
   // Per link the factor that brings each sum down to its cap (1 when under it).
+  bool capped = false;
   for (size_t l = 0; l < force_sum.size(); ++l) {
     const double fs = force_sum[l], ts = torque_sum[l];
     if (fs <= lim.max_body_force && ts <= lim.max_body_torque) {
       force_sum[l] = torque_sum[l] = 1.0;
       continue;
     }
+    force_sum[l] = fs > lim.max_body_force ? lim.max_body_force / fs : 1.0;
+    torque_sum[l] = ts > lim.max_body_torque ? lim.max_body_torque / ts : 1.0;
+    capped = true;
+    if (r.forces_capped_said) continue;  // said once per set of forces, not every step
     warn("force/body cap",
          scene::format("the active forces on '%s/%s' add up to %g N and %g N m (sums of "
                        "magnitudes), above max_body_force = %g N or max_body_torque = %g N m: "
                        "scaled down to the cap",
                        r.name.c_str(), r.def.links[l].name.c_str(), fs, ts, lim.max_body_force,
                        lim.max_body_torque));
-    force_sum[l] = fs > lim.max_body_force ? lim.max_body_force / fs : 1.0;
-    torque_sum[l] = ts > lim.max_body_torque ? lim.max_body_torque / ts : 1.0;
   }
+  r.forces_capped_said = capped;
   for (const ActiveForce& f : r.forces) {
     const size_t l = static_cast<size_t>(f.link);
     const BodyId body = r.ragdoll.bodies[l];
@@ -91,9 +96,11 @@ void Scene::Impl::expireForces(RagdollInstance& r) {
   if (r.forces.empty()) return;
   for (ActiveForce& f : r.forces)
     if (f.steps_left > 0) --f.steps_left;
+  const size_t before = r.forces.size();
   r.forces.erase(std::remove_if(r.forces.begin(), r.forces.end(),
                                 [](const ActiveForce& f) { return f.steps_left == 0; }),
                  r.forces.end());
+  if (r.forces.size() != before) r.forces_capped_said = false;
 }
 
 size_t Scene::activeForceCount() const { return impl_->activeForceCount(); }

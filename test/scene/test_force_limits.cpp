@@ -105,6 +105,11 @@ TEST(ForceLimits, SummedForceOnABodyIsCapped) {
   ASSERT_NE(w, nullptr) << "no WARN about the capped sum";
   EXPECT_NE(w->text.find("'a/pelvis'"), std::string::npos) << w->text;
   EXPECT_NE(w->text.find("1.28e+07 N"), std::string::npos) << w->text;
+  // Said once for this set of forces, not once a step.
+  for (int i = 0; i < 10; ++i) scene.step();
+  size_t said = 0;
+  for (const SceneMessage& m : rec.messages) said += m.kind == "force/body cap";
+  EXPECT_EQ(said, 1u);
 }
 
 TEST(ForceLimits, CappedForcesKeepTheRagdollLowForFourSeconds) {
