@@ -2,6 +2,7 @@
 // produces one); spawnRagdoll instantiates it in a World.
 #pragma once
 
+#include <array>
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,6 +24,16 @@ struct LinkDef {
   // URDF <gazebo reference> mu1 / mu2 of the link (mean of the two), applied to its own shapes'
   // friction by spawnRagdoll even over a material override; < 0: not given.
   std::vector<double> shape_friction;      // per shape, parallel to `shapes` (may be shorter)
+  // Surface material by its name in the material table (WorldDef::materials): the link's, and
+  // per shape (parallel to `shapes`, may be shorter; "" = the link's). "" = the Scene's default
+  // surface for the model's kind. From SDF <surface><ragdoll_sim:material>, URDF <gazebo
+  // reference> <ragdoll_sim:material>, a visual material script name as written ("Gazebo/Wood":
+  // the Scene takes it as "wood" when the table has that, else silently as ""), or the Scene's
+  // per-link map (SceneDef::link_materials). An unknown name that is not "Gazebo/..." is WARNed.
+  std::string material;
+  std::vector<std::string> shape_materials;
+  bool has_color = false;                  // a visual colour (URDF / SDF <material>)
+  std::array<double, 4> color = {0.5, 0.5, 0.5, 1.0};  // rgba
   Transform rest_pose;                     // link frame relative to the root link, zero angles
   double linear_damping = 0.0;
   double angular_damping = 0.0;
@@ -71,6 +82,9 @@ struct FixedFrameDef {
 struct RagdollDef {
   std::string name;
   int root = 0;
+  // The root link is pinned where it is spawned (a static body): a URDF whose root is a link
+  // named "world" fixed-jointed to the robot (Gazebo's convention), an SDF joint to the world.
+  bool fixed_base = false;
   std::vector<LinkDef> links;
   std::vector<FixedFrameDef> fixed_frames;
   std::vector<RagdollJointDef> joints;

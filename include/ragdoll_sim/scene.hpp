@@ -20,6 +20,7 @@
 #include "ragdoll_sim/math.hpp"
 #include "ragdoll_sim/ragdoll.hpp"
 #include "ragdoll_sim/world.hpp"
+#include "ragdoll_sim/world_file.hpp"
 
 namespace ragdoll_sim {
 
@@ -110,6 +111,10 @@ struct SceneDef {
   MotorGains motor;                // every joint's target / hold motor unless `joints` say else
   JointSettings joint_defaults;    // springs and gains of every joint
   std::vector<std::pair<std::string, JointSettings>> joints;  // joint name -> settings
+  // Link name -> material table name for ragdoll links that name none themselves (a rubber sole
+  // on the feet); "*" matches every link.
+  std::vector<std::pair<std::string, std::string>> link_materials;
+  Material object_surface = defaultSurface();  // objects' links that name no material
   // The balance controllers' law (their hold motors use `motor`, then the per-joint gains).
   BalanceDef balance;
 };
@@ -120,6 +125,13 @@ struct SpawnDef {
   Transform pose;              // root link in the world (reset() goes back here)
   bool balance = false;        // balance controller (SceneDef::balance) on from the start
   bool warn_unknown_joints = false;  // SceneDef::joints entries naming no joint of it: WARN
+  // An object (a crate, a door, a world file's model) rather than a ragdoll: no balance, no
+  // per-link material map, counted apart. A dynamic object is indexed like a ragdoll (bodies,
+  // link states, commands); a static one (is_static) is a set of static bodies that costs
+  // nothing per step, listed by staticObjectCount().
+  bool object = false;
+  bool is_static = false;  // objects only: every link a static body where it is placed
+  bool fixed_base = false; // the root link pinned at `pose` (as RagdollDef::fixed_base)
 };
 
 enum class SpawnResult {
@@ -200,6 +212,22 @@ class Scene {
   bool start(std::string* error);
   // Removes `name` and its bodies; other ragdolls keep their state and broken joints.
   bool removeRagdoll(const std::string& name, std::string* error);
+
+  // --- world files and objects ---
+  // A loaded world file, before or after start(): static models become static objects, dynamic
+  // ones objects (joints to the world pin them), its gravity the World's; a static plane in it
+  // replaces the default ground. False with *error naming the model, nothing added.
+  bool loadWorld(const WorldFileDef& world, std::string* error);
+  // spawn.object is implied. Names share one namespace with the ragdolls.
+  SpawnResult addObject(SpawnDef spawn, std::string* error);
+  bool isObject(int k) const;                // ragdoll index k is a dynamic object
+  size_t staticObjectCount() const;
+  const std::string& staticObjectName(int i) const;
+  const RagdollDef& staticObjectDef(int i) const;
+  const Transform& staticObjectPose(int i) const;              // its root link
+  const std::vector<BodyId>& staticObjectBodies(int i) const;  // one per link
+  // Removes the ragdoll, dynamic object or static object `name`.
+  bool remove(const std::string& name, std::string* error);
   // Every ragdoll back at its spawn pose with its joints whole; active forces end. A ragdoll
   // that overlaps static geometry there is lifted (WARN), whatever spawn_overlap says.
   bool reset(std::string* error);

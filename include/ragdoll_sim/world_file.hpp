@@ -22,6 +22,9 @@ struct WorldCollisionDef {
   bool has_friction = false;     // <surface><friction><ode><mu>/<mu2> given
   double mu = 0, mu2 = 0;        // as written (shape.material holds their mean)
   bool has_restitution = false;  // <bounce><restitution_coefficient> given
+  // Material name: <surface><ragdoll_sim:material>, else the link's visual material script name
+  // as written ("Gazebo/Wood", which the Scene takes as table entry "wood" when it has one); "".
+  std::string material;
   double plane_size[2] = {0, 0}; // plane: <size> along the plane (the shape itself is unbounded)
   std::string source;            // "box", "convex hull of ...", "box fitted to the inertia (...)"
 };
