@@ -193,6 +193,26 @@ TEST(SceneObjects, JointsToTheWorldHoldModels) {
   EXPECT_TRUE(scene.def(s).fixed_base);
 }
 
+// A world's model is left where its author put it (as Gazebo does, and without checking
+// thousands of models against every static shape); a crate spawned at run time into a table is
+// lifted onto it, with a WARN, whatever spawn_overlap says.
+TEST(SceneObjects, WorldModelsStayWhereTheFilePutsThem) {
+  const WorldFileDef w = loadSdf(boxModelSdf("table", Vec3(0, 0, 0.4), Vec3(1, 1, 0.8), true) +
+                                 boxModelSdf("crate", Vec3(0, 0, 0.98), Vec3(0.4, 0.4, 0.4), false));
+  Recorder rec;
+  SceneDef sd;
+  sd.spawn_overlap = SpawnOverlap::Refuse;
+  Scene scene(sd, &rec);
+  std::string e;
+  ASSERT_TRUE(scene.loadWorld(w, &e)) << e;
+  ASSERT_TRUE(scene.start(&e)) << e;
+  EXPECT_NEAR(origin(scene, scene.find("crate")).z(), 0.98, 1e-9);
+  ASSERT_EQ(scene.addObject(boxObject("box", Vec3(0.2, 0.2, 0.2), 1, Vec3(0.5, 0.5, 0.9)), &e),
+            SpawnResult::Added) << e;
+  EXPECT_NEAR(origin(scene, scene.find("box")).z(), 1.0, 1e-6) << "not lifted onto the table";
+  EXPECT_NE(rec.find("spawn/lifted"), nullptr);
+}
+
 TEST(SceneObjects, NamesAreOneNamespace) {
   Recorder rec;
   Scene scene(SceneDef(), &rec);
