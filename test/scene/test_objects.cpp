@@ -213,6 +213,23 @@ TEST(SceneObjects, WorldModelsStayWhereTheFilePutsThem) {
   EXPECT_NE(rec.find("spawn/lifted"), nullptr);
 }
 
+TEST(SceneObjects, WorldModelNamesBecomeSceneNames) {
+  const WorldFileDef w = loadSdf(boxModelSdf("cafe-table", Vec3(0, 0, 0.4), Vec3(1, 1, 0.8), true) +
+                                 boxModelSdf("cafe_table", Vec3(3, 0, 0.4), Vec3(1, 1, 0.8), true) +
+                                 boxModelSdf("2box", Vec3(0, 0, 2), Vec3(0.2, 0.2, 0.2), false));
+  Recorder rec;
+  Scene scene(SceneDef(), &rec);
+  std::string e;
+  ASSERT_TRUE(scene.loadWorld(w, &e)) << e;
+  ASSERT_EQ(scene.staticObjectCount(), 2u);
+  EXPECT_EQ(scene.staticObjectName(0), "cafe_table");
+  EXPECT_EQ(scene.staticObjectName(1), "cafe_table_2");
+  EXPECT_GE(scene.find("m_2box"), 0);
+  bool said = false;
+  for (const SceneMessage& m : rec.messages) said = said || m.text.find("'cafe-table'") != std::string::npos;
+  EXPECT_TRUE(said);
+}
+
 TEST(SceneObjects, NamesAreOneNamespace) {
   Recorder rec;
   Scene scene(SceneDef(), &rec);
