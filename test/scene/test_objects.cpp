@@ -132,6 +132,12 @@ TEST(SceneObjects, WorldPlaneReplacesTheDefaultGround) {
   ASSERT_TRUE(scene.reset(&e)) << e;
   EXPECT_EQ(countBodiesNamed(scene.world(), "ground"), 0);
   EXPECT_EQ(scene.ground(), scene.staticObjectBodies(0)[0]);
+  // Removing the world's ground leaves none: the default plane does not come back.
+  ASSERT_TRUE(scene.remove("slope", &e)) << e;
+  EXPECT_FALSE(scene.ground().valid());
+  ASSERT_TRUE(scene.reset(&e)) << e;
+  EXPECT_FALSE(scene.ground().valid());
+  EXPECT_EQ(countBodiesNamed(scene.world(), "ground"), 0);
 }
 
 TEST(SceneObjects, WorldWithoutPlaneKeepsTheDefaultGround) {
