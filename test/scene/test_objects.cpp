@@ -132,6 +132,12 @@ TEST(SceneObjects, WorldPlaneReplacesTheDefaultGround) {
   ASSERT_TRUE(scene.reset(&e)) << e;
   EXPECT_EQ(countBodiesNamed(scene.world(), "ground"), 0);
   EXPECT_EQ(scene.ground(), scene.staticObjectBodies(0)[0]);
+  // Removing the world's ground leaves none: the default plane does not come back.
+  ASSERT_TRUE(scene.remove("slope", &e)) << e;
+  EXPECT_FALSE(scene.ground().valid());
+  ASSERT_TRUE(scene.reset(&e)) << e;
+  EXPECT_FALSE(scene.ground().valid());
+  EXPECT_EQ(countBodiesNamed(scene.world(), "ground"), 0);
 }
 
 TEST(SceneObjects, WorldWithoutPlaneKeepsTheDefaultGround) {
@@ -151,6 +157,83 @@ TEST(SceneObjects, WorldWithoutPlaneKeepsTheDefaultGround) {
       EXPECT_LT(origin(scene, 0).z(), -5.0);
     }
   }
+}
+
+// Joints to the world: a hinge holds the pendulum's bar at its pivot (a static anchor carries
+// it), a weld pins its link where the file has it (a fixed base).
+TEST(SceneObjects, JointsToTheWorldHoldModels) {
+  const WorldLoadResult hinged =
+      loadWorldFile(std::string(RAGDOLL_SIM_SOURCE_DIR) + "/test/world_file/fixtures/joints.world");
+  ASSERT_TRUE(hinged.ok) << hinged.error;
+  const WorldFileDef welded = loadSdf(
+      "<model name='sign'><pose>3 0 2 0 0 0</pose><link name='board'><collision name='c'>"
+      "<geometry><box><size>0.5 0.05 0.5</size></box></geometry></collision></link>"
+      "<joint name='pin' type='fixed'><parent>world</parent><child>board</child></joint></model>");
+  SceneDef sd;
+  sd.ground = false;
+  Scene scene(sd);
+  std::string e;
+  ASSERT_TRUE(scene.loadWorld(hinged.def, &e)) << e;
+  ASSERT_TRUE(scene.loadWorld(welded, &e)) << e;
+  ASSERT_TRUE(scene.start(&e)) << e;
+  const int p = scene.find("pendulum"), s = scene.find("sign");
+  ASSERT_GE(p, 0);
+  ASSERT_GE(s, 0);
+  const int bar = scene.findLink(p, "bar");
+  ASSERT_GE(bar, 0);
+  // Pushed sideways, the bar swings about its pivot at (0, 0, 2) instead of falling.
+  const BodyId bar_body = scene.bodies(p).bodies[size_t(bar)];
+  scene.world().applyLinearImpulseToCenter(bar_body, Vec3(20, 0, 0));
+  double worst = 0.0;
+  bool swung = false;
+  for (int i = 0; i < 2000; ++i) {
+    scene.step();
+    const Transform x = scene.world().bodyPose(bar_body);
+    worst = std::max(worst, (x.apply(Vec3(0, 0, 0.5)) - Vec3(0, 0, 2)).norm());
+    swung = swung || std::abs(x.p.x()) > 0.1;
+  }
+  EXPECT_TRUE(swung);
+  EXPECT_LT(worst, 0.005) << "the bar left its pivot";
+  const Transform sign = scene.world().bodyPose(scene.bodies(s).bodies[0]);
+  EXPECT_LT((sign.p - Vec3(3, 0, 2)).norm(), 1e-6) << "the welded sign fell";
+  EXPECT_TRUE(scene.def(s).fixed_base);
+}
+
+// A world's model is left where its author put it (as Gazebo does, and without checking
+// thousands of models against every static shape); a crate spawned at run time into a table is
+// lifted onto it, with a WARN, whatever spawn_overlap says.
+TEST(SceneObjects, WorldModelsStayWhereTheFilePutsThem) {
+  const WorldFileDef w = loadSdf(boxModelSdf("table", Vec3(0, 0, 0.4), Vec3(1, 1, 0.8), true) +
+                                 boxModelSdf("crate", Vec3(0, 0, 0.98), Vec3(0.4, 0.4, 0.4), false));
+  Recorder rec;
+  SceneDef sd;
+  sd.spawn_overlap = SpawnOverlap::Refuse;
+  Scene scene(sd, &rec);
+  std::string e;
+  ASSERT_TRUE(scene.loadWorld(w, &e)) << e;
+  ASSERT_TRUE(scene.start(&e)) << e;
+  EXPECT_NEAR(origin(scene, scene.find("crate")).z(), 0.98, 1e-9);
+  ASSERT_EQ(scene.addObject(boxObject("box", Vec3(0.2, 0.2, 0.2), 1, Vec3(0.5, 0.5, 0.9)), &e),
+            SpawnResult::Added) << e;
+  EXPECT_NEAR(origin(scene, scene.find("box")).z(), 1.0, 1e-6) << "not lifted onto the table";
+  EXPECT_NE(rec.find("spawn/lifted"), nullptr);
+}
+
+TEST(SceneObjects, WorldModelNamesBecomeSceneNames) {
+  const WorldFileDef w = loadSdf(boxModelSdf("cafe-table", Vec3(0, 0, 0.4), Vec3(1, 1, 0.8), true) +
+                                 boxModelSdf("cafe_table", Vec3(3, 0, 0.4), Vec3(1, 1, 0.8), true) +
+                                 boxModelSdf("2box", Vec3(0, 0, 2), Vec3(0.2, 0.2, 0.2), false));
+  Recorder rec;
+  Scene scene(SceneDef(), &rec);
+  std::string e;
+  ASSERT_TRUE(scene.loadWorld(w, &e)) << e;
+  ASSERT_EQ(scene.staticObjectCount(), 2u);
+  EXPECT_EQ(scene.staticObjectName(0), "cafe_table");
+  EXPECT_EQ(scene.staticObjectName(1), "cafe_table_2");
+  EXPECT_GE(scene.find("m_2box"), 0);
+  bool said = false;
+  for (const SceneMessage& m : rec.messages) said = said || m.text.find("'cafe-table'") != std::string::npos;
+  EXPECT_TRUE(said);
 }
 
 TEST(SceneObjects, NamesAreOneNamespace) {
