@@ -2,6 +2,7 @@
 // forces. The Scene holds them in a std::vector; indices shift on removal, ids do not.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -21,6 +22,9 @@ struct RagdollInstance {
   RagdollDef def;         // with the joint settings applied
   Transform spawn_pose;   // root link in the world frame (reset() goes back here)
   Ragdoll ragdoll;        // body and joint ids in the current World (new ids after a rebuild)
+  bool object = false;    // a dynamic object: no balance, no per-link material map
+  // Per link, per shape: coefficients the model file wrote itself (surfaces.hpp bits).
+  std::vector<std::vector<uint8_t>> written;
   LinkTable links;
 
   // Joint control: every joint angle (joint_states names), its motor gains and target.
