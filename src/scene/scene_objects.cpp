@@ -36,6 +36,7 @@ ModelSpawn modelSpawn(const WorldModelDef& m, const std::string& name) {
       link.has_color = true;
       link.color = wl.color;
     }
+    if (link.material.empty()) link.material = wl.visual_material;  // "Gazebo/Wood"
     link.shape_materials.resize(wl.collisions.size());
     out.written.emplace_back(wl.collisions.size(), 0);
     for (size_t c = 0; c < wl.collisions.size(); ++c) {

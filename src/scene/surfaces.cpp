@@ -51,19 +51,25 @@ std::vector<std::string> resolveSurfaces(RagdollDef* def, const SurfaceRules& ru
     std::vector<std::string> said;
     for (size_t k = 0; k < link.shapes.size(); ++k) {
       ShapeDef& shape = link.shapes[k];
-      std::string name = k < link.shape_materials.size() ? link.shape_materials[k] : "";
-      if (name.empty()) name = link.material;
-      if (name.empty() && mapped) name = *mapped;
-      bool unknown = false;
-      const int id = findMaterial(table, name, &unknown);
+      // The first name the table knows, of the shape's, the link's and the map's; a name it
+      // does not know counts as none (a "Gazebo/..." look silently).
+      const std::string* names[3] = {k < link.shape_materials.size() ? &link.shape_materials[k]
+                                                                     : nullptr,
+                                     &link.material, mapped};
+      int id = -1;
+      for (const std::string* name : names) {
+        if (!name || name->empty() || id >= 1) continue;
+        bool unknown = false;
+        id = findMaterial(table, *name, &unknown);
+        if (unknown && std::find(said.begin(), said.end(), *name) == said.end()) {
+          said.push_back(*name);
+          warnings.push_back("link '" + link.name + "' of '" + def->name + "': material '" +
+                             *name + "' is not in the material table; ignored");
+        }
+      }
       Material m = id >= 1 ? table.material(id)
                    : shape.geometry.type == ShapeType::Plane ? rules.plane_fallback
                                                              : rules.fallback;
-      if (unknown && std::find(said.begin(), said.end(), name) == said.end()) {
-        said.push_back(name);
-        warnings.push_back("link '" + link.name + "' of '" + def->name + "': material '" + name +
-                           "' is not in the material table; it gets the default surface");
-      }
       const uint8_t w = l < written.size() && k < written[l].size() ? written[l][k] : 0;
       if (w & kWrittenFriction) {
         m.static_friction = m.kinetic_friction = shape.material.static_friction;

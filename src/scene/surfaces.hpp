@@ -1,5 +1,5 @@
-// Which surface each shape of a model gets: a material named by the model (per shape, per
-// link) or by the Scene's per-link map, looked up in the material table so that its pair
+// Which surface each shape of a model gets: the first material the table knows of the names
+// given per shape, per link and by the Scene's per-link map, with its id so that its pair
 // coefficients apply; else the Scene's default surface for the model's kind. Coefficients the
 // model file wrote itself (URDF mu, SDF <surface>) win over both.
 #pragma once

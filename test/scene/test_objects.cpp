@@ -153,6 +153,46 @@ TEST(SceneObjects, WorldWithoutPlaneKeepsTheDefaultGround) {
   }
 }
 
+// Joints to the world: a hinge holds the pendulum's bar at its pivot (a static anchor carries
+// it), a weld pins its link where the file has it (a fixed base).
+TEST(SceneObjects, JointsToTheWorldHoldModels) {
+  const WorldLoadResult hinged =
+      loadWorldFile(std::string(RAGDOLL_SIM_SOURCE_DIR) + "/test/world_file/fixtures/joints.world");
+  ASSERT_TRUE(hinged.ok) << hinged.error;
+  const WorldFileDef welded = loadSdf(
+      "<model name='sign'><pose>3 0 2 0 0 0</pose><link name='board'><collision name='c'>"
+      "<geometry><box><size>0.5 0.05 0.5</size></box></geometry></collision></link>"
+      "<joint name='pin' type='fixed'><parent>world</parent><child>board</child></joint></model>");
+  SceneDef sd;
+  sd.ground = false;
+  Scene scene(sd);
+  std::string e;
+  ASSERT_TRUE(scene.loadWorld(hinged.def, &e)) << e;
+  ASSERT_TRUE(scene.loadWorld(welded, &e)) << e;
+  ASSERT_TRUE(scene.start(&e)) << e;
+  const int p = scene.find("pendulum"), s = scene.find("sign");
+  ASSERT_GE(p, 0);
+  ASSERT_GE(s, 0);
+  const int bar = scene.findLink(p, "bar");
+  ASSERT_GE(bar, 0);
+  // Pushed sideways, the bar swings about its pivot at (0, 0, 2) instead of falling.
+  const BodyId bar_body = scene.bodies(p).bodies[size_t(bar)];
+  scene.world().applyLinearImpulseToCenter(bar_body, Vec3(20, 0, 0));
+  double worst = 0.0;
+  bool swung = false;
+  for (int i = 0; i < 2000; ++i) {
+    scene.step();
+    const Transform x = scene.world().bodyPose(bar_body);
+    worst = std::max(worst, (x.apply(Vec3(0, 0, 0.5)) - Vec3(0, 0, 2)).norm());
+    swung = swung || std::abs(x.p.x()) > 0.1;
+  }
+  EXPECT_TRUE(swung);
+  EXPECT_LT(worst, 0.005) << "the bar left its pivot";
+  const Transform sign = scene.world().bodyPose(scene.bodies(s).bodies[0]);
+  EXPECT_LT((sign.p - Vec3(3, 0, 2)).norm(), 1e-6) << "the welded sign fell";
+  EXPECT_TRUE(scene.def(s).fixed_base);
+}
+
 TEST(SceneObjects, NamesAreOneNamespace) {
   Recorder rec;
   Scene scene(SceneDef(), &rec);
