@@ -38,7 +38,10 @@ bool loadStartupWorld(const NodeConfig& c, Scene* scene, std::string* error) {
     return false;
   }
   const WorldFileDef& w = r.def;
-  for (const std::string& n : w.notes) ROS_INFO("world '%s': %s", w.name.c_str(), n.c_str());
+  // The loader's own step-size note does not know the node's step: the line below replaces it.
+  for (const std::string& n : w.notes)
+    if (n.rfind("<physics><max_step_size>", 0) != 0)
+      ROS_INFO("world '%s': %s", w.name.c_str(), n.c_str());
   for (const std::string& n : w.warnings) ROS_WARN("world '%s': %s", w.name.c_str(), n.c_str());
   if (w.has_max_step_size && std::abs(w.max_step_size - scene->dt()) > 1e-12)
     ROS_INFO("world '%s': <physics><max_step_size> %g s is not obeyed; the node steps %g s "
