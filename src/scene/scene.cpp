@@ -98,8 +98,9 @@ bool Scene::Impl::spawnInWorld(RagdollInstance& r, bool may_refuse, std::string*
              std::to_string(r.def.joints.size()) + " joints";
     return false;
   }
-  // An object is lifted out of static geometry, never refused: a world's crate resting a little
-  // into its table must not fail the start.
+  if (r.from_world) return true;
+  // An object is lifted out of static geometry, never refused: a crate spawned into a table
+  // is still a crate.
   return clearStatics(r, may_refuse ? "spawn" : "reset", may_refuse && !r.object,
                       /*spawn=*/true, error);
 }

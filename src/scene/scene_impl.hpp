@@ -1,6 +1,8 @@
 // The Scene's state and its internal steps, shared by the files that implement it, one concept
 // each: scene.cpp (ragdolls and the World), scene_commands.cpp (queue and commands),
-// scene_forces.cpp (timed forces, their budgets and caps), scene_motors.cpp (targets and balance), scene_step.cpp (settings, the step, reports).
+// scene_forces.cpp (timed forces, their budgets and caps), scene_motors.cpp (targets and
+// balance), scene_step.cpp (settings, the step, reports), scene_objects.cpp (world files,
+// objects, static objects).
 #pragma once
 
 #include <cstdint>

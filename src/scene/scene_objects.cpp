@@ -190,6 +190,7 @@ bool Scene::loadWorld(const WorldFileDef& w, std::string* error) {
       ok = s.makeInstance(std::move(m.spawn), &r, &e);
       if (ok) {
         r.written = std::move(m.written);
+        r.from_world = true;
         s.resolveSurfaces(r, /*say_unknown=*/true);
         ok = s.addInstance(std::move(r), &e) == SpawnResult::Added;
       }

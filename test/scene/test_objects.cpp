@@ -132,6 +132,12 @@ TEST(SceneObjects, WorldPlaneReplacesTheDefaultGround) {
   ASSERT_TRUE(scene.reset(&e)) << e;
   EXPECT_EQ(countBodiesNamed(scene.world(), "ground"), 0);
   EXPECT_EQ(scene.ground(), scene.staticObjectBodies(0)[0]);
+  // Removing the world's ground leaves none: the default plane does not come back.
+  ASSERT_TRUE(scene.remove("slope", &e)) << e;
+  EXPECT_FALSE(scene.ground().valid());
+  ASSERT_TRUE(scene.reset(&e)) << e;
+  EXPECT_FALSE(scene.ground().valid());
+  EXPECT_EQ(countBodiesNamed(scene.world(), "ground"), 0);
 }
 
 TEST(SceneObjects, WorldWithoutPlaneKeepsTheDefaultGround) {
@@ -191,6 +197,43 @@ TEST(SceneObjects, JointsToTheWorldHoldModels) {
   const Transform sign = scene.world().bodyPose(scene.bodies(s).bodies[0]);
   EXPECT_LT((sign.p - Vec3(3, 0, 2)).norm(), 1e-6) << "the welded sign fell";
   EXPECT_TRUE(scene.def(s).fixed_base);
+}
+
+// A world's model is left where its author put it (as Gazebo does, and without checking
+// thousands of models against every static shape); a crate spawned at run time into a table is
+// lifted onto it, with a WARN, whatever spawn_overlap says.
+TEST(SceneObjects, WorldModelsStayWhereTheFilePutsThem) {
+  const WorldFileDef w = loadSdf(boxModelSdf("table", Vec3(0, 0, 0.4), Vec3(1, 1, 0.8), true) +
+                                 boxModelSdf("crate", Vec3(0, 0, 0.98), Vec3(0.4, 0.4, 0.4), false));
+  Recorder rec;
+  SceneDef sd;
+  sd.spawn_overlap = SpawnOverlap::Refuse;
+  Scene scene(sd, &rec);
+  std::string e;
+  ASSERT_TRUE(scene.loadWorld(w, &e)) << e;
+  ASSERT_TRUE(scene.start(&e)) << e;
+  EXPECT_NEAR(origin(scene, scene.find("crate")).z(), 0.98, 1e-9);
+  ASSERT_EQ(scene.addObject(boxObject("box", Vec3(0.2, 0.2, 0.2), 1, Vec3(0.5, 0.5, 0.9)), &e),
+            SpawnResult::Added) << e;
+  EXPECT_NEAR(origin(scene, scene.find("box")).z(), 1.0, 1e-6) << "not lifted onto the table";
+  EXPECT_NE(rec.find("spawn/lifted"), nullptr);
+}
+
+TEST(SceneObjects, WorldModelNamesBecomeSceneNames) {
+  const WorldFileDef w = loadSdf(boxModelSdf("cafe-table", Vec3(0, 0, 0.4), Vec3(1, 1, 0.8), true) +
+                                 boxModelSdf("cafe_table", Vec3(3, 0, 0.4), Vec3(1, 1, 0.8), true) +
+                                 boxModelSdf("2box", Vec3(0, 0, 2), Vec3(0.2, 0.2, 0.2), false));
+  Recorder rec;
+  Scene scene(SceneDef(), &rec);
+  std::string e;
+  ASSERT_TRUE(scene.loadWorld(w, &e)) << e;
+  ASSERT_EQ(scene.staticObjectCount(), 2u);
+  EXPECT_EQ(scene.staticObjectName(0), "cafe_table");
+  EXPECT_EQ(scene.staticObjectName(1), "cafe_table_2");
+  EXPECT_GE(scene.find("m_2box"), 0);
+  bool said = false;
+  for (const SceneMessage& m : rec.messages) said = said || m.text.find("'cafe-table'") != std::string::npos;
+  EXPECT_TRUE(said);
 }
 
 TEST(SceneObjects, NamesAreOneNamespace) {
