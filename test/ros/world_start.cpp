@@ -2,7 +2,8 @@
 // static box of the world lands on it (its lowest shape point stays above the box top) while the
 // world's dynamic crate falls to the default ground; B a world with its own plane (1 m below
 // z = 0) replaces the default ground; C ~world_strict with a missing include: exit 1 and one
-// FATAL naming it; without it a WARN naming it, and the INFO lines of notes and step size.
+// FATAL naming it; without it a WARN naming it, and the INFO lines of notes and step size; a
+// ~gravity set by the user wins over the world's.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -12,6 +13,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "marker_log.hpp"
 #include "node_binary.hpp"
@@ -125,13 +127,19 @@ TEST(WorldStart, C_StrictMissingInclude) {
   EXPECT_NE(out.find("no_such_model_anywhere"), std::string::npos) << out;
   EXPECT_NE(out.find("WARN"), std::string::npos) << out;
 
-  // Notes of what is not simulated and the step size, as INFO; a missing file is FATAL.
+  // Notes of what is not simulated and the step size, as INFO; a ~gravity other than the
+  // default wins over the world's; a missing file is FATAL.
+  // A list cannot be given on a command line: set before the node starts.
+  ros::param::set("/notes_node/gravity", std::vector<double>{0.0, 0.0, -1.62});
   rc = runNode("notes_node", "_world_file:=" + fixture("box_world.world"), 8, &out);
+  ros::param::del("/notes_node/gravity");
   EXPECT_EQ(rc, 124) << out;
   EXPECT_NE(out.find("max_step_size"), std::string::npos) << out;
   EXPECT_NE(out.find("0.004"), std::string::npos) << out;
   EXPECT_NE(out.find("light"), std::string::npos) << out;
   EXPECT_NE(out.find("world=box_world status=ok"), std::string::npos) << out;
+  EXPECT_NE(out.find("replaced by ~gravity"), std::string::npos) << out;
+  EXPECT_NE(out.find("gravity (0.00, 0.00, -1.62)"), std::string::npos) << out;
   rc = runNode("missing_node", "_world_file:=/nonexistent/x.world", 60, &out);
   EXPECT_EQ(rc, 1) << out;
   EXPECT_NE(out.find("/nonexistent/x.world"), std::string::npos) << out;
