@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "mesh_loader.hpp"
+#include "ragdoll_sim/material_file.hpp"
 #include "ragdoll_sim/scene.hpp"
 #include "ragdoll_sim/urdf_loader.hpp"
 #include "ragdoll_sim/world_file.hpp"
@@ -69,7 +70,8 @@ std::string packageFile(const std::string& relative, const char* argv0) {
   if (!found.empty() && fs::is_regular_file(found, ec)) return found;
   std::vector<fs::path> candidates;
   const fs::path exe = fs::canonical("/proc/self/exe", ec);
-  if (!ec) candidates.push_back(exe.parent_path().parent_path().parent_path() / "share/ragdoll_sim" / relative);
+  if (!ec)  // <prefix>/lib/ragdoll_sim/ragdoll_check
+    candidates.push_back(exe.parent_path().parent_path().parent_path() / "share/ragdoll_sim" / relative);
   if (argv0) candidates.push_back(fs::path(argv0).parent_path() / "../../share/ragdoll_sim" / relative);
 #ifdef RAGDOLL_SIM_SOURCE_DIR
   candidates.push_back(fs::path(RAGDOLL_SIM_SOURCE_DIR) / relative);
@@ -94,7 +96,8 @@ int checkWorld(const WorldCheckArgs& args, const char* argv0) {
 
   const std::string model = args.model.empty() ? packageFile("urdf/ragdoll.urdf", argv0) : args.model;
   if (model.empty()) {
-    std::fprintf(stderr, "ragdoll_check: the bundled ragdoll (urdf/ragdoll.urdf) was not found; name a URDF\n");
+    std::fprintf(stderr,
+                 "ragdoll_check: the bundled ragdoll (urdf/ragdoll.urdf) was not found; name a URDF\n");
     return 1;
   }
   const UrdfLoadResult u = loadUrdfFile(model);
@@ -107,6 +110,19 @@ int checkWorld(const WorldCheckArgs& args, const char* argv0) {
   sd.dt_ns = int64_t(std::llround(args.settings.dt * 1e9));
   sd.world.solver.substeps = args.settings.substeps;
   sd.spawn_overlap = SpawnOverlap::Lift;
+  // The node's table: the same file it loads into ~materials and ~link_materials.
+  const std::string table_file = packageFile("config/materials.yaml", argv0);
+  if (table_file.empty()) {
+    std::fprintf(stderr, "ragdoll_check: the materials table (config/materials.yaml) was not found\n");
+    return 1;
+  }
+  const MaterialFileResult table = loadMaterialFile(table_file);
+  if (!table.ok) {
+    std::fprintf(stderr, "ragdoll_check: %s\n", table.error.c_str());
+    return 1;
+  }
+  sd.world.materials = table.table;
+  sd.link_materials = table.link_materials;
   std::string error;
   StderrListener listener;
   Scene scene(sd, &listener);
