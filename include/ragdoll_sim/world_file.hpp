@@ -101,11 +101,12 @@ struct WorldLoadResult {
 WorldLoadResult loadWorldString(const std::string& xml, const WorldLoadOptions& options = {});
 WorldLoadResult loadWorldFile(const std::string& path, WorldLoadOptions options = {});
 
-// A model's links (root: the first, rest poses relative to it) and the joints between them
+// A model's links (root: the first unless welded to the world, rest poses relative to the first) and the joints between them
 // (joined pairs do not collide) as a RagdollDef: spawnRagdoll(world, def, m.links[0].pose)
-// places every link where the world file has it. A joint to the world (parent -1) on the root
-// link sets fixed_base (of any type: the root is pinned, a warning says when it was not fixed);
-// one on another link is left out with a warning (the model stays free). Links get the visual
+// places every link where the world file has it. One fixed joint to the world (parent -1)
+// makes its link the root (def.root; spawn at m.links[def.root].pose) with fixed_base; moving
+// or several joints to the world are left out with a note (Scene::loadWorld holds them by a
+// static anchor link). Links get the visual
 // colour, the visual material as LinkDef::material, each collision's material name
 // (shape_materials) and <mu>/<mu2> mean (shape_friction).
 RagdollDef modelRagdollDef(const WorldModelDef& m);

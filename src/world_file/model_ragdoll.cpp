@@ -7,26 +7,26 @@ namespace {
 
 using world_load::quote;
 
-// A joint to the world pins the model's root link (a fixed base); RagdollDef has no joints to
-// the world, so one on another link cannot be kept: rather than pin the wrong link, the model
-// stays free and a warning says how to pin it.
-void worldJoint(const WorldModelDef& m, const RagdollJointDef& j, RagdollDef* d) {
-  const std::string jn = "joint " + quote(j.name), link = quote(m.links.at(j.child).name);
-  if (j.child != 0) {
-    d->warnings.push_back(jn + " to the world holds link " + link + ", not the model's root " +
-                          quote(m.links[0].name) + ": left out, the model is free (a joint to "
-                          "the world pins the model's first link only)");
-    return;
+// One fixed joint to the world makes its link the root, pinned (a fixed base). A RagdollDef
+// has no joints to the world, so moving ones (a door's hinge) or several are left out with a
+// note: Scene::loadWorld holds them by a static anchor link.
+void worldJoints(const WorldModelDef& m, RagdollDef* d) {
+  std::vector<const RagdollJointDef*> to_world;
+  for (const RagdollJointDef& j : m.joints)
+    if (j.parent < 0) to_world.push_back(&j);
+  for (const RagdollJointDef* j : to_world) {
+    const std::string jn = "joint " + quote(j->name), link = quote(m.links.at(j->child).name);
+    if (to_world.size() == 1 && j->kind == RagdollJointKind::Fixed) {
+      d->root = j->child;
+      d->fixed_base = true;
+      d->notes.push_back(jn + " to the world pins link " + link + ": the root, a fixed base "
+                         "(spawn it at that link's pose)");
+    } else {
+      d->notes.push_back(jn + " to the world pins link " + link + " by a " + jointKindName(j->kind) +
+                         " joint: not part of the RagdollDef (Scene::loadWorld holds it by a "
+                         "static anchor)");
+    }
   }
-  if (d->fixed_base) {
-    d->notes.push_back(jn + " to the world holds the pinned root " + link + " again");
-    return;
-  }
-  d->fixed_base = true;
-  d->notes.push_back(jn + " to the world pins link " + link + ", the model's root (a fixed base)");
-  if (j.kind != RagdollJointKind::Fixed)
-    d->warnings.push_back(jn + ": a " + jointKindName(j.kind) + " joint to the world holds as a fixed "
-                          "one (the root link is pinned and does not move)");
 }
 
 }  // namespace
@@ -58,11 +58,9 @@ RagdollDef modelRagdollDef(const WorldModelDef& m) {
     if (!own_materials) link.shape_materials.clear();
     d.links.push_back(std::move(link));
   }
+  worldJoints(m, &d);
   for (const RagdollJointDef& j : m.joints) {
-    if (j.parent < 0) {
-      worldJoint(m, j, &d);
-      continue;
-    }
+    if (j.parent < 0) continue;
     d.joints.push_back(j);
     d.no_collide.emplace_back(j.parent, j.child);
   }

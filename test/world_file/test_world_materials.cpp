@@ -1,6 +1,6 @@
 // Material names, colours and fixed bases from SDF: <surface><ragdoll_sim:material>, else the
 // link's visual script name as written; modelRagdollDef carries them (with <mu>/<mu2>) onto
-// LinkDef, and a joint to the world on the root link pins it.
+// LinkDef, and a weld to the world makes its link the pinned root.
 #include "world_test_util.hpp"
 
 using namespace ragdoll_sim;
@@ -131,20 +131,27 @@ TEST(WorldMaterials, ModelRagdollDefCarriesMaterialsColoursFriction) {
   EXPECT_FALSE(post.links[0].has_color);
 }
 
-TEST(WorldMaterials, JointToTheWorldOnTheRootPinsIt) {
+TEST(WorldMaterials, WeldToTheWorldPinsItsLink) {
   const WorldLoadResult r = loadWorldString(kWorld);
   ASSERT_TRUE(r.ok) << r.error;
   const RagdollDef post = modelRagdollDef(*model(r.def, "post"));
   EXPECT_TRUE(post.fixed_base);
+  EXPECT_EQ(post.root, 0);
   EXPECT_EQ(post.joints.size(), 1u);  // the swivel; the bolt is the fixed base
-  EXPECT_TRUE(contains(post.notes, "joint 'bolt' to the world pins link 'base'"));
-  EXPECT_TRUE(post.warnings.empty());
-  // A hinge to the world: pinned all the same, and said so.
+  EXPECT_TRUE(contains(post.notes, "joint 'bolt' to the world pins link 'base': the root"));
+  // Welded on its second link: that link is the root, and the model spawns where the file has it.
+  const WorldModelDef* lamp_model = model(r.def, "lamp");
+  const RagdollDef lamp = modelRagdollDef(*lamp_model);
+  EXPECT_TRUE(lamp.fixed_base);
+  ASSERT_EQ(lamp.root, 1);
+  EXPECT_EQ(lamp.links[1].name, "stand");
+  World world;
+  const Ragdoll rd = spawnRagdoll(world, lamp, lamp_model->links[1].pose);
+  for (size_t k = 0; k < 2; ++k)
+    EXPECT_TRUE(world.bodyState(rd.bodies[k]).pose.p.isApprox(lamp_model->links[k].pose.p, 1e-9)) << k;
+  // A hinge to the world (a door) is not a fixed base: left out, with a note.
   const RagdollDef door = modelRagdollDef(*model(r.def, "door"));
-  EXPECT_TRUE(door.fixed_base);
-  EXPECT_TRUE(contains(door.warnings, "joint 'hinge': a hinge joint to the world holds as a fixed one"));
-  // On a link that is not the root: left out, the model stays free, a warning says why.
-  const RagdollDef lamp = modelRagdollDef(*model(r.def, "lamp"));
-  EXPECT_FALSE(lamp.fixed_base);
-  EXPECT_TRUE(contains(lamp.warnings, "joint 'screw' to the world holds link 'stand', not the model's root 'shade'"));
+  EXPECT_FALSE(door.fixed_base);
+  EXPECT_TRUE(door.joints.empty());
+  EXPECT_TRUE(contains(door.notes, "joint 'hinge' to the world pins link 'leaf' by a hinge joint: not part"));
 }
