@@ -75,7 +75,7 @@ std::string loadSdfModel(tinyxml2::XMLElement* root, const std::string& base_dir
   out->format = "SDF";
   out->def = modelRagdollDef(m);
   out->def.name = m.file_name;
-  out->root_in_model = m.links[0].pose;
+  out->root_in_model = m.links[static_cast<size_t>(out->def.root)].pose;
   bool all_static = true;
   for (size_t i = 0; i < m.links.size(); ++i) {
     const WorldLinkDef& l = m.links[i];
@@ -89,7 +89,7 @@ std::string loadSdfModel(tinyxml2::XMLElement* root, const std::string& base_dir
       for (const WorldCollisionDef& c : l.collisions) d.shape_materials.push_back(c.material);
   }
   out->is_static = m.is_static || all_static;
-  for (const RagdollJointDef& j : m.joints) out->fixed_base = out->fixed_base || j.parent < 0;
+  out->fixed_base = out->def.fixed_base;  // a weld to the world (modelRagdollDef's rule)
   for (const std::string& n : r.def.notes) out->def.notes.push_back(n);
   for (const std::string& w : r.def.warnings) out->def.warnings.push_back(w);
   return "";

@@ -35,7 +35,7 @@ struct LoadedModel {
   RagdollDef def;
   Transform root_in_model;      // SDF: the root link in the frame the spawn pose places; URDF: identity
   bool is_static = false;       // SDF <static>
-  bool fixed_base = false;      // a joint to the world (SDF) or a URDF root link `world`
+  bool fixed_base = false;      // a weld to the world (SDF) or a URDF root link `world`
 };
 
 // `xml` read from `file` ("" = given as text; relative URIs and mesh paths from its folder).

@@ -4,7 +4,7 @@
 // objects (gone from ~link_states and ~markers; what stood on them falls), D ~spawn_model from SDF
 // text, E from a URDF file with and without fixed_base, F ~spawn fixed_base, G bad input refused
 // with a message naming it, nothing added, sim time still advancing; H a material name takes
-// effect.
+// effect; I an SDF model welded to the world is pinned.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -434,6 +434,25 @@ TEST(Objects, G_BadInputRefused) {
   std::lock_guard<std::mutex> lock(fx->mutex);
   EXPECT_EQ(fx->link_states.ragdoll.size(), entries);
   EXPECT_FALSE(fx->hasObjectInLinkStates("bad"));
+}
+
+TEST(Objects, I_SpawnModelSdfWeldedToWorld) {
+  // A fixed joint to the world pins the welded link (the root) where the model puts it.
+  std::string xml = kSdfBox;
+  xml.replace(xml.rfind("</model>"), 0,
+              "<joint name='weld' type='fixed'><parent>world</parent><child>l</child></joint>");
+  ragdoll_sim::SpawnModel::Request req;
+  req.name = "welded";
+  req.model_xml = xml;
+  req.pose = poseAt(Vec3(16, 0, 2));
+  const auto r = spawnModel(req);
+  ASSERT_TRUE(r.success) << r.message;
+  EXPECT_NE(r.message.find("fixed-base"), std::string::npos) << r.message;
+  ASSERT_TRUE(fx->sim.step(300).success);
+  const auto s = fx->sim.link("welded", "l");
+  ASSERT_TRUE(s.success) << s.message;
+  EXPECT_LT((position(s) - Vec3(16, 0, 2)).norm(), 1e-6);
+  EXPECT_TRUE(del("welded").success);
 }
 
 TEST(Objects, H_MaterialTakesEffect) {
