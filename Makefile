@@ -30,8 +30,9 @@ deps:
 build:
 	@scripts/build.sh
 
+# WORLD=stairs (a shipped world by name) or WORLD=path/to/file.world
 run: deps build
-	@scripts/run.sh
+	@WORLD="$(WORLD)" scripts/run.sh
 
 test: deps build
 	@scripts/test.sh

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Starts roscore if no master is running, then the simulator (with rviz when $DISPLAY is set).
+# WORLD=NAME (a shipped world: launch/NAME.launch when there is one, e.g. stairs, else sim.launch
+# world:=NAME) or WORLD=PATH (an SDF world file, made absolute) loads a world.
 set -eo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
 source "$WS/devel/setup.bash"
@@ -35,4 +37,13 @@ fi
 
 RVIZ=false
 if [[ -n "${DISPLAY:-}" ]]; then RVIZ=true; fi
-roslaunch ragdoll_sim sim.launch rviz:=$RVIZ "$@"
+WORLD="${WORLD:-}"
+if [[ -z "$WORLD" ]]; then
+  roslaunch ragdoll_sim sim.launch rviz:=$RVIZ "$@"
+elif [[ "$WORLD" != */* && -f "$ROOT/launch/$WORLD.launch" ]]; then
+  roslaunch ragdoll_sim "$WORLD.launch" rviz:=$RVIZ "$@"
+elif [[ "$WORLD" == */* ]]; then
+  roslaunch ragdoll_sim sim.launch rviz:=$RVIZ world:="$(realpath -m "$WORLD")" "$@"
+else
+  roslaunch ragdoll_sim sim.launch rviz:=$RVIZ world:="$WORLD" "$@"
+fi

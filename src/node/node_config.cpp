@@ -277,6 +277,14 @@ bool loadNodeConfig(const ros::NodeHandle& node, NodeConfig* c, std::string* err
             read(pnh, "spawn/roll", "a number (rad)", &c->spawn.roll, error) &&
             read(pnh, "spawn/pitch", "a number (rad)", &c->spawn.pitch, error) &&
             read(pnh, "spawn/yaw", "a number (rad)", &c->spawn.yaw, error) &&
+            read(pnh, "spawn/vx", "a number (m/s)", &c->spawn.vx, error) &&
+            read(pnh, "spawn/vy", "a number (m/s)", &c->spawn.vy, error) &&
+            read(pnh, "spawn/vz", "a number (m/s)", &c->spawn.vz, error) &&
+            read(pnh, "spawn/wx", "a number (rad/s)", &c->spawn.wx, error) &&
+            read(pnh, "spawn/wy", "a number (rad/s)", &c->spawn.wy, error) &&
+            read(pnh, "spawn/wz", "a number (rad/s)", &c->spawn.wz, error) &&
+            read(pnh, "world_file", "a string (path)", &c->world_file, error) &&
+            read(pnh, "world_strict", "a bool", &c->world_strict, error) &&
             read(pnh, "static_friction", "a number", &c->scene.material.static_friction, error) &&
             read(pnh, "kinetic_friction", "a number", &c->scene.material.kinetic_friction, error) &&
             read(pnh, "restitution", "a number", &c->scene.material.restitution, error) &&
@@ -358,6 +366,14 @@ std::string validateNodeConfig(const NodeConfig& c) {
   const SpawnPose& s = c.spawn;
   for (double v : {s.x, s.y, s.z, s.roll, s.pitch, s.yaw})
     if (!std::isfinite(v)) return "parameters ~spawn/{x,y,z,roll,pitch,yaw} must be finite";
+  const Vec3 v = c.spawnLinearVelocity(), w = c.spawnAngularVelocity();
+  const SolverSettings& solver = c.scene.world.solver;
+  if (!v.allFinite() || v.norm() > solver.max_linear_speed)
+    return "parameters ~spawn/{vx,vy,vz} must be finite with |v| <= ~max_linear_speed = " +
+           std::to_string(solver.max_linear_speed) + " m/s, got |v| = " + std::to_string(v.norm());
+  if (!w.allFinite() || w.norm() > solver.max_angular_speed)
+    return "parameters ~spawn/{wx,wy,wz} must be finite with |w| <= ~max_angular_speed = " +
+           std::to_string(solver.max_angular_speed) + " rad/s, got |w| = " + std::to_string(w.norm());
   if (!(e = param(materialError(c.scene.material))).empty()) return e;
   if (c.world_frame.empty()) return "parameter ~world_frame must not be empty";
   for (const auto& [name, v] :

@@ -23,6 +23,9 @@ namespace node {
 struct SpawnPose {
   double x = 0.0, y = 0.0, z = 1.1;  // root link origin, m (z = 1.1: feet ~0.1 m above ground)
   double roll = 0.0, pitch = 0.0, yaw = 0.0;  // rad
+  // Initial velocity of every link (a push at start-up, world axes): m/s and rad/s.
+  double vx = 0.0, vy = 0.0, vz = 0.0;
+  double wx = 0.0, wy = 0.0, wz = 0.0;
 };
 
 // The Scene's settings (SceneDef: the World's, the surfaces, command limits, motors, joints,
@@ -36,6 +39,8 @@ struct NodeConfig {
   SpawnPose spawn;
   bool paused = false;
   bool balance = false;                // ~balance/enabled: the launch-time ragdoll balances
+  std::string world_file;              // Gazebo SDF world loaded at start-up; "" = none
+  bool world_strict = false;           // an unresolved <include> in it is an error
   std::string urdf_file;               // "" -> URDF text from the robot_description param
   std::string ragdoll_name;            // launch-time ragdoll; "" = the URDF's robot name
   std::string tf_prefix;               // its TF prefix; "" = bare link names
@@ -55,6 +60,8 @@ struct NodeConfig {
   std::vector<std::string> differing_from_defaults;
 
   Transform spawnTransform() const;
+  Vec3 spawnLinearVelocity() const { return Vec3(spawn.vx, spawn.vy, spawn.vz); }
+  Vec3 spawnAngularVelocity() const { return Vec3(spawn.wx, spawn.wy, spawn.wz); }
 };
 
 // Reads every parameter (defaults above for the missing ones). Returns false and sets *error

@@ -15,7 +15,7 @@ void NodeContext::stepOnce() {
 void NodeContext::structureChanged() {
   publishers->rebuild();
   const std::vector<scene::RagdollView> views = publishers->views();
-  visualizer->setScene(scene->world(), views, scene->ground());
+  visualizer->setScene(scene->world(), views, scene->ground(), publishers->objectViews());
   interaction->setScene(&scene->world(), views);
 }
 

@@ -37,11 +37,43 @@ std::vector<scene::RagdollView> Publishers::views() const {
   std::vector<scene::RagdollView> views;
   const Scene& s = *ctx_.scene;
   for (size_t k = 0; k < ragdolls_.size(); ++k)
-    views.push_back({ragdolls_[k].name, ragdolls_[k].tf_prefix, &s.def(int(k)), &s.bodies(int(k))});
+    if (!ragdolls_[k].object)
+      views.push_back({ragdolls_[k].name, ragdolls_[k].tf_prefix, &s.def(int(k)), &s.bodies(int(k))});
+  return views;
+}
+
+std::vector<ObjectView> Publishers::objectViews() const {
+  std::vector<ObjectView> views;
+  const Scene& s = *ctx_.scene;
+  for (size_t k = 0; k < ragdolls_.size(); ++k)
+    if (ragdolls_[k].object)
+      views.push_back({ragdolls_[k].name, &s.def(int(k)), s.bodies(int(k)).bodies, false});
+  for (size_t i = 0; i < s.staticObjectCount(); ++i)
+    views.push_back({s.staticObjectName(int(i)), &s.staticObjectDef(int(i)),
+                     s.staticObjectBodies(int(i)), true});
   return views;
 }
 
 void Publishers::rebuild() {
+  // Entries in the Scene's order: ragdolls keep theirs, dynamic objects get one.
+  const Scene& s = *ctx_.scene;
+  std::vector<RagdollTopics> synced;
+  for (size_t k = 0; k < s.ragdollCount(); ++k) {
+    const std::string& name = s.name(static_cast<int>(k));
+    auto it = std::find_if(ragdolls_.begin(), ragdolls_.end(),
+                           [&](const RagdollTopics& r) { return r.name == name; });
+    if (it != ragdolls_.end()) {
+      synced.push_back(std::move(*it));
+      ragdolls_.erase(it);
+    } else {
+      RagdollTopics r;
+      r.name = name;
+      r.tf_prefix = name;
+      r.object = true;
+      synced.push_back(std::move(r));
+    }
+  }
+  ragdolls_ = std::move(synced);
   for (size_t k = 0; k < ragdolls_.size(); ++k) {
     buildTf(ragdolls_[k], static_cast<int>(k));
     buildJointState(ragdolls_[k], static_cast<int>(k));
@@ -166,6 +198,7 @@ void Publishers::publishJointStates(const ros::Time& stamp) {
   const World& world = ctx_.scene->world();
   const int64_t sim_ns = ctx_.scene->timeNs();
   for (RagdollTopics& r : ragdolls_) {
+    if (r.object) continue;  // objects have no joint_states topic
     std::vector<double>& q = r.joint_state.position;
     for (const RagdollTopics::JointSource& s : r.joint_sources) {
       const size_t i = static_cast<size_t>(s.first);

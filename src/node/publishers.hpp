@@ -15,6 +15,7 @@
 #include "ragdoll_sim/LinkStates.h"
 #include "ragdoll_sim/scene.hpp"
 #include "ragdoll_view.hpp"
+#include "visualization.hpp"
 
 namespace ragdoll_sim {
 namespace node {
@@ -26,6 +27,7 @@ struct RagdollTopics {
   std::string name;
   std::string tf_prefix;  // TF frames are "<tf_prefix>/<link>"; "" = the bare URDF link names
   bool spawned = false;   // by ~spawn (it owns the parameter <name>/robot_description)
+  bool object = false;    // a dynamic object (Scene::isObject): TF and link_states, no joint_states
   // joint_states: `joint_states` (launch-time ragdoll) or `<name>/joint_states`.
   ros::Publisher joint_states_pub;
   sensor_msgs::JointState joint_state;
@@ -57,9 +59,14 @@ class Publishers {
   void addRagdoll(RagdollTopics topics);
   RagdollTopics removeRagdoll(const std::string& name);
   const std::vector<RagdollTopics>& ragdolls() const { return ragdolls_; }
-  // Buffers for the Scene's current ragdolls and World (after a spawn, removal or rebuild).
+  // Buffers for the Scene's current ragdolls, dynamic objects and World (after a spawn, removal
+  // or rebuild): the entries follow the Scene's order; a dynamic object without one gets TF
+  // prefix <name>.
   void rebuild();
-  std::vector<scene::RagdollView> views() const;  // for the Visualizer and the Interaction
+  // Ragdolls only (objects are left out), for the Interaction and the Visualizer's palette.
+  std::vector<scene::RagdollView> views() const;
+  // Dynamic and static objects, for the Visualizer.
+  std::vector<ObjectView> objectViews() const;
   void deleteAllMarkers() { markers_delete_all_ = true; }
 
   void publish();  // TF, joint_states, link_states when sim time advanced; markers, stats

@@ -4,54 +4,13 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "msg_checks.hpp"
 #include "msg_convert.hpp"
 #include "node_context.hpp"
 #include "ragdoll_sim/urdf_loader.hpp"
 
 namespace ragdoll_sim {
 namespace node {
-
-namespace {
-
-// How far a quaternion's length may be from 1 and still be taken (normalized): hand-typed
-// values rounded to 3 digits, e.g. (0.707, 0, 0, 0.707), pass; a rotation vector or a
-// half-filled message does not.
-constexpr double kUnitQuatTolerance = 0.01;
-
-// A pose from a message, or "" and the error naming the problem (*problem: its throttle key):
-// position finite and within max_position of the origin; orientation finite and a unit
-// quaternion within kUnitQuatTolerance (normalized then), or all zeros, which means identity
-// (an unset Pose, e.g. rosservice call without an orientation).
-std::string poseFromMsg(const geometry_msgs::Pose& m, double max_position, Transform* t,
-                        std::string* problem) {
-  const Vec3 p(m.position.x, m.position.y, m.position.z);
-  Quat q(m.orientation.w, m.orientation.x, m.orientation.y, m.orientation.z);
-  std::ostringstream e;
-  const double n = q.norm();
-  if (!p.allFinite()) {
-    *problem = "position not finite";
-    e << "the position (" << p.x() << ", " << p.y() << ", " << p.z() << ") is not finite";
-  } else if (p.norm() > max_position) {
-    *problem = "position above cap";
-    e << "the position (" << p.x() << ", " << p.y() << ", " << p.z() << ") is " << p.norm()
-      << " m from the origin, more than ~max_position = " << max_position << " m";
-  } else if (!q.coeffs().allFinite()) {
-    *problem = "orientation not finite";
-    e << "the orientation is not finite";
-  } else if (n == 0.0) {
-    q = Quat::Identity();
-  } else if (std::abs(n - 1.0) > kUnitQuatTolerance) {
-    *problem = "orientation not unit";
-    e << "the orientation (w " << q.w() << ", x " << q.x() << ", y " << q.y() << ", z " << q.z()
-      << ") has length " << n << ", not a unit quaternion (within " << kUnitQuatTolerance
-      << "; all zeros = identity)";
-  }
-  if (!e.str().empty()) return e.str();
-  *t = Transform(p, q.normalized());
-  return "";
-}
-
-}  // namespace
 
 Services::Services(NodeContext& ctx) : ctx_(ctx) {
   ros::NodeHandle& pnh = ctx_.pnh;
@@ -163,6 +122,7 @@ bool Services::onSpawn(ragdoll_sim::SpawnRagdoll::Request& req,
 
   spawn.name = req.name;
   spawn.def = std::move(loaded.def);
+  spawn.fixed_base = req.fixed_base || spawn.def.fixed_base;
   const Vec3 at = spawn.pose.p;
   const SpawnResult added = scene.addRagdoll(std::move(spawn), &e);
   if (added == SpawnResult::WorldRefused) ctx_.structureChanged();  // the World was rebuilt
@@ -199,24 +159,32 @@ bool Services::onSpawn(ragdoll_sim::SpawnRagdoll::Request& req,
 bool Services::onDelete(ragdoll_sim::DeleteRagdoll::Request& req,
                         ragdoll_sim::DeleteRagdoll::Response& res) {
   Scene& scene = *ctx_.scene;
-  if (req.name.empty() || scene.find(req.name) < 0)
-    return refuse(res, "delete/unknown ragdoll",
-                  "delete rejected: no ragdoll named " + scene::quoted(req.name));
+  const int k = req.name.empty() ? -1 : scene.find(req.name);
+  std::string kind = k < 0 ? "" : scene.isObject(k) ? "object" : "ragdoll";
+  for (size_t i = 0; kind.empty() && i < scene.staticObjectCount(); ++i)
+    if (scene.staticObjectName(static_cast<int>(i)) == req.name) kind = "static object";
+  if (kind.empty())
+    return refuse(res, "delete/unknown name",
+                  "delete rejected: no ragdoll named " + scene::quoted(req.name) +
+                      " and no object of that name");
   std::string e;
-  const bool removed = scene.removeRagdoll(req.name, &e);
+  const bool removed = scene.remove(req.name, &e);
   const RagdollTopics topics = ctx_.publishers->removeRagdoll(req.name);
   if (!removed) {
     res.success = false;
     res.message = "delete: " + e;
     ROS_ERROR("%s", res.message.c_str());
+    ctx_.structureChanged();
     return true;
   }
   if (topics.spawned) ctx_.spawned_params->remove(req.name);
   ctx_.publishers->deleteAllMarkers();
   ctx_.structureChanged();
   res.success = true;
-  res.message = "deleted '" + req.name + "' at sim time " + std::to_string(scene.time()) + " s; " +
-                std::to_string(scene.ragdollCount()) + " ragdoll(s) left";
+  res.message = "deleted " + kind + " '" + req.name + "' at sim time " +
+                std::to_string(scene.time()) + " s; " + std::to_string(scene.ragdollCount()) +
+                " ragdoll(s) and dynamic object(s), " + std::to_string(scene.staticObjectCount()) +
+                " static object(s) left";
   ROS_INFO("%s", res.message.c_str());
   return true;
 }
@@ -234,20 +202,12 @@ bool Services::onSetState(ragdoll_sim::SetRagdollState::Request& req,
   const std::string e = poseFromMsg(req.pose, c.max_position, &target, &problem);
   if (!e.empty())
     return refuse(res, "set_ragdoll_state/" + problem, "set_ragdoll_state rejected: " + e);
-  const Vec3 v(req.twist.linear.x, req.twist.linear.y, req.twist.linear.z);
-  const Vec3 w(req.twist.angular.x, req.twist.angular.y, req.twist.angular.z);
-  if (!v.allFinite() || !w.allFinite())
-    return refuse(res, "set_ragdoll_state/bad twist",
-                  "set_ragdoll_state rejected: the twist is not finite");
-  const double max_v = scene.def().world.solver.max_linear_speed;
-  const double max_w = scene.def().world.solver.max_angular_speed;
-  if (v.norm() > max_v || w.norm() > max_w) {
-    std::ostringstream m;
-    m << "set_ragdoll_state rejected: |linear| = " << v.norm() << " m/s or |angular| = "
-      << w.norm() << " rad/s exceeds ~max_linear_speed = " << max_v
-      << " m/s / ~max_angular_speed = " << max_w << " rad/s";
-    return refuse(res, "set_ragdoll_state/twist above cap", m.str());
-  }
+  Vec3 v, w;
+  const std::string te =
+      twistFromMsg(req.twist, scene.def().world.solver.max_linear_speed,
+                   scene.def().world.solver.max_angular_speed, &v, &w, &problem);
+  if (!te.empty())
+    return refuse(res, "set_ragdoll_state/" + problem, "set_ragdoll_state rejected: " + te);
   scene.setRagdollState(k, target, v, w);
   res.success = true;
   res.message = "moved '" + scene.name(k) + "'";

@@ -7,9 +7,24 @@
 
 #include "names.hpp"
 #include "ragdoll_sim/urdf_loader.hpp"
+#include "world_startup.hpp"
 
 namespace ragdoll_sim {
 namespace node {
+
+namespace {
+
+// The start-up line's ground: the default plane, a world's plane, or none.
+std::string groundText(const Scene& scene) {
+  std::string objects;
+  if (scene.staticObjectCount() > 0)
+    objects = ", " + std::to_string(scene.staticObjectCount()) + " static object(s)";
+  const BodyId g = scene.ground();
+  if (!g.valid() || !scene.world().isValid(g)) return objects + ", no ground plane";
+  return objects + ", ground plane";
+}
+
+}  // namespace
 
 SimNode::SimNode(const ros::NodeHandle& nh, const ros::NodeHandle& pnh) : ctx_(nh, pnh) {}
 
@@ -66,15 +81,22 @@ bool SimNode::init(std::string* error) {
   ctx_.scene = std::make_unique<Scene>(config.scene, &ctx_.log);
   RagdollTopics first;
   first.name = spawn.name;
+  const std::string first_name = spawn.name;
   first.tf_prefix = config.tf_prefix;
   if (ctx_.scene->addRagdoll(std::move(spawn), error) != SpawnResult::Added) {
     *error = "the URDF from " + source + ": " + *error;
     return false;
   }
   first.joint_states_pub = ctx_.nh.advertise<sensor_msgs::JointState>("joint_states", 10);
+  if (!loadStartupWorld(config, ctx_.scene.get(), error)) return false;
   ctx_.paused = config.paused;
   if (!ctx_.clock.init(ctx_.pnh, error)) return false;
   if (!ctx_.scene->start(error)) return false;
+  const Vec3 v0 = config.spawnLinearVelocity(), w0 = config.spawnAngularVelocity();
+  if (v0.squaredNorm() > 0 || w0.squaredNorm() > 0) {  // ~spawn/v*, ~spawn/w*: a push at start
+    const int k = ctx_.scene->find(first.name);
+    ctx_.scene->setRagdollState(k, ctx_.scene->spawnPose(k), v0, w0);
+  }
 
   // --- ROS interface ---
   ctx_.publishers = std::make_unique<Publishers>(ctx_);
@@ -91,12 +113,14 @@ bool SimNode::init(std::string* error) {
   topics_ = std::make_unique<CommandTopics>(ctx_);
   ctx_.steps = std::make_unique<StepService>(ctx_);
   services_ = std::make_unique<Services>(ctx_);
+  object_services_ = std::make_unique<ObjectServices>(ctx_);
   reconfigure_ = std::make_unique<Reconfigure>(ctx_);
   services_->advertiseStep();  // last: tests take it as "the node is up"
 
   const Scene& scene = *ctx_.scene;
-  const RagdollDef& def = scene.def(0);
-  const std::string& prefix = ctx_.publishers->ragdolls().front().tf_prefix;
+  const int first_k = scene.find(first_name);
+  const RagdollDef& def = scene.def(first_k);
+  const std::string& prefix = ctx_.publishers->ragdolls().at(static_cast<size_t>(first_k)).tf_prefix;
   const Vec3 at = config.spawnTransform().p;
   const Vec3& g = scene.def().world.gravity;
   const auto threadsText = [](int n) {
@@ -106,13 +130,13 @@ bool SimNode::init(std::string* error) {
   ROS_INFO("ragdoll_sim: '%s' (%zu links, %zu joints, %.2f kg%s%s) at (%.2f, %.2f, %.2f), "
            "physics %.0f Hz x %d substeps on %s, real-time factor %g%s, publish %.0f Hz, "
            "gravity (%.2f, %.2f, %.2f)%s%s%s%s",
-           scene.name(0).c_str(), def.links.size(), def.joints.size(), def.totalMass(),
+           scene.name(first_k).c_str(), def.links.size(), def.joints.size(), def.totalMass(),
            prefix.empty() ? "" : ", TF prefix ", prefix.c_str(), at.x(), at.y(), at.z(),
            config.physics_rate, scene.def().world.solver.substeps,
            threadsText(scene.world().def().threads).c_str(),  // as the World took it
            config.real_time_factor, ctx_.pacer.asFastAsPossible() ? " (as fast as possible)" : "",
-           config.publish_rate, g.x(), g.y(), g.z(), scene.def().ground ? ", ground plane z=0" : "",
-           ctx_.paused ? ", PAUSED" : "", scene.balanceOn(0) ? ", balance ON" : "",
+           config.publish_rate, g.x(), g.y(), g.z(), groundText(scene).c_str(),
+           ctx_.paused ? ", PAUSED" : "", scene.balanceOn(first_k) ? ", balance ON" : "",
            ctx_.clock.simTime()
                ? (ctx_.clock.publishing() ? ", /use_sim_time: publishing /clock" : ", /use_sim_time")
                : "");

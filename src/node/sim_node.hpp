@@ -12,6 +12,7 @@
 
 #include "command_topics.hpp"
 #include "node_context.hpp"
+#include "object_services.hpp"
 #include "reconfigure.hpp"
 #include "services.hpp"
 
@@ -41,6 +42,7 @@ class SimNode {
   NodeContext ctx_;
   std::unique_ptr<CommandTopics> topics_;
   std::unique_ptr<Services> services_;
+  std::unique_ptr<ObjectServices> object_services_;
   std::unique_ptr<Reconfigure> reconfigure_;
 };
 

@@ -60,6 +60,20 @@ Rgba ragdollColor(size_t i) {
              0.95 - 0.15 * static_cast<double>(i % 3));
 }
 
+Rgba objectColor(const LinkDef& link, bool is_static) {
+  // Neutral grey apart from the palette hues; static geometry at 60 % brightness.
+  Rgba c{0.62f, 0.62f, 0.62f, 1.0f};
+  if (link.has_color)
+    c = {float(link.color[0]), float(link.color[1]), float(link.color[2]),
+         float(link.color[3] > 0 ? link.color[3] : 1.0)};
+  if (is_static) {
+    c.r *= 0.6f;
+    c.g *= 0.6f;
+    c.b *= 0.6f;
+  }
+  return c;
+}
+
 Rgba impulseArrowColor() { return {1.0f, 0.15f, 0.15f, 1.0f}; }
 Rgba forceArrowColor() { return {1.0f, 0.9f, 0.1f, 1.0f}; }
 Rgba contactColor() { return {0.95f, 0.95f, 0.95f, 1.0f}; }
@@ -92,8 +106,65 @@ Marker& Visualizer::addShapeMarker(const std::string& ns, int id, BodyId body,
   return out_.markers.back();
 }
 
+namespace {
+
+// A plane as a thin 20 m x 20 m slab whose top face is the plane (planes are unbounded).
+Transform planeSlab(const Geometry& g, double thickness) {
+  const Vec3 n = g.normal.normalized();
+  return Transform(n * (g.offset - 0.5 * thickness), Quat::FromTwoVectors(Vec3::UnitZ(), n));
+}
+
+constexpr double kSlabThickness = 0.02;  // m
+constexpr double kSlabSize = 20.0;       // m
+
+}  // namespace
+
+void Visualizer::addBodyMarkers(const World& world, const std::string& ns, int* id, BodyId body,
+                                const Rgba& c) {
+  if (!world.isValid(body)) return;
+  for (const ShapeDef& s : world.bodyShapes(body)) {
+    const Geometry& g = s.geometry;
+    switch (g.type) {
+      case ShapeType::Sphere:
+        addShapeMarker(ns, (*id)++, body, s.local, Marker::SPHERE, Vec3::Constant(2 * g.radius), c);
+        break;
+      case ShapeType::Box:
+        addShapeMarker(ns, (*id)++, body, s.local, Marker::CUBE, 2 * g.half_extents, c);
+        break;
+      case ShapeType::Cylinder:
+        addShapeMarker(ns, (*id)++, body, s.local, Marker::CYLINDER,
+                       Vec3(2 * g.radius, 2 * g.radius, 2 * g.half_height), c);
+        break;
+      case ShapeType::Capsule: {  // a cylinder and two spheres
+        addShapeMarker(ns, (*id)++, body, s.local, Marker::CYLINDER,
+                       Vec3(2 * g.radius, 2 * g.radius, 2 * g.half_height), c);
+        for (double sign : {1.0, -1.0}) {
+          const Transform cap =
+              s.local * Transform(Vec3(0, 0, sign * g.half_height), Quat::Identity());
+          addShapeMarker(ns, (*id)++, body, cap, Marker::SPHERE, Vec3::Constant(2 * g.radius), c);
+        }
+        break;
+      }
+      case ShapeType::ConvexHull: {
+        if (!g.hull) break;
+        Marker& m =
+            addShapeMarker(ns, (*id)++, body, s.local, Marker::TRIANGLE_LIST, Vec3::Ones(), c);
+        for (const HullData::Face& f : g.hull->faces)
+          for (size_t k = 1; k + 1 < f.verts.size(); ++k)
+            for (int v : {f.verts[0], f.verts[k], f.verts[k + 1]})
+              m.points.push_back(toPoint(g.hull->vertices[static_cast<size_t>(v)]));
+        break;
+      }
+      case ShapeType::Plane:
+        addShapeMarker(ns, (*id)++, body, s.local * planeSlab(g, kSlabThickness), Marker::CUBE,
+                       Vec3(kSlabSize, kSlabSize, kSlabThickness), c);
+        break;
+    }
+  }
+}
+
 void Visualizer::setScene(const World& world, const std::vector<RagdollView>& ragdolls,
-                          BodyId ground) {
+                          BodyId ground, const std::vector<ObjectView>& objects) {
   out_.markers.clear();
   sources_.clear();
   for (const Arrow& a : arrows_) deleted_.push_back(a.id);
@@ -101,60 +172,27 @@ void Visualizer::setScene(const World& world, const std::vector<RagdollView>& ra
 
   for (size_t r = 0; r < ragdolls.size(); ++r) {
     if (!ragdolls[r].ragdoll) continue;
-    const std::string& ns = ragdolls[r].name;
-    const Rgba c = ragdollColor(r);
     int id = 0;
     for (const BodyId body : ragdolls[r].ragdoll->bodies) {
       if (!world.isValid(body)) continue;
-      for (const ShapeDef& s : world.bodyShapes(body)) {
-        const Geometry& g = s.geometry;
-        switch (g.type) {
-          case ShapeType::Sphere:
-            addShapeMarker(ns, id++, body, s.local, Marker::SPHERE, Vec3::Constant(2 * g.radius), c);
-            break;
-          case ShapeType::Box:
-            addShapeMarker(ns, id++, body, s.local, Marker::CUBE, 2 * g.half_extents, c);
-            break;
-          case ShapeType::Cylinder:
-            addShapeMarker(ns, id++, body, s.local, Marker::CYLINDER,
-                           Vec3(2 * g.radius, 2 * g.radius, 2 * g.half_height), c);
-            break;
-          case ShapeType::Capsule: {  // a cylinder and two spheres
-            addShapeMarker(ns, id++, body, s.local, Marker::CYLINDER,
-                           Vec3(2 * g.radius, 2 * g.radius, 2 * g.half_height), c);
-            for (double sign : {1.0, -1.0}) {
-              const Transform cap =
-                  s.local * Transform(Vec3(0, 0, sign * g.half_height), Quat::Identity());
-              addShapeMarker(ns, id++, body, cap, Marker::SPHERE, Vec3::Constant(2 * g.radius), c);
-            }
-            break;
-          }
-          case ShapeType::ConvexHull: {
-            if (!g.hull) break;
-            Marker& m =
-                addShapeMarker(ns, id++, body, s.local, Marker::TRIANGLE_LIST, Vec3::Ones(), c);
-            for (const HullData::Face& f : g.hull->faces)
-              for (size_t k = 1; k + 1 < f.verts.size(); ++k)
-                for (int v : {f.verts[0], f.verts[k], f.verts[k + 1]})
-                  m.points.push_back(toPoint(g.hull->vertices[static_cast<size_t>(v)]));
-            break;
-          }
-          case ShapeType::Plane:
-            break;  // planes on ragdoll links make no sense to draw
-        }
-      }
+      bool plane = false;  // planes on ragdoll links make no sense to draw
+      for (const ShapeDef& s : world.bodyShapes(body)) plane = plane || s.geometry.type == ShapeType::Plane;
+      if (!plane) addBodyMarkers(world, ragdolls[r].name, &id, body, ragdollColor(r));
     }
   }
 
+  for (const ObjectView& o : objects) {
+    if (!o.def) continue;
+    int id = 0;
+    for (size_t i = 0; i < o.bodies.size() && i < o.def->links.size(); ++i)
+      addBodyMarkers(world, o.name, &id, o.bodies[i], objectColor(o.def->links[i], o.is_static));
+  }
+
   if (ground.valid() && world.isValid(ground)) {
-    // The plane as a thin 20 m x 20 m slab whose top face is the plane.
     for (const ShapeDef& s : world.bodyShapes(ground)) {
       if (s.geometry.type != ShapeType::Plane) continue;
-      const double thickness = 0.02;
-      const Vec3 n = s.geometry.normal.normalized();
-      const Transform slab(n * (s.geometry.offset - 0.5 * thickness),
-                           Quat::FromTwoVectors(Vec3::UnitZ(), n));
-      addShapeMarker("ground", 0, ground, s.local * slab, Marker::CUBE, Vec3(20.0, 20.0, thickness),
+      addShapeMarker("ground", 0, ground, s.local * planeSlab(s.geometry, kSlabThickness),
+                     Marker::CUBE, Vec3(kSlabSize, kSlabSize, kSlabThickness),
                      {0.55f, 0.55f, 0.55f, 0.6f});
       break;
     }

@@ -13,6 +13,7 @@
 #include <std_msgs/ColorRGBA.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "ragdoll_sim/ragdoll.hpp"
 #include "ragdoll_sim/world.hpp"
 #include "ragdoll_view.hpp"
 #include "rviz_settings.hpp"
@@ -26,6 +27,18 @@ using scene::MarkerSettings;
 struct Rgba {
   float r = 1, g = 1, b = 1, a = 1;
 };
+
+// An object (Scene objects, dynamic or static) as the Visualizer draws it: each link in its
+// LinkDef colour when it has one, else neutral grey; static ones darker.
+struct ObjectView {
+  std::string name;  // marker namespace
+  const RagdollDef* def = nullptr;
+  std::vector<BodyId> bodies;  // one per def->links entry
+  bool is_static = false;
+};
+
+// An object link's colour: its own (has_color) or neutral grey, darkened when static.
+Rgba objectColor(const LinkDef& link, bool is_static);
 
 // Colour of the i-th ragdoll: a palette of six well-separated hues (none near the arrow or
 // contact colours below), then golden-angle hues.
@@ -42,10 +55,10 @@ class Visualizer {
  public:
   Visualizer(const MarkerSettings& settings, const std::string& frame);
 
-  // Rebuilds the shape markers for these ragdolls (and the ground plane of `ground`, if valid)
-  // and drops every arrow. Call after the world or the ragdoll list changed.
+  // Rebuilds the shape markers for these ragdolls, objects (and the ground plane of `ground`,
+  // if valid) and drops every arrow. Call after the world, the ragdolls or objects changed.
   void setScene(const World& world, const std::vector<scene::RagdollView>& ragdolls,
-                BodyId ground);
+                BodyId ground, const std::vector<ObjectView>& objects = {});
 
   // An arrow pointing at `world_point` on `body` (it moves with the body) along `vector`.
   void addImpulse(const World& world, BodyId body, const Vec3& world_point, const Vec3& impulse,
@@ -89,6 +102,9 @@ class Visualizer {
   visualization_msgs::Marker& addShapeMarker(const std::string& ns, int id, BodyId body,
                                              const Transform& local, int type, const Vec3& scale,
                                              const Rgba& color);
+  // One marker per collision shape of `body` (planes as a slab), ids from *id on.
+  void addBodyMarkers(const World& world, const std::string& ns, int* id, BodyId body,
+                      const Rgba& color);
   void appendContacts(const World& world, const ros::Time& stamp);
   void appendArrows(const World& world, const ros::Time& stamp, double sim_time);
   visualization_msgs::Marker& appendMarker(const std::string& ns, int id, const ros::Time& stamp);

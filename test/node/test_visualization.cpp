@@ -1,5 +1,6 @@
-// Unit tests of the node's markers (src/node/visualization.*): colours per ragdoll, the arrow
-// fade law, and the MarkerArray the Visualizer builds from a World (no ROS master needed).
+// Unit tests of the node's markers (src/node/visualization.*): colours per ragdoll and object,
+// the arrow fade law, and the MarkerArray the Visualizer builds from a World (no ROS master
+// needed).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -263,4 +264,45 @@ TEST(Visualizer, PullArrowUpdatedInPlaceThenFades) {
   ASSERT_EQ(alpha.size(), 2u);
   EXPECT_NEAR(alpha[id], 0.4, 1e-6);
   EXPECT_FLOAT_EQ(alpha[id + 1], 1.0f);
+}
+
+TEST(ObjectColor, OwnColourOrGreyStaticDarker) {
+  LinkDef plain;
+  const Rgba grey = objectColor(plain, false), dark = objectColor(plain, true);
+  EXPECT_FLOAT_EQ(grey.r, grey.g);
+  EXPECT_FLOAT_EQ(grey.g, grey.b);
+  EXPECT_NEAR(dark.r, 0.6 * grey.r, 1e-6);
+  LinkDef red;
+  red.has_color = true;
+  red.color = {1.0, 0.0, 0.0, 1.0};
+  EXPECT_FLOAT_EQ(objectColor(red, false).r, 1.0f);
+  EXPECT_FLOAT_EQ(objectColor(red, false).g, 0.0f);
+  EXPECT_NEAR(objectColor(red, true).r, 0.6, 1e-6);
+}
+
+TEST(Visualizer, ObjectsDrawnInTheirNamespaceStaticPlanesAsSlabs) {
+  World world;
+  BodyDef box_def;
+  box_def.pose = Transform(Vec3(1, 2, 3), Quat::Identity());
+  const BodyId box = world.createBody(box_def);
+  world.addShape(box, {Geometry::box(Vec3(0.1, 0.2, 0.3)), Transform(), Material()});
+  BodyDef plane_def;
+  plane_def.type = BodyType::Static;
+  const BodyId plane = world.createBody(plane_def);
+  world.addShape(plane, {Geometry::plane(Vec3::UnitZ(), -1.0), Transform(), Material()});
+  RagdollDef crate, floor;
+  crate.links.resize(1);
+  floor.links.resize(1);
+  Visualizer viz(MarkerSettings(), "world");
+  viz.setScene(world, {}, BodyId(), {{"crate", &crate, {box}, false}, {"floor", &floor, {plane}, true}});
+  const MarkerArray a = viz.update(world, ros::Time(1.0), 0.0);
+  const auto c = inNs(a, "crate"), f = inNs(a, "floor");
+  ASSERT_EQ(c.size(), 1u);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_EQ(c[0]->type, Marker::CUBE);
+  EXPECT_NEAR(c[0]->scale.y, 0.4, 1e-12);
+  EXPECT_NEAR(c[0]->pose.position.z, 3.0, 1e-12);
+  EXPECT_EQ(f[0]->type, Marker::CUBE);
+  EXPECT_NEAR(f[0]->pose.position.z + 0.5 * f[0]->scale.z, -1.0, 1e-9);  // top face on the plane
+  EXPECT_LT(f[0]->color.r, c[0]->color.r);
 }
