@@ -20,7 +20,7 @@ DEBS := build-essential cmake googletest libgtest-dev \
         python3-visualization-msgs \
         libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure \
         libros-rosgraph-msgs-dev python3-rosgraph-msgs librosbag-dev python3-rosbag \
-        ros-robot-state-publisher libassimp-dev libtinyxml2-dev libsdformat-dev rosbash \
+        ros-robot-state-publisher libassimp-dev libtinyxml2-dev libsdformat-dev libyaml-cpp-dev rosbash \
         $(FUZZ_DEBS)
 
 

@@ -1,6 +1,10 @@
 // Drop test of a RagdollDef (ROS-free): spawn it just above a ground plane, let it fall and
-// measure how well the solver holds it together. Used by ragdoll_check and the URDF zoo test.
+// measure how well the solver holds it together. Used by ragdoll_check and the URDF zoo test;
+// measureDrop takes the measurements in a World that someone else builds and steps (a Scene with
+// a world file: ragdoll_check --world).
 #pragma once
+
+#include <functional>
 
 #include "ragdoll_sim/ragdoll.hpp"
 
@@ -16,7 +20,7 @@ struct DropSettings {
 struct DropReport {
   bool finite = true;            // every body state stayed finite (no NaN / inf)
   double spawn_z = 0;            // m, root link height at spawn (rest pose, upright)
-  double max_penetration = 0;    // m, deepest contact (ground or self) over the run
+  double max_penetration = 0;    // m, deepest contact of the ragdoll (ground, obstacle or self) over the run
   double max_anchor_error = 0;   // m, largest joint anchor separation over the run
   double rest_height = 0;        // m, root link origin z at the end
   double lowest_point = 0;       // m, lowest shape point at the end
@@ -34,7 +38,19 @@ struct DropReport {
 
 // Lowest world z of a shape (planes: +inf) whose body frame is at `body_pose`.
 double lowestPoint(const ShapeDef& shape, const Transform& body_pose);
+// Highest world z of a shape (planes: -inf).
+double highestPoint(const ShapeDef& shape, const Transform& body_pose);
+// Lowest z of the model's shapes in its rest pose with the root link at the origin (0 without
+// shapes).
+double restLowestPoint(const RagdollDef& def);
 
 DropReport dropTest(const RagdollDef& def, const DropSettings& settings = DropSettings());
+
+// The metrics of ragdoll `r` (spawned from `def`) in `world` while `step` advances the world by
+// settings.dt, for settings.seconds of sim time or until a body state of the ragdoll goes
+// non-finite. Only the ragdoll's bodies and contacts count (other objects may share the world);
+// spawn_z is left to the caller.
+DropReport measureDrop(const World& world, const Ragdoll& r, const RagdollDef& def,
+                       const std::function<void()>& step, const DropSettings& settings);
 
 }  // namespace ragdoll_sim

@@ -31,8 +31,13 @@ class MaterialTable {
   const std::string& name(int id) const { return names_.at(id); }
   int size() const { return int(materials_.size()); }
 
-  // Coefficients for the pair (a, b), in either order.
-  void setPair(int a, int b, const Material& pair);
+  // Coefficients for the pair (a, b), in either order. `given`: how many of the leading
+  // coefficients the pair sets (2: the frictions, 3: and restitution, 4: all); the rest come
+  // from the two surfaces by the combine rules, as for a pair not listed (a friction table
+  // measures friction, not restitution).
+  void setPair(int a, int b, const Material& pair, int given = 4);
+  // How many coefficients the pair (a, b) sets (setPair's `given`); 0 when it is not listed.
+  int pairGiven(int a, int b) const;
   // The pair's listed coefficients, else the combination of the two surfaces' own.
   Material resolve(const Material& a, const Material& b) const;
   // "" when every material and pair entry passes materialError, else which does not
@@ -42,8 +47,8 @@ class MaterialTable {
  private:
   std::vector<std::string> names_{""};
   std::vector<Material> materials_{Material()};
-  std::vector<Material> pairs_{Material()};  // n x n, valid where has_pair_
-  std::vector<char> has_pair_{0};
+  std::vector<Material> pairs_{Material()};  // n x n, valid where given_ > 0
+  std::vector<char> given_{0};               // setPair's `given`; 0: not listed
   int n_ = 1;
   void grow(int n);
 };

@@ -105,9 +105,9 @@ struct Ragdoll {
 // friction[axis] > 0 a velocity motor (hertz 0, target_velocity 0, max_torque = friction).
 JointMotor passiveMotor(const RagdollJointDef& joint, int axis);
 
-// Creates bodies (root link at root_pose, the rest at their rest poses), shapes, joints and
-// collision filters. Optional material overrides every shape's material. Joints get
-// passiveMotor on every axis and their `spring`.
+// Creates bodies (root link at root_pose, the rest at their rest poses; a fixed_base root is a
+// static body there), shapes, joints and collision filters. Optional material overrides every
+// shape's material. Joints get passiveMotor on every axis and their `spring`.
 Ragdoll spawnRagdoll(World& world, const RagdollDef& def, const Transform& root_pose,
                      const Material* material = nullptr);
 

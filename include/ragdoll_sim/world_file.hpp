@@ -103,8 +103,11 @@ WorldLoadResult loadWorldFile(const std::string& path, WorldLoadOptions options 
 
 // A model's links (root: the first, rest poses relative to it) and the joints between them
 // (joined pairs do not collide) as a RagdollDef: spawnRagdoll(world, def, m.links[0].pose)
-// places every link where the world file has it. Joints to the world (parent -1) are left out,
-// with a note: they pin the model (a fixed base).
+// places every link where the world file has it. A joint to the world (parent -1) on the root
+// link sets fixed_base (of any type: the root is pinned, a warning says when it was not fixed);
+// one on another link is left out with a warning (the model stays free). Links get the visual
+// colour, the visual material as LinkDef::material, each collision's material name
+// (shape_materials) and <mu>/<mu2> mean (shape_friction).
 RagdollDef modelRagdollDef(const WorldModelDef& m);
 
 // "world=NAME status=ok models=N static_shapes=S dynamic_bodies=D skipped=K unresolved=U"

@@ -38,7 +38,7 @@ std::string MaterialTable::error() const {
     std::string e = materialError(materials_[i]);
     if (!e.empty()) return "materials '" + names_[i] + "': " + e;
     for (int j = i; j < n_; ++j) {
-      if (!has_pair_[size_t(i) * n_ + j]) continue;
+      if (!given_[size_t(i) * n_ + j]) continue;
       e = materialError(pairs_[size_t(i) * n_ + j]);
       if (!e.empty()) return "materials pair '" + names_[i] + "'/'" + names_[j] + "': " + e;
     }
@@ -53,10 +53,10 @@ void MaterialTable::grow(int n) {
   for (int i = 0; i < n_; ++i)
     for (int j = 0; j < n_; ++j) {
       pairs[size_t(i) * n + j] = pairs_[size_t(i) * n_ + j];
-      has[size_t(i) * n + j] = has_pair_[size_t(i) * n_ + j];
+      has[size_t(i) * n + j] = given_[size_t(i) * n_ + j];
     }
   pairs_.swap(pairs);
-  has_pair_.swap(has);
+  given_.swap(has);
   n_ = n;
 }
 
@@ -79,22 +79,33 @@ int MaterialTable::find(const std::string& name) const {
   return -1;
 }
 
-void MaterialTable::setPair(int a, int b, const Material& pair) {
+void MaterialTable::setPair(int a, int b, const Material& pair, int given) {
   grow(std::max(a, b) + 1);
   for (const auto& [i, j] : {std::make_pair(a, b), std::make_pair(b, a)}) {
     pairs_[size_t(i) * n_ + j] = pair;
-    has_pair_[size_t(i) * n_ + j] = 1;
+    given_[size_t(i) * n_ + j] = char(std::clamp(given, 2, 4));
   }
 }
 
+int MaterialTable::pairGiven(int a, int b) const {
+  if (a <= 0 || b <= 0 || a >= n_ || b >= n_) return 0;
+  return given_[size_t(a) * n_ + b];
+}
+
 Material MaterialTable::resolve(const Material& a, const Material& b) const {
-  if (a.id > 0 && b.id > 0 && a.id < n_ && b.id < n_ && has_pair_[size_t(a.id) * n_ + b.id])
-    return pairs_[size_t(a.id) * n_ + b.id];
+  const int given = pairGiven(a.id, b.id);
+  if (given == 4) return pairs_[size_t(a.id) * n_ + b.id];
   Material m;
   m.static_friction = combine(friction_rule, a.static_friction, b.static_friction);
   m.kinetic_friction = combine(friction_rule, a.kinetic_friction, b.kinetic_friction);
   m.restitution = combine(restitution_rule, a.restitution, b.restitution);
   m.rolling_resistance = std::max(a.rolling_resistance, b.rolling_resistance);
+  if (given > 0) {
+    const Material& p = pairs_[size_t(a.id) * n_ + b.id];
+    m.static_friction = p.static_friction;
+    m.kinetic_friction = p.kinetic_friction;
+    if (given >= 3) m.restitution = p.restitution;
+  }
   return m;
 }
 

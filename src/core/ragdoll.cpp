@@ -81,8 +81,11 @@ Ragdoll spawnRagdoll(World& world, const RagdollDef& def, const Transform& root_
                      const Material* material) {
   Ragdoll r;
   const Transform root_rest_inv = def.links.at(def.root).rest_pose.inverse();
-  for (const LinkDef& l : def.links) {
+  for (size_t i = 0; i < def.links.size(); ++i) {
+    const LinkDef& l = def.links[i];
     BodyDef bd;
+    // A fixed base is a static root: the joints to it hold the rest as to any static body.
+    if (def.fixed_base && int(i) == def.root) bd.type = BodyType::Static;
     bd.name = l.name;
     bd.pose = root_pose * root_rest_inv * l.rest_pose;
     bd.mass = l.mass;

@@ -9,6 +9,7 @@
 #include <ros/node_handle.h>
 #include <xmlrpcpp/XmlRpcException.h>
 
+#include "material_yaml.hpp"
 #include "ragdoll_sim/range_check.hpp"
 #include "pacing.hpp"
 #include "commands.hpp"
@@ -71,72 +72,40 @@ double number(XmlRpc::XmlRpcValue& v) {
   return std::nan("");
 }
 
-// [static_friction, kinetic_friction, restitution(, rolling_resistance)] from list index `first`.
-bool coefficients(XmlRpc::XmlRpcValue& list, int first, Material* m) {
-  if (list.getType() != XmlRpc::XmlRpcValue::TypeArray ||
-      (list.size() != first + 3 && list.size() != first + 4))
-    return false;
-  m->static_friction = number(list[first]);
-  m->kinetic_friction = number(list[first + 1]);
-  m->restitution = number(list[first + 2]);
-  if (list.size() == first + 4) m->rolling_resistance = number(list[first + 3]);
-  return materialError(*m).empty();
+// A parameter as the YAML node a material file would hold, for the shared conversion.
+YAML::Node toYaml(XmlRpc::XmlRpcValue& v) {
+  switch (v.getType()) {
+    case XmlRpc::XmlRpcValue::TypeStruct: {
+      YAML::Node n(YAML::NodeType::Map);
+      for (auto& [key, value] : v) n[key] = toYaml(value);
+      return n;
+    }
+    case XmlRpc::XmlRpcValue::TypeArray: {
+      YAML::Node n(YAML::NodeType::Sequence);
+      for (int i = 0; i < v.size(); ++i) n.push_back(toYaml(v[i]));
+      return n;
+    }
+    case XmlRpc::XmlRpcValue::TypeString: return YAML::Node(std::string(v));
+    case XmlRpc::XmlRpcValue::TypeInt: return YAML::Node(int(v));
+    case XmlRpc::XmlRpcValue::TypeDouble: return YAML::Node(double(v));
+    case XmlRpc::XmlRpcValue::TypeBoolean: return YAML::Node(bool(v));
+    default: return YAML::Node(YAML::NodeType::Null);
+  }
 }
 
-// ~materials: {combine: {friction, restitution}, surfaces: {name: [mu_s, mu_k, e(, c_r)]},
-//              pairs: [[a, b, mu_s, mu_k, e(, c_r)], ...]}
-bool loadMaterials(const ros::NodeHandle& pnh, MaterialTable* t, std::string* error) {
-  XmlRpc::XmlRpcValue root;
-  if (!pnh.getParam("materials", root)) return true;
+// ~materials and ~link_materials (config/materials.yaml) through the conversion that
+// loadMaterialFile uses (material_yaml.hpp): the same table and the same rules.
+bool loadMaterials(const ros::NodeHandle& pnh, SceneDef* scene, std::string* error) {
   const std::string where = "parameter " + pnh.resolveName("materials");
-  if (root.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
-    *error = where + " must be a dictionary";
-    return false;
-  }
   try {
-    if (root.hasMember("combine")) {
-      XmlRpc::XmlRpcValue& c = root["combine"];
-      for (const char* key : {"friction", "restitution"}) {
-        if (!c.hasMember(key)) continue;
-        CombineRule* rule = std::string(key) == "friction" ? &t->friction_rule : &t->restitution_rule;
-        if (c[key].getType() != XmlRpc::XmlRpcValue::TypeString ||
-            !parseCombineRule(std::string(c[key]), rule)) {
-          *error = where + "/combine/" + key + " must be geometric_mean, average, min or max";
-          return false;
-        }
-      }
-    }
-    if (root.hasMember("surfaces")) {
-      for (auto& [name, value] : root["surfaces"]) {
-        Material m;
-        if (!coefficients(value, 0, &m)) {
-          *error = where + "/surfaces/" + name +
-                   " must be [static_friction, kinetic_friction, restitution(, rolling_resistance)] "
-                   "(>= 0, e <= 1)";
-          return false;
-        }
-        t->add(name, m);
-      }
-    }
-    if (root.hasMember("pairs")) {
-      XmlRpc::XmlRpcValue& pairs = root["pairs"];
-      for (int i = 0; i < pairs.size(); ++i) {
-        Material m;
-        const std::string item = where + "/pairs[" + std::to_string(i) + "]";
-        if (!coefficients(pairs[i], 2, &m) || pairs[i][0].getType() != XmlRpc::XmlRpcValue::TypeString ||
-            pairs[i][1].getType() != XmlRpc::XmlRpcValue::TypeString) {
-          *error = item + " must be [a, b, static_friction, kinetic_friction, restitution(, "
-                   "rolling_resistance)]";
-          return false;
-        }
-        const int a = t->find(pairs[i][0]), b = t->find(pairs[i][1]);
-        if (a < 0 || b < 0) {
-          *error = item + " names a surface missing from " + where + "/surfaces";
-          return false;
-        }
-        t->setPair(a, b, m);
-      }
-    }
+    XmlRpc::XmlRpcValue root, links;
+    if (pnh.getParam("materials", root) &&
+        !material_yaml::readTable(toYaml(root), where, &scene->world.materials, error))
+      return false;
+    if (pnh.getParam("link_materials", links) &&
+        !material_yaml::readLinkMaterials(toYaml(links), "parameter " + pnh.resolveName("link_materials"),
+                                          scene->world.materials, &scene->link_materials, error))
+      return false;
   } catch (const XmlRpc::XmlRpcException& e) {
     *error = where + ": " + e.getMessage();
     return false;
@@ -290,7 +259,7 @@ bool loadNodeConfig(const ros::NodeHandle& node, NodeConfig* c, std::string* err
   const Vec3& g = c->scene.world.gravity;
   std::vector<double> gravity{g.x(), g.y(), g.z()};
   Source pnh{node, &c->differing_from_defaults};
-  for (const char* dict : {"materials", "joint_defaults", "joints"})
+  for (const char* dict : {"materials", "link_materials", "joint_defaults", "joints"})
     if (node.hasParam(dict)) c->differing_from_defaults.push_back(std::string("~") + dict + " (set)");
   bool ok = read(pnh, "physics_rate", "a number (Hz)", &c->physics_rate, error) &&
             read(pnh, "real_time_factor", "a number", &c->real_time_factor, error) &&
@@ -348,7 +317,7 @@ bool loadNodeConfig(const ros::NodeHandle& node, NodeConfig* c, std::string* err
             read(pnh, "sleep/rest_substeps", "an integer", &c->scene.world.sleep.rest_substeps, error) &&
             read(pnh, "sleep/rest_relax_iterations", "an integer",
                  &c->scene.world.sleep.rest_relax_iterations, error) &&
-            loadMaterials(node, &c->scene.world.materials, error) && loadJointSettings(node, c, error) &&
+            loadMaterials(node, &c->scene, error) && loadJointSettings(node, c, error) &&
             loadRvizSettings(pnh, c, error);
   if (!ok) return false;
   if (gravity.size() != 3) {

@@ -2,6 +2,7 @@
 // forces. The Scene holds them in a std::vector; indices shift on removal, ids do not.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -21,6 +22,12 @@ struct RagdollInstance {
   RagdollDef def;         // with the joint settings applied
   Transform spawn_pose;   // root link in the world frame (reset() goes back here)
   Ragdoll ragdoll;        // body and joint ids in the current World (new ids after a rebuild)
+  bool object = false;    // a dynamic object: no balance, no per-link material map
+  // Placed by a world file: left where its author put it, as Gazebo does (and a world of
+  // thousands of models is not checked model by model against every static shape).
+  bool from_world = false;
+  // Per link, per shape: coefficients the model file wrote itself (surfaces.hpp bits).
+  std::vector<std::vector<uint8_t>> written;
   LinkTable links;
 
   // Joint control: every joint angle (joint_states names), its motor gains and target.

@@ -51,6 +51,9 @@ bool Scene::Impl::makeInstance(SpawnDef spawn, RagdollInstance* out, std::string
   RagdollInstance& r = *out;
   r.name = spawn.name;
   r.spawn_pose = spawn.pose;
+  r.object = spawn.object;
+  if (spawn.fixed_base) def.fixed_base = true;
+  if (spawn.object) spawn.balance = false;  // an object has no ankles to balance on
   // Joint springs, break forces and motor gains (joint_defaults, joints) by joint name.
   r.axes = scene::AxisTable(def);
   scene::JointSettingsResult settings =
@@ -82,7 +85,7 @@ bool Scene::Impl::makeInstance(SpawnDef spawn, RagdollInstance* out, std::string
 
 bool Scene::Impl::spawnInWorld(RagdollInstance& r, bool may_refuse, std::string* error) {
   try {  // the World refuses what it cannot simulate (e.g. a non-finite pose) by throwing
-    r.ragdoll = spawnRagdoll(*world, r.def, r.spawn_pose, &def.ragdoll_surface);
+    r.ragdoll = spawnRagdoll(*world, r.def, r.spawn_pose);  // surfaces resolved in r.def
   } catch (const std::exception& e) {
     *error = e.what();
     return false;
@@ -95,11 +98,16 @@ bool Scene::Impl::spawnInWorld(RagdollInstance& r, bool may_refuse, std::string*
              std::to_string(r.def.joints.size()) + " joints";
     return false;
   }
-  return clearStatics(r, may_refuse ? "spawn" : "reset", may_refuse, /*spawn=*/true, error);
+  if (r.from_world) return true;
+  // An object is lifted out of static geometry, never refused: a crate spawned into a table
+  // is still a crate.
+  return clearStatics(r, may_refuse ? "spawn" : "reset", may_refuse && !r.object,
+                      /*spawn=*/true, error);
 }
 
 bool Scene::Impl::clearStatics(RagdollInstance& r, const std::string& what, bool may_refuse,
                                bool spawn, std::string* error) {
+  if (r.def.fixed_base) return true;  // pinned where it was asked to be: the contacts push
   StaticOverlap o;
   if (!scene::overlapsStatics(*world, r.ragdoll.bodies, &o)) return true;
   std::string link = "?";
@@ -144,16 +152,9 @@ bool Scene::Impl::buildWorld(bool may_refuse, std::string* error) {
     return false;
   }
   ground = BodyId();
-  if (def.ground) {
-    BodyDef gd;
-    gd.type = BodyType::Static;
-    gd.name = "ground";
-    ground = world->createBody(gd);
-    ShapeDef sd;
-    sd.geometry = Geometry::plane(Vec3::UnitZ(), 0.0);
-    sd.material = def.ground_surface;
-    world->addShape(ground, sd);
-  }
+  if (def.ground && !ground_replaced) makeDefaultGround();
+  for (scene::StaticObject& o : statics)
+    if (!createStaticBodies(o, error)) return false;
   for (RagdollInstance& r : ragdolls) {
     if (!spawnInWorld(r, may_refuse, error)) return false;
     setBalance(r, r.balance_on, /*log=*/false);
@@ -161,37 +162,85 @@ bool Scene::Impl::buildWorld(bool may_refuse, std::string* error) {
   return true;
 }
 
+void Scene::Impl::makeDefaultGround() {
+  BodyDef gd;
+  gd.type = BodyType::Static;
+  gd.name = "ground";
+  ground = world->createBody(gd);
+  ShapeDef sd;
+  sd.geometry = Geometry::plane(Vec3::UnitZ(), 0.0);
+  sd.material = def.ground_surface;
+  world->addShape(ground, sd);
+}
+
 int Scene::Impl::find(const std::string& name) const {
-  if (name.empty()) return ragdolls.empty() ? -1 : 0;
-  for (size_t k = 0; k < ragdolls.size(); ++k)
-    if (ragdolls[k].name == name) return static_cast<int>(k);
-  return -1;
+  if (name.empty()) {  // the first ragdoll, not a crate that happened to come first
+    for (size_t k = 0; k < ragdolls.size(); ++k)
+      if (!ragdolls[k].object) return static_cast<int>(k);
+    return -1;
+  }
+  const auto it = ragdoll_index.find(name);
+  return it == ragdoll_index.end() ? -1 : static_cast<int>(it->second);
+}
+
+std::string Scene::Impl::nameTaken(const std::string& name) const {
+  const int k = find(name);
+  if (k >= 0 && !name.empty())
+    return std::string(ragdolls[static_cast<size_t>(k)].object ? "an object" : "a ragdoll") +
+           " named '" + name + "' exists";
+  if (static_index.count(name)) return "a static object named '" + name + "' exists";
+  return "";
+}
+
+void Scene::Impl::reindexRagdolls(size_t from) {
+  for (size_t k = from; k < ragdolls.size(); ++k) ragdoll_index[ragdolls[k].name] = k;
+}
+
+scene::SurfaceRules Scene::Impl::surfaceRules(bool object) const {
+  scene::SurfaceRules rules;
+  rules.table = &def.world.materials;
+  rules.link_materials = object ? nullptr : &def.link_materials;
+  rules.fallback = object ? def.object_surface : def.ragdoll_surface;
+  rules.plane_fallback = def.ground_surface;
+  return rules;
+}
+
+void Scene::Impl::resolveSurfaces(RagdollInstance& r, bool say_unknown) {
+  const std::vector<std::string> w = scene::resolveSurfaces(&r.def, surfaceRules(r.object), r.written);
+  if (say_unknown)
+    for (const std::string& text : w) warn("", text);
+}
+
+SpawnResult Scene::Impl::addInstance(RagdollInstance r, std::string* error) {
+  r.id.serial = next_serial++;
+  ragdolls.push_back(std::move(r));
+  ragdoll_index[ragdolls.back().name] = ragdolls.size() - 1;
+  if (!world) return SpawnResult::Added;  // start() spawns it
+  RagdollInstance& added = ragdolls.back();
+  const int first_new = world->bodyCount();  // ids append, so what it created is above this
+  if (!spawnInWorld(added, /*may_refuse=*/true, error)) {
+    for (int b = first_new; b < world->bodyCount(); ++b)
+      if (world->isValid(BodyId{b})) world->destroyBody(BodyId{b});
+    ragdoll_index.erase(added.name);
+    ragdolls.pop_back();
+    return SpawnResult::WorldRefused;
+  }
+  rebindControllers();  // the vector may have moved the instances
+  applyAllMotors(ragdolls.back());
+  return SpawnResult::Added;
 }
 
 SpawnResult Scene::addRagdoll(SpawnDef spawn, std::string* error) {
   Impl& s = *impl_;
   *error = scene::ragdollNameError(spawn.name);
   if (!error->empty()) return SpawnResult::BadName;
-  if (s.find(spawn.name) >= 0) {
-    *error = "a ragdoll named '" + spawn.name + "' exists";
-    return SpawnResult::NameInUse;
-  }
+  *error = s.nameTaken(spawn.name);
+  if (!error->empty()) return SpawnResult::NameInUse;
+  if (spawn.object) return addObject(std::move(spawn), error);
   RagdollInstance r;
   if (!s.makeInstance(std::move(spawn), &r, error)) return SpawnResult::BadModel;
-  r.id.serial = s.next_serial++;
-  s.ragdolls.push_back(std::move(r));
-  if (!s.world) return SpawnResult::Added;  // start() spawns it
-  RagdollInstance& added = s.ragdolls.back();
-  const int first_new = s.world->bodyCount();  // ids append, so what it created is above this
-  if (!s.spawnInWorld(added, /*may_refuse=*/true, error)) {
-    for (int b = first_new; b < s.world->bodyCount(); ++b)
-      if (s.world->isValid(BodyId{b})) s.world->destroyBody(BodyId{b});
-    s.ragdolls.pop_back();
-    return SpawnResult::WorldRefused;
-  }
-  s.rebindControllers();  // the vector may have moved the instances
-  s.applyAllMotors(added);
-  return SpawnResult::Added;
+  s.resolveSurfaces(r, /*say_unknown=*/true);
+  return s.addInstance(std::move(r), error);
 }
 
 bool Scene::start(std::string* error) {
@@ -215,7 +264,9 @@ bool Scene::removeRagdoll(const std::string& name, std::string* error) {
   if (s.world)
     for (BodyId b : r.ragdoll.bodies)
       if (s.world->isValid(b)) s.world->destroyBody(b);
+  s.ragdoll_index.erase(r.name);
   s.ragdolls.erase(s.ragdolls.begin() + k);
+  s.reindexRagdolls(static_cast<size_t>(k));
   s.rebindControllers();  // the erase moved the instances behind it
   return true;
 }

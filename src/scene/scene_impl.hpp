@@ -1,17 +1,22 @@
 // The Scene's state and its internal steps, shared by the files that implement it, one concept
 // each: scene.cpp (ragdolls and the World), scene_commands.cpp (queue and commands),
-// scene_forces.cpp (timed forces, their budgets and caps), scene_motors.cpp (targets and balance), scene_step.cpp (settings, the step, reports).
+// scene_forces.cpp (timed forces, their budgets and caps), scene_motors.cpp (targets and
+// balance), scene_step.cpp (settings, the step, reports), scene_objects.cpp (world files,
+// objects, static objects).
 #pragma once
 
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "command_queue.hpp"
 #include "ragdoll_instance.hpp"
 #include "ragdoll_sim/scene.hpp"
+#include "static_object.hpp"
+#include "surfaces.hpp"
 
 namespace ragdoll_sim {
 
@@ -25,7 +30,13 @@ struct Scene::Impl {
   SceneListener* listener = nullptr;
   std::unique_ptr<World> world;
   BodyId ground;
-  std::vector<scene::RagdollInstance> ragdolls;
+  std::vector<scene::RagdollInstance> ragdolls;  // dynamic objects too (RagdollInstance::object)
+  std::unordered_map<std::string, size_t> ragdoll_index;  // name -> index in `ragdolls`
+  std::vector<scene::StaticObject> statics;
+  std::unordered_map<std::string, size_t> static_index;   // name -> index in `statics`
+  // A static plane was added (a world's ground): the default plane is not built any more.
+  bool ground_replaced = false;
+  std::string ground_object;  // the static object whose plane is ground(); "" = none
   uint64_t next_serial = 1;
   scene::CommandQueue queue;
   uint64_t received = 0, applied = 0, rejected = 0, body_faults = 0;
@@ -49,12 +60,30 @@ struct Scene::Impl {
   // A new World with the ground and every ragdoll at its spawn pose, joints whole (start, reset).
   // may_refuse: spawn_overlap's Refuse applies (start), else overlaps are lifted (reset).
   bool buildWorld(bool may_refuse, std::string* error);
+  void makeDefaultGround();  // the static plane z = 0 as ground
   bool spawnInWorld(scene::RagdollInstance& r, bool may_refuse, std::string* error);
   // The ragdoll's bodies out of static geometry: lifted (a WARN naming `what`, the spawn pose
   // moved with them when `spawn`), or false with *error when refused or wedged.
   bool clearStatics(scene::RagdollInstance& r, const std::string& what, bool may_refuse,
                     bool spawn, std::string* error);
   int find(const std::string& name) const;
+  // "" when `name` is free, else which ragdoll or object has it.
+  std::string nameTaken(const std::string& name) const;
+  void reindexRagdolls(size_t from);
+  // Pushes a made instance and, once started, spawns it; nothing is kept when it fails.
+  SpawnResult addInstance(scene::RagdollInstance r, std::string* error);
+  // The surface rules for a ragdoll or an object; every shape of `r` by them (warnings said
+  // when `say_unknown`).
+  scene::SurfaceRules surfaceRules(bool object) const;
+  void resolveSurfaces(scene::RagdollInstance& r, bool say_unknown);
+
+  // scene_objects.cpp
+  // The bodies of a static object in the World (and, for its plane, the ground); false with
+  // *error when the World refuses them, creating none.
+  bool createStaticBodies(scene::StaticObject& o, std::string* error);
+  // Adds a static object (made and checked): bodies when started, the ground when its plane.
+  bool addStatic(scene::StaticObject o, std::string* error);
+  void removeStatic(size_t i);
 
   // scene_motors.cpp
   void setBalance(scene::RagdollInstance& r, bool on, bool log);

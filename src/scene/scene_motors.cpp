@@ -10,7 +10,7 @@ using scene::AxisTarget;
 using scene::RagdollInstance;
 
 void Scene::Impl::setBalance(RagdollInstance& r, bool on, bool log) {
-  r.balance_on = on;
+  r.balance_on = on && !r.object;  // a crate has nothing to balance
   r.balance.reset();
   if (on) {
     BalanceDef bd = def.balance;

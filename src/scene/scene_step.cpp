@@ -123,16 +123,9 @@ bool Scene::setSolverSettings(const SolverSettings& solver, std::string* error) 
 void Scene::setMaterials(const Material& surface, const MaterialTable& table) {
   Impl& s = *impl_;
   try {  // the node checks the ranges first: a guard
-    if (s.world) {
-      s.world->setMaterials(table);
-      std::vector<BodyId> bodies;
-      if (s.ground.valid()) bodies.push_back(s.ground);
-      for (const RagdollInstance& r : s.ragdolls)
-        bodies.insert(bodies.end(), r.ragdoll.bodies.begin(), r.ragdoll.bodies.end());
-      for (BodyId b : bodies)
-        for (int i = 0; i < static_cast<int>(s.world->bodyShapes(b).size()); ++i)
-          s.world->setShapeMaterial(b, i, surface);
-    }
+    const std::string bad = materialError(surface);
+    if (!bad.empty()) throw std::invalid_argument("surface: " + bad);
+    if (s.world) s.world->setMaterials(table);
   } catch (const std::invalid_argument& e) {
     s.say(SceneMessage::Level::Error, "", std::string("reconfigure: ") + e.what());
     return;
@@ -141,6 +134,25 @@ void Scene::setMaterials(const Material& surface, const MaterialTable& table) {
   s.def.ragdoll_surface = surface;
   s.def.ground_surface = surface;
   s.def.world.materials = table;
+  // Shapes that name a material take the new table's entry, the rest the new surface (objects
+  // keep object_surface); every one is valid now, so nothing below throws.
+  World* world = s.world.get();
+  auto apply = [world](const std::vector<BodyId>& bodies, const RagdollDef& d) {
+    for (size_t l = 0; world && l < bodies.size() && l < d.links.size(); ++l)
+      for (size_t k = 0; k < d.links[l].shapes.size(); ++k)
+        world->setShapeMaterial(bodies[l], static_cast<int>(k), d.links[l].shapes[k].material);
+  };
+  for (RagdollInstance& r : s.ragdolls) {
+    s.resolveSurfaces(r, /*say_unknown=*/false);
+    apply(r.ragdoll.bodies, r.def);
+  }
+  for (scene::StaticObject& o : s.statics) {
+    scene::resolveSurfaces(&o.def, s.surfaceRules(true), o.written);
+    apply(o.bodies, o.def);
+  }
+  if (world && s.ground.valid() && s.ground_object.empty())
+    for (int i = 0; i < static_cast<int>(world->bodyShapes(s.ground).size()); ++i)
+      world->setShapeMaterial(s.ground, i, surface);
 }
 
 int64_t Scene::timeNs() const { return impl_->sim_ns; }

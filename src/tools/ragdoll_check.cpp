@@ -2,18 +2,22 @@
 // (bodies, masses, shapes and which were approximated, joints and how each URDF joint was
 // mapped, excluded collision pairs, notes and warnings), then a drop test (drop_check.hpp) and
 // one key=value summary line. No ROS master needed.
-// ragdoll_check --world FILE [--strict]: what the SDF world loader builds from a world file, as
-// one line "world=NAME status=ok models=N static_shapes=S dynamic_bodies=D skipped=K
-// unresolved=U", then its notes and warnings.
-// Exit: 0 loaded (and finite), 1 refused by the loader, 2 bad usage, 3 the drop went non-finite.
+// ragdoll_check --world FILE [MODEL.urdf] [--spawn X Y Z] [--strict]: what the SDF world loader
+// builds from a world file, as one line "world=NAME status=ok models=N static_shapes=S
+// dynamic_bodies=D skipped=K unresolved=U", its notes and warnings, then a drop of the model (the
+// bundled ragdoll by default) into it through a ROS-free Scene (world_check.hpp).
+// Exit: 0 loaded (and finite), 1 refused (by a loader, or the spawn), 2 bad usage, 3 the drop went
+// non-finite.
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "ragdoll_sim/drop_check.hpp"
 #include "ragdoll_sim/urdf_loader.hpp"
 #include "ragdoll_sim/world_file.hpp"
+#include "world_check.hpp"
 
 using namespace ragdoll_sim;
 
@@ -50,27 +54,9 @@ bool approximated(const std::string& source) {
 int usage() {
   std::fprintf(stderr,
                "usage: ragdoll_check <file.urdf> [--seconds S] [--no-drop]\n"
-               "       ragdoll_check --world FILE [--strict]\n");
+               "       ragdoll_check --world FILE [MODEL.urdf] [--spawn X Y Z] [--strict] [--seconds S]"
+               " [--no-drop]\n");
   return 2;
-}
-
-void printLines(const char* title, const std::vector<std::string>& lines) {
-  std::printf("%s (%zu):\n", title, lines.size());
-  for (const std::string& l : lines) std::printf("  %s\n", l.c_str());
-}
-
-int checkWorld(const std::string& file, bool strict) {
-  WorldLoadOptions options;
-  options.strict = strict;
-  const WorldLoadResult r = loadWorldFile(file, options);
-  if (!r.ok) {
-    std::fprintf(stderr, "ragdoll_check: %s: %s\n", file.c_str(), r.error.c_str());
-    return 1;
-  }
-  std::printf("%s\n", worldSummaryLine(r.def).c_str());
-  printLines("notes", r.def.notes);
-  printLines("warnings", r.def.warnings);
-  return 0;
 }
 
 }  // namespace
@@ -79,10 +65,19 @@ int main(int argc, char** argv) {
   std::string file, world;
   DropSettings drop;
   bool run_drop = true, strict = false;
+  std::optional<Vec3> spawn;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--world" && i + 1 < argc) {
       world = argv[++i];
+    } else if (a == "--spawn" && i + 3 < argc) {
+      Vec3 p;
+      for (int k = 0; k < 3; ++k) {
+        char* end = nullptr;
+        p[k] = std::strtod(argv[++i], &end);
+        if (end == argv[i] || *end != '\0') return usage();
+      }
+      spawn = p;  // a non-finite one is the Scene's to refuse (exit 1)
     } else if (a == "--strict") {
       strict = true;
     } else if (a == "--seconds" && i + 1 < argc) {
@@ -97,10 +92,16 @@ int main(int argc, char** argv) {
     }
   }
   if (!world.empty()) {
-    if (!file.empty()) return usage();
-    return checkWorld(world, strict);
+    WorldCheckArgs w;
+    w.world = world;
+    w.model = file;
+    w.spawn = spawn;
+    w.strict = strict;
+    w.drop = run_drop;
+    w.settings = drop;
+    return checkWorld(w, argv[0]);
   }
-  if (file.empty() || strict) return usage();
+  if (file.empty() || strict || spawn) return usage();
   const std::string base = std::filesystem::path(file).filename().string();
 
   const UrdfLoadResult r = loadUrdfFile(file);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <vector>
 
@@ -30,6 +31,27 @@ double lowestPoint(const ShapeDef& shape, const Transform& body_pose) {
   return std::numeric_limits<double>::infinity();
 }
 
+double highestPoint(const ShapeDef& shape, const Transform& body_pose) {
+  const Geometry& g = shape.geometry;
+  if (g.type == ShapeType::Plane) return -std::numeric_limits<double>::infinity();
+  if (g.type == ShapeType::ConvexHull) {
+    double z = -std::numeric_limits<double>::infinity();
+    if (g.hull)
+      for (const Vec3& v : g.hull->vertices) z = std::max(z, (body_pose * shape.local).apply(v).z());
+    return z;
+  }
+  // The other primitives are symmetric about their origin.
+  return 2 * (body_pose * shape.local).p.z() - lowestPoint(shape, body_pose);
+}
+
+double restLowestPoint(const RagdollDef& def) {
+  const Transform root_inv = def.links.at(def.root).rest_pose.inverse();
+  double z0 = std::numeric_limits<double>::infinity();
+  for (const LinkDef& l : def.links)
+    for (const ShapeDef& s : l.shapes) z0 = std::min(z0, lowestPoint(s, root_inv * l.rest_pose));
+  return std::isfinite(z0) ? z0 : 0.0;
+}
+
 namespace {
 double lowest(const World& world, const Ragdoll& r, const RagdollDef& def) {
   double z = std::numeric_limits<double>::infinity();
@@ -38,11 +60,24 @@ double lowest(const World& world, const Ragdoll& r, const RagdollDef& def) {
   return z;
 }
 
+// Kinetic plus gravitational energy of the ragdoll's bodies alone.
 double mechanicalEnergy(const World& world, const Ragdoll& r) {
-  double e = world.kineticEnergy();
+  double e = 0.0;
   const Vec3& g = world.def().gravity;
-  for (BodyId b : r.bodies) e -= world.bodyDef(b).mass * g.dot(world.comPosition(b));
+  for (BodyId b : r.bodies) {
+    const BodyDef& d = world.bodyDef(b);
+    if (d.type != BodyType::Dynamic) continue;
+    const BodyState st = world.bodyState(b);
+    const Vec3 w = st.pose.q.conjugate() * st.angular_velocity;  // link axes
+    e += 0.5 * d.mass * st.linear_velocity.squaredNorm() + 0.5 * w.dot(d.inertia * w);
+    e -= d.mass * g.dot(st.com_position);
+  }
   return e;
+}
+
+bool isFinite(const BodyState& st) {
+  return st.pose.p.allFinite() && st.pose.q.coeffs().allFinite() && st.linear_velocity.allFinite() &&
+         st.angular_velocity.allFinite();
 }
 }  // namespace
 
@@ -59,30 +94,36 @@ DropReport dropTest(const RagdollDef& def, const DropSettings& settings) {
   world.addShape(world.createBody(gd), ground);
 
   // Rest pose with the root at the origin: lift it so the lowest point is `clearance` up.
-  const Transform root_inv = def.links.at(def.root).rest_pose.inverse();
-  double z0 = std::numeric_limits<double>::infinity();
-  for (const LinkDef& l : def.links)
-    for (const ShapeDef& s : l.shapes) z0 = std::min(z0, lowestPoint(s, root_inv * l.rest_pose));
-  if (!std::isfinite(z0)) z0 = 0.0;  // no shapes at all
-  rep.spawn_z = settings.clearance - z0;
+  rep.spawn_z = settings.clearance - restLowestPoint(def);
   const Ragdoll r = spawnRagdoll(world, def, Transform(Vec3(0, 0, rep.spawn_z), Quat::Identity()));
 
+  DropReport measured = measureDrop(world, r, def, [&] { world.step(settings.dt); }, settings);
+  measured.spawn_z = rep.spawn_z;
+  return measured;
+}
+
+DropReport measureDrop(const World& world, const Ragdoll& r, const RagdollDef& def,
+                       const std::function<void()>& step, const DropSettings& settings) {
+  DropReport rep;
+  std::vector<char> mine(world.bodyCount(), 0);
+  for (BodyId b : r.bodies) mine.at(b.index) = 1;
+  const auto ours = [&](const ContactInfo& c) {
+    return (size_t(c.body_a.index) < mine.size() && mine[c.body_a.index]) ||
+           (size_t(c.body_b.index) < mine.size() && mine[c.body_b.index]);
+  };
+  const double t0 = world.time();
   rep.min_lowest_point = std::numeric_limits<double>::infinity();
   const int steps = int(std::lround(settings.seconds / settings.dt));
   const int late = steps - std::min(steps / 2, int(std::lround(2.0 / settings.dt)));  // >= steps / 2
   double late_energy = mechanicalEnergy(world, r);
   for (int s = 0; s < steps; ++s) {
     if (s == late) late_energy = mechanicalEnergy(world, r);
-    world.step(settings.dt);
-    for (BodyId b : r.bodies) {
-      const BodyState st = world.bodyState(b);
-      rep.finite = rep.finite && st.pose.p.allFinite() && st.pose.q.coeffs().allFinite() &&
-                   st.linear_velocity.allFinite() && st.angular_velocity.allFinite();
-    }
+    step();
+    for (BodyId b : r.bodies) rep.finite = rep.finite && isFinite(world.bodyState(b));
     if (!rep.finite) break;
-    rep.seconds = world.time();
+    rep.seconds = world.time() - t0;
     for (const ContactInfo& c : world.contacts())
-      rep.max_penetration = std::max(rep.max_penetration, -c.separation);
+      if (ours(c)) rep.max_penetration = std::max(rep.max_penetration, -c.separation);
     for (JointId j : r.joints)
       rep.max_anchor_error = std::max(rep.max_anchor_error, world.jointAnchorError(j).norm());
     rep.min_lowest_point = std::min(rep.min_lowest_point, lowest(world, r, def));

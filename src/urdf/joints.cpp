@@ -92,6 +92,13 @@ void Loader::emitBody(int g, const Transform& rest, int neighbour) {
   link.shapes = grp.shapes;
   link.shape_sources = grp.sources;
   link.shape_friction = grp.friction;
+  const auto own = extras_.link_material.find(link.name);
+  if (own != extras_.link_material.end()) link.material = own->second;
+  // Per shape only where a lumped link names another material than the body's.
+  for (const std::string& m : grp.materials)
+    if (!m.empty() && m != link.material) link.shape_materials = grp.materials;
+  link.has_color = grp.has_color;
+  if (grp.has_color) link.color = grp.color;
   link.rest_pose = rest;
   grp.def_index = int(def_.links.size());
   def_.links.push_back(std::move(link));

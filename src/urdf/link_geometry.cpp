@@ -57,6 +57,8 @@ void Loader::addShape(int g, const ShapeDef& s, const std::string& source, const
   grp.sources.push_back(source);
   auto f = extras_.link_friction.find(link);
   grp.friction.push_back(f == extras_.link_friction.end() ? -1.0 : f->second);
+  auto m = extras_.link_material.find(link);
+  grp.materials.push_back(m == extras_.link_material.end() ? "" : m->second);
 }
 
 // Geometry of a <collision> / <visual> list as shapes (meshes as hulls); sets *mesh_failure

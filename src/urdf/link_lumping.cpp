@@ -34,6 +34,11 @@ void Loader::addGroup(const urdf::LinkConstSharedPtr& link) {
 void Loader::addLink(int g, const urdf::LinkConstSharedPtr& link, const Transform& T) {
   placement_[link->name] = {g, T};
   addMassAndShapes(g, *link, T);
+  const auto color = extras_.link_color.find(link->name);
+  if (!groups_[g].has_color && color != extras_.link_color.end()) {
+    groups_[g].has_color = true;
+    groups_[g].color = color->second;
+  }
   for (const auto& j : link->child_joints) {
     const urdf::LinkConstSharedPtr child = model_.getLink(j->child_link_name);
     const std::string jn = "joint " + quote(j->name);

@@ -10,6 +10,7 @@
 
 #include <urdf_model/model.h>
 
+#include <array>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -97,6 +98,9 @@ struct Group {
   std::vector<ShapeDef> shapes;
   std::vector<std::string> sources;   // per shape
   std::vector<double> friction;       // per shape, < 0: none
+  std::vector<std::string> materials; // per shape: its URDF link's material name, "" none
+  bool has_color = false;             // the top link's visual colour, else a lumped link's
+  std::array<double, 4> color{};
   std::vector<urdf::JointConstSharedPtr> child_joints;  // moving joints leaving it
   int def_index = -1;                                     // index in RagdollDef::links
 };

@@ -58,6 +58,22 @@ RagdollDef Loader::run() {
                          " is the free root");
     root = model_.getLink(root->child_joints[0]->child_link_name);
   }
+  // Gazebo's convention for a robot bolted down: a root link "world" fixed-jointed to it. The
+  // robot's link is the root, pinned where it is spawned.
+  if (root->name == "world" && root->child_joints.size() == 1 &&
+      root->child_joints[0]->type == urdf::Joint::FIXED) {
+    const urdf::JointConstSharedPtr& j = root->child_joints[0];
+    std::string note = "link 'world' and fixed joint " + quote(j->name) + " dropped: " +
+                       quote(j->child_link_name) + " is the root, pinned where it is spawned (a fixed base)";
+    const Transform o = toTransform(j->parent_to_joint_origin_transform, "joint " + quote(j->name));
+    if (o.p.norm() > 0 || o.q.vec().norm() > 0)
+      note += "; the joint's <origin> is not applied (the spawn pose places " + quote(j->child_link_name) + ")";
+    if (!root->collision_array.empty() || !root->visual_array.empty() || !massless(*root))
+      note += "; the geometry and mass of link 'world' are ignored";
+    def_.notes.push_back(note);
+    def_.fixed_base = true;
+    root = model_.getLink(j->child_link_name);
+  }
   addGroup(root);
   def_.root = 0;
   emitBody(0, Transform(), -1);

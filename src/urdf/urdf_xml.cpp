@@ -87,6 +87,42 @@ bool parseDouble(const char* text, double* v) {
   return end != text && end && *end == '\0' && std::isfinite(*v);
 }
 
+// <color rgba="r g b a">: four finite numbers in [0, 1].
+bool readRgba(const XMLElement* material, std::array<double, 4>* out) {
+  const XMLElement* c = material ? material->FirstChildElement("color") : nullptr;
+  if (!c || !c->Attribute("rgba")) return false;
+  std::istringstream in(attr(c, "rgba"));
+  std::array<double, 4> v;
+  for (double& x : v)
+    if (!(in >> x) || !(x >= 0 && x <= 1)) return false;
+  std::string rest;
+  if (in >> rest) return false;
+  *out = v;
+  return true;
+}
+
+// The first <visual> of a link with a colour, given there or by a named robot-level material.
+bool visualColor(const XMLElement* link, const std::map<std::string, std::array<double, 4>>& named,
+                 std::array<double, 4>* out) {
+  for (const XMLElement* v = link->FirstChildElement("visual"); v; v = v->NextSiblingElement("visual")) {
+    const XMLElement* m = v->FirstChildElement("material");
+    if (!m) continue;
+    if (readRgba(m, out)) return true;
+    const auto it = named.find(attr(m, "name"));
+    if (it != named.end()) {
+      *out = it->second;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string trimmed(const char* text) {
+  std::string s = text ? text : "";
+  const size_t a = s.find_first_not_of(" \t\r\n"), b = s.find_last_not_of(" \t\r\n");
+  return a == std::string::npos ? "" : s.substr(a, b - a + 1);
+}
+
 }  // namespace
 
 std::string preprocess(const std::string& xml, Extras* out) {
@@ -102,6 +138,14 @@ std::string preprocess(const std::string& xml, Extras* out) {
   if (std::strcmp(robot->Name(), "robot") != 0)
     return "the URDF's root element is <" + std::string(robot->Name()) + ">, expected <robot>";
 
+  // Colours named at the robot level (<robot><material name><color>), for visuals that refer
+  // to them by name.
+  std::map<std::string, std::array<double, 4>> named_colors;
+  for (const XMLElement* m = robot->FirstChildElement("material"); m; m = m->NextSiblingElement("material")) {
+    std::array<double, 4> rgba;
+    if (!attr(m, "name").empty() && readRgba(m, &rgba)) named_colors[attr(m, "name")] = rgba;
+  }
+
   // ---- links and joints: names, parents, children
   std::map<std::string, const XMLElement*> links, joints;
   std::map<std::string, std::string> parent_joint;  // child link -> joint
@@ -116,6 +160,8 @@ std::string preprocess(const std::string& xml, Extras* out) {
     if (!err.empty()) return err;
     capsules(l, "collision", &out->capsule_collisions[name]);
     capsules(l, "visual", &out->capsule_visuals[name]);
+    std::array<double, 4> rgba;
+    if (visualColor(l, named_colors, &rgba)) out->link_color[name] = rgba;
   }
   if (links.empty()) return "the <robot> has no <link>";
   for (XMLElement* j = robot->FirstChildElement("joint"); j; j = j->NextSiblingElement("joint")) {
@@ -183,6 +229,7 @@ std::string preprocess(const std::string& xml, Extras* out) {
   }
 
   // ---- <gazebo reference="..."> extensions
+  std::set<std::string> own_material;  // links with a <ragdoll_sim:material>
   for (XMLElement* g = robot->FirstChildElement("gazebo"); g; g = g->NextSiblingElement("gazebo")) {
     const std::string ref = attr(g, "reference");
     if (ref.empty()) continue;
@@ -195,6 +242,18 @@ std::string preprocess(const std::string& xml, Extras* out) {
     if (!links.count(ref)) {
       out->notes.push_back("<gazebo reference=" + quote(ref) + "> names no link or joint; ignored");
       continue;
+    }
+    const std::string own = trimmed(g->FirstChildElement("ragdoll_sim:material")
+                                        ? g->FirstChildElement("ragdoll_sim:material")->GetText()
+                                        : nullptr);
+    const std::string script = trimmed(g->FirstChildElement("material")
+                                           ? g->FirstChildElement("material")->GetText()
+                                           : nullptr);
+    if (!own.empty()) {
+      out->link_material[ref] = own;
+      own_material.insert(ref);
+    } else if (!script.empty() && !own_material.count(ref)) {
+      out->link_material[ref] = script;  // the named material wins, in whichever block it is
     }
     double mu[2];
     int n = 0;

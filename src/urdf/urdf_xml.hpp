@@ -3,6 +3,7 @@
 // extensions urdfdom drops or rejects, rewritten into what it accepts and remembered here.
 #pragma once
 
+#include <array>
 #include <map>
 #include <set>
 #include <string>
@@ -20,6 +21,12 @@ struct Extras {
   std::set<std::string> spherical_joints;  // type="spherical", handed over as "floating"
   std::set<std::string> preserved_fixed;   // <gazebo reference=J><preserveFixedJoint>true
   std::map<std::string, double> link_friction;  // <gazebo reference=L> mean of mu1 / mu2
+  // <gazebo reference=L><ragdoll_sim:material>, else its Gazebo <material> script name as
+  // written ("Gazebo/Wood"): a material table name (LinkDef::material).
+  std::map<std::string, std::string> link_material;
+  // The rgba of L's first <visual><material> with a colour (its own <color> or a named
+  // robot-level <material>).
+  std::map<std::string, std::array<double, 4>> link_color;
   std::vector<std::string> notes;
 };
 

@@ -40,6 +40,12 @@ void readSurface(const sdf::Collision& c, const std::string& where, WorldCollisi
   const sdf::ElementPtr e = c.Element();
   if (!e || !e->HasElement("surface")) return;
   const sdf::ElementPtr surface = e->GetElement("surface");
+  if (surface->HasElement("ragdoll_sim:material")) {
+    const sdf::ParamPtr v = surface->GetElement("ragdoll_sim:material")->GetValue();
+    std::string name = v ? v->GetAsString() : "";
+    const size_t b = name.find_first_not_of(" \t\r\n"), end = name.find_last_not_of(" \t\r\n");
+    def->material = b == std::string::npos ? "" : name.substr(b, end - b + 1);
+  }
   if (surface->HasElement("friction") && surface->GetElement("friction")->HasElement("ode")) {
     const sdf::ElementPtr ode = surface->GetElement("friction")->GetElement("ode");
     if (ode->HasElement("mu") || ode->HasElement("mu2")) {

@@ -178,6 +178,12 @@ WorldLoadResult load(const std::string& text, const std::string& file, const Wor
         else ++c.dynamic_bodies;
       }
     }
+    // A collision without its own <ragdoll_sim:material> takes the link's visual material name;
+    // here, after the copies of identical models took their own visuals.
+    for (WorldModelDef& m : def.models)
+      for (WorldLinkDef& l : m.links)
+        for (WorldCollisionDef& col : l.collisions)
+          if (col.material.empty()) col.material = l.visual_material;
     c.models = int(def.models.size());
     c.skipped += pw.skipped;
     c.unresolved = pw.unresolved;

@@ -1,8 +1,5 @@
 // Malformed worlds: one message naming the element, from the loader and from
 // `ragdoll_check --world` (exit 1).
-#include <sys/wait.h>
-
-#include <cstdio>
 #include <algorithm>
 #include <fstream>
 
@@ -99,28 +96,6 @@ TEST(WorldMalformed, NotARegularFile) {
   ASSERT_FALSE(r.ok);
   EXPECT_NE(r.error.find("world file '/dev/zero' is not a regular file"), std::string::npos) << r.error;
 }
-
-namespace {
-
-struct ToolRun {
-  int code;
-  std::string out;
-};
-
-ToolRun ragdollCheck(const std::string& args, const std::string& env = "") {
-  const std::string cmd = env + " " + RAGDOLL_CHECK_BIN + " " + args + " 2>&1";
-  ToolRun run{-1, ""};
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return run;
-  char buf[4096];
-  size_t n;
-  while ((n = fread(buf, 1, sizeof buf, p)) > 0) run.out.append(buf, n);
-  const int status = pclose(p);
-  run.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
-
-}  // namespace
 
 TEST(WorldCheckTool, RefusalsExitOneWithTheMessage) {
   const std::string dir = ::testing::TempDir();

@@ -2,7 +2,9 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
+#include <cstdio>
 #include <string>
 
 #include "ragdoll_sim/world_file.hpp"
@@ -34,6 +36,25 @@ inline const ragdoll_sim::WorldModelDef* model(const ragdoll_sim::WorldFileDef& 
   for (const auto& m : d.models)
     if (m.name == name) return &m;
   return nullptr;
+}
+
+struct ToolRun {
+  int code;
+  std::string out;  // stdout and stderr
+};
+
+// `ragdoll_check ARGS` with `env` ("NAME=value ...") before it.
+inline ToolRun ragdollCheck(const std::string& args, const std::string& env = "") {
+  const std::string cmd = env + " " + RAGDOLL_CHECK_BIN + " " + args + " 2>&1";
+  ToolRun run{-1, ""};
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return run;
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) run.out.append(buf, n);
+  const int status = pclose(p);
+  run.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
 }
 
 }  // namespace world_test

@@ -1,0 +1,31 @@
+// ragdoll_check --world: a world file loaded without ROS, then a model dropped into it through a
+// ROS-free Scene (the node's own layer) and measured as in the URDF mode (drop_check.hpp).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "ragdoll_sim/drop_check.hpp"
+#include "ragdoll_sim/math.hpp"
+
+namespace ragdoll_sim {
+
+struct WorldCheckArgs {
+  std::string world;             // the world file
+  std::string model;             // URDF to drop; "": the bundled ragdoll
+  std::optional<Vec3> spawn;     // root link position; none: above the highest static point
+  bool strict = false;           // unresolved <include>s are errors
+  bool drop = true;              // false: the world line, notes and warnings only
+  DropSettings settings;
+};
+
+// Prints the summary line, notes, warnings and the drop metrics; returns the exit code
+// (0 ok, 1 refused: world, model, materials or spawn, 3 the drop went non-finite).
+int checkWorld(const WorldCheckArgs& args, const char* argv0);
+
+// `relative` ("urdf/ragdoll.urdf") in this package: found through $ROS_PACKAGE_PATH, next to
+// an installed ragdoll_check (<prefix>/lib/ragdoll_sim -> <prefix>/share/ragdoll_sim), else in
+// the source tree it was built from; "" when none holds it.
+std::string packageFile(const std::string& relative, const char* argv0);
+
+}  // namespace ragdoll_sim
