@@ -5,9 +5,9 @@
 // Models that differ only in name and pose are parsed once (world_loader.cpp), so the sizes
 // decide how many models SDFormat itself reads; --sizes 0 gives every model its own size (and
 // SDFormat's memory per model makes the loader refuse such a world of 3000: max_sdf_megabytes).
-//   parse_s: loadWorldString (text -> WorldFileDef); build_s: the World (a ground plane, each
-//   model through modelRagdollDef + spawnRagdoll, static links as static bodies);
-//   load_s = parse_s + build_s; first_step_s: the first World::step after it.
+//   parse_s: loadWorldString (text -> WorldFileDef); build_s: Scene::loadWorld into a started
+//   Scene (each model an object: its checks, bodies and shapes in the World);
+//   load_s = parse_s + build_s; first_step_s: the first Scene::step after it.
 // One line: engine=ragdoll_sim scenario=l objects=N ... (as bench_ragdoll's lines).
 #include <chrono>
 #include <cmath>
@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "ragdoll_sim/scene.hpp"
 #include "ragdoll_sim/world_file.hpp"
 
 using namespace ragdoll_sim;
@@ -91,30 +92,17 @@ int main(int argc, char** argv) {
   }
 
   t0 = std::chrono::steady_clock::now();
-  WorldDef wd;
-  World world(wd);
-  BodyDef ground;
-  ground.type = BodyType::Static;
-  world.addShape(world.createBody(ground), {Geometry::plane(Vec3::UnitZ(), 0.0), Transform(), Material()});
-  int bodies = 0;
-  for (const WorldModelDef& m : loaded.def.models) {
-    if (m.links.empty()) continue;
-    if (!m.links[0].is_static) {
-      bodies += int(spawnRagdoll(world, modelRagdollDef(m), m.links[0].pose).bodies.size());
-      continue;
-    }
-    for (const WorldLinkDef& l : m.links) {
-      BodyDef b;
-      b.type = BodyType::Static;
-      b.pose = l.pose;
-      const BodyId id = world.createBody(b);
-      for (const WorldCollisionDef& c : l.collisions) world.addShape(id, c.shape);
-    }
+  Scene scene{SceneDef()};
+  std::string error;
+  if (!scene.start(&error) || !scene.loadWorld(loaded.def, &error)) {
+    std::fprintf(stderr, "bench_world_load: %s\n", error.c_str());
+    return 1;
   }
   const double build_s = seconds(t0);
+  const int bodies = scene.world().bodyCount();
 
   t0 = std::chrono::steady_clock::now();
-  world.step(1e-3);
+  scene.step();
   const double first_step_s = seconds(t0);
 
   std::printf("engine=ragdoll_sim scenario=l objects=%d sizes=%d bodies=%d sdf_bytes=%zu "

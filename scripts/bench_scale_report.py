@@ -67,7 +67,7 @@ def section(runs, load_runs, meta):
         L += ["Scene **l**: a generated SDF world of N dynamic primitives (boxes, spheres, "
               "cylinders in turn, each its own model with <inertial>, <collision> and <visual>), "
               "`sizes` sizes per kind (0: every model its own), loaded by loadWorldString "
-              "(parse) and put into a World, one body per model (build); medians over the "
+              "(parse) and put into a started Scene by Scene::loadWorld (build); medians over the "
               "rounds; target load < %.0f s for 3 000." % TARGET_LOAD_S, ""]
         groups = {}
         for r in load_runs:
