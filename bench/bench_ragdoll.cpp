@@ -8,6 +8,9 @@
 //      they land on each other, 8 000 steps; its line adds pit_outside_end (pelvis outside the
 //      walls at the end) and pelvis_z_end_max (height of the pile);
 //   s: sleep check, a 4 x 4 x 3 pile of 0.4 m boxes, 3 000 steps
+//   f, w, v: scale of static worlds, 1 ragdoll standing as in a (pelvis at 1.5 m), sleep off
+//      (every step a full one), 5 000 steps: f on the plane alone; w among 10 000 static boxes,
+//      each its own body; v the same boxes as shapes of one static body (static_world.hpp)
 //   Every line also gives the cost per step in the first and the last second (p, s: asleep).
 // dt = 1 ms, gravity -9.81 z, ground z = 0, friction 0.8. Only World::step is timed. The
 // metrics are computed here from link poses and the URDF joint data alone (anchor error,
@@ -23,6 +26,7 @@
 #include "joint_angles.hpp"
 #include "ragdoll_sim/urdf_loader.hpp"
 #include "scaling_grid.hpp"
+#include "static_world.hpp"
 #include "world_tuning.hpp"
 
 using namespace ragdoll_sim;
@@ -35,10 +39,12 @@ struct Scene {
   std::vector<Transform> roots;
   std::vector<std::pair<Vec3, Vec3>> walls;  // static boxes: centre, half extents
   std::vector<Vec3> boxes;                   // dynamic 0.4 m boxes, 1 kg: centres
+  int static_boxes = 0;  // static_world.hpp: 0 none, 1 one body each, 2 shapes of one body
+  bool sleep = true;     // false: sleep off unless --opt sleep says otherwise
 };
 
 Scene makeScene(char id, int ragdolls) {
-  Scene s{id, 0, {}, {}, {}};
+  Scene s{id, 0, {}, {}, {}, 0, true};
   if (id == 'a') {
     s.steps = 10000;
     s.roots.push_back({Vec3(0, 0, 1.5), Quat::Identity()});
@@ -73,8 +79,13 @@ Scene makeScene(char id, int ragdolls) {
     for (int i = 0; i < 4; ++i)
       for (int j = 0; j < 4; ++j)
         for (int k = 0; k < 3; ++k) s.boxes.emplace_back(i * 0.45, j * 0.45, 0.2 + 0.45 * k);
+  } else if (id == 'f' || id == 'w' || id == 'v') {
+    s.steps = 5000;
+    s.roots.push_back({Vec3(0, 0, 1.5), Quat::Identity()});
+    s.static_boxes = id == 'w' ? 1 : id == 'v' ? 2 : 0;
+    s.sleep = false;
   } else {
-    std::fprintf(stderr, "scenario must be a, b, c, g, p or s\n");
+    std::fprintf(stderr, "scenario must be a, b, c, f, g, p, s, v or w\n");
     std::exit(2);
   }
   return s;
@@ -207,6 +218,7 @@ int main(int argc, char** argv) {
   // velocity bits after every step, so that a change meant to keep the results can be checked
   // bit for bit.
   bool hash = false;
+  bool sleep_given = false;  // --opt sleep: overrides the scene's own setting
   int trace = 0;  // --opt trace=N: every N steps, awake bodies, islands, mean step time (stderr)
   // --opt joint_damping=D,joint_friction=F: every joint axis gets viscous damping D (N m s/rad)
   // and Coulomb friction F (N m), as a URDF <dynamics> on every joint would give (ragdoll15 has
@@ -233,7 +245,10 @@ int main(int argc, char** argv) {
         else if (k == "joint_zeta") wd.solver.joint_damping_ratio = v;
         else if (k == "contact_hertz") wd.solver.contact_hertz = v;
         else if (k == "contact_zeta") wd.solver.contact_damping_ratio = v;
-        else if (k == "sleep") wd.sleep.enabled = v != 0.0;
+        else if (k == "sleep") {
+          wd.sleep.enabled = v != 0.0;
+          sleep_given = true;
+        }
         else if (k == "threads") wd.threads = int(v);
         else if (k == "position_iterations") wd.solver.position_iterations = int(v);
         else if (k == "anchor_iterations") wd.solver.anchor_iterations = int(v);
@@ -264,9 +279,9 @@ int main(int argc, char** argv) {
       }
     }
     else if (s == "--no-metrics") metrics = false;
-    else if (s.size() == 1 && std::string("abcgps").find(s[0]) != std::string::npos) scenario = s[0];
+    else if (s.size() == 1 && std::string("abcfgpsvw").find(s[0]) != std::string::npos) scenario = s[0];
     else {
-      std::fprintf(stderr, "usage: %s a|b|c|g|p|s [--ragdolls N (g only)] [--steps N] [--urdf F] [--no-metrics] [--opt substeps=4,joint_hertz=240,contact_hertz=240,sleep=1,...]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s a|b|c|f|g|p|s|v|w [--ragdolls N (g only)] [--steps N] [--urdf F] [--no-metrics] [--opt substeps=4,joint_hertz=240,contact_hertz=240,sleep=1,...]\n", argv[0]);
       return 2;
     }
   }
@@ -298,6 +313,7 @@ int main(int argc, char** argv) {
   if (steps < 0) steps = sc.steps;
   const int n = int(sc.roots.size());
   const double dt = 1e-3;
+  if (!sc.sleep && !sleep_given) wd.sleep.enabled = false;
 
   World world(wd);
   WorldInternals::setTuning(world, tuning);
@@ -317,6 +333,7 @@ int main(int argc, char** argv) {
     wall.pose.p = centre;
     world.addShape(world.createBody(wall), {Geometry::box(half), Transform(), mat});
   }
+  if (sc.static_boxes) static_world::addBoxes(world, sc.static_boxes == 2, mat);
   for (const Vec3& c : sc.boxes) {
     BodyDef box;
     box.pose.p = c;

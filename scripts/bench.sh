@@ -11,7 +11,10 @@
 #  3. Runs ROUNDS rounds. In each round every scene is run by every engine back to back
 #     (round-robin, the engine order rotating from round to round), so all engines see the same
 #     machine load: scenes a, b, c; the scaling scene g with N = $SCALING_NS ragdolls; then our
-#     own scenes p and s (no peer has them).
+#     own scenes p and s (no peer has them); then the scale of worlds: scenes f, w, v back to
+#     back (the bundled ragdoll on the plane, among 10 000 static boxes as bodies, as shapes of
+#     one body) and the load of generated worlds of dynamic primitives (scene l,
+#     bench_world_load, LOAD_RUNS).
 #  4. Raw result lines (plus round=R) go to bench/results_raw.txt, and scripts/bench_report.py
 #     turns them into bench/RESULTS.md and bench/scaling.png.
 #
@@ -20,6 +23,9 @@
 #   PEERS_DIR=../shared/peers
 #   SCENES="a b c"           scenes that every engine runs
 #   OWN_SCENES="p s"         scenes that only bench_ragdoll has
+#   SCALE_SCENES="f w v"     static-world scenes, with urdf/ragdoll.urdf ("" skips them)
+#   LOAD_RUNS="3000:8 300:0" runs of scene l per round, OBJECTS:SIZES (sizes per kind of
+#                            primitive; 0: every model its own, each parsed by SDFormat); "" skips
 #   SCALING_NS="1 4 16 64 256"   ragdoll counts for scene g ("" skips scaling)
 #   SCALING_STEPS=           steps for scene g (default: the scene's 3000)
 #   ENGINES="ragdoll_sim mujoco bullet ode"
@@ -42,6 +48,8 @@ PEERS_DIR="$(cd "${PEERS_DIR:-$ROOT/../shared/peers}" && pwd)"
 ROUNDS="${ROUNDS:-3}"
 SCENES="${SCENES-a b c}"
 OWN_SCENES="${OWN_SCENES-p s}"
+SCALE_SCENES="${SCALE_SCENES-f w v}"
+LOAD_RUNS="${LOAD_RUNS-3000:8 300:0}"
 SCALING_NS="${SCALING_NS-1 4 16 64 256}"
 SCALING_STEPS="${SCALING_STEPS:-}"
 ENGINES="${ENGINES:-ragdoll_sim mujoco bullet ode}"
@@ -61,6 +69,7 @@ LOG="$BUILD/bench_stderr.log"
 # ---- 1. our bench
 echo "bench: building bench_ragdoll (Release, $OWN_FLAGS) in $BUILD"
 build_bench_ragdoll "$BUILD" "-DCMAKE_CXX_FLAGS_RELEASE=$OWN_FLAGS"
+if [[ -n "$LOAD_RUNS" ]]; then cmake --build "$BUILD" -j2 --target bench_world_load >/dev/null; fi
 
 # ---- 2. peer benches (a failed build drops that engine and is reported)
 RAW_TMP="$BENCH_OUT/results_raw.txt.partial"
@@ -119,8 +128,11 @@ run_one() {
   elif [[ "$s" == g ]]; then bin="$PEER_BUILD/scaling_$e"
   else bin="$PEER_BUILD/bench_$e"; fi
   args=("$s" --urdf "$URDF")
+  if [[ "$s" == [fwv] ]]; then args=("$s" --urdf "$ROOT/urdf/ragdoll.urdf"); fi
   if [[ "$e" == ragdoll_sim ]]; then args+=(--opt "threads=$OWN_THREADS"); fi
   if [[ "$e" == ragdoll_sim_1thread ]]; then args+=(--opt "threads=1"); fi
+  # scene l: the load of a generated world (bench_world_load), N primitives, LOAD_SIZE sizes
+  if [[ "$s" == l ]]; then bin="$BUILD/bench_world_load"; args=(l --objects "$n" --sizes "$LOAD_SIZE"); n=""; fi
   if [[ "$s" == g ]]; then
     args+=(--ragdolls "$n")
     if [[ -n "$SCALING_STEPS" ]]; then args+=(--steps "$SCALING_STEPS"); fi
@@ -163,6 +175,8 @@ for r in $(seq "$ROUNDS"); do
   done
   if [[ " ${engines[*]} " == *" ragdoll_sim "* ]]; then
     for s in $OWN_SCENES; do run_one "$r" ragdoll_sim "$s"; done
+    for s in $SCALE_SCENES; do run_one "$r" ragdoll_sim "$s"; done
+    for lr in $LOAD_RUNS; do LOAD_SIZE="${lr#*:}" run_one "$r" ragdoll_sim l "${lr%%:*}"; done
   fi
 done
 echo "# meta loadavg_end=$(cut -d' ' -f1-3 /proc/loadavg)" >>"$RAW_TMP"

@@ -12,10 +12,12 @@ import statistics
 import sys
 from collections import OrderedDict, defaultdict
 
+import bench_scale_report  # scenes f, w, v, l
+
 OURS = "ragdoll_sim"
 OURS_1T = "ragdoll_sim_1thread"  # ours on one thread, scene g only (not a peer)
 ENGINE_ORDER = [OURS, OURS_1T, "mujoco", "bullet", "ode"]
-SCENE_ORDER = ["a", "b", "c", "g", "p", "s"]
+SCENE_ORDER = ["a", "b", "c", "g", "p", "s", "f", "w", "v"]
 SCENE_DESC = {
     "a": "1 ragdoll standing, pelvis at 1.5 m, 10 000 steps",
     "b": "32 ragdolls standing, 4 x 8 grid, 1.5 m pitch, 3 000 steps",
@@ -23,6 +25,7 @@ SCENE_DESC = {
     "g": "scaling: N ragdolls standing (pose of b) on a grid, 1.5 m pitch, 3 000 steps",
     "p": "ours only: 64 ragdolls dropped prone into a 3 m x 3 m pit, 8 000 steps",
     "s": "ours only: 4 x 4 x 3 pile of 0.4 m boxes (sleeping), 3 000 steps",
+    **bench_scale_report.SCENE_DESC,
 }
 # quality metrics shown for every run group (all printed by every engine)
 QUALITY = ["max_anchor_err_m", "max_ground_pen_m", "max_limit_viol_rad", "pelvis_z_3s_mean",
@@ -168,6 +171,7 @@ def failure_for(failures, engine, scene, n):
 
 
 def report(meta, runs, failures, png_name):
+    runs, load_runs = bench_scale_report.split_runs(runs)
     groups = build_groups(runs)
     engines = [e for e in ENGINE_ORDER if any(k[0] == e for k in groups)]
     engines += sorted({k[0] for k in groups} - set(engines))
@@ -330,7 +334,9 @@ def report(meta, runs, failures, png_name):
         L.append(md_table(["scene"] + OURS_EXTRA, rows))
         L.append("")
 
+    L += bench_scale_report.section(runs, load_runs, meta)
     # ---- flop count and the machine's peak (scripts/flops.sh)
+
     if "flops_per_body_step" in meta and ours_groups:
         flops = float(meta["flops_per_body_step"])
         peak = float(meta.get("peak_gflops", "nan"))

@@ -16,12 +16,20 @@ void Broadphase::findPairs(const std::vector<Aabb>& aabbs, const std::vector<cha
                            const std::vector<PlaneProxy>& planes, double margin,
                            std::vector<std::pair<int, int>>& pairs, Filter accept,
                            int threads, const std::vector<char>* frozen) {
+  ids_scratch_.clear();
+  for (int i = 0; i < int(aabbs.size()); ++i)
+    if (!unbounded[i]) ids_scratch_.push_back(i);
+  findPairs(ids_scratch_, aabbs, planes, margin, pairs, accept, threads, frozen);
+}
+
+void Broadphase::findPairs(const std::vector<int>& bounded, const std::vector<Aabb>& aabbs,
+                           const std::vector<PlaneProxy>& planes, double margin,
+                           std::vector<std::pair<int, int>>& pairs, Filter accept,
+                           int threads, const std::vector<char>* frozen) {
   accept_ = accept;
   frozen_ = frozen;
   pairs.clear();
-  bounded_.clear();
-  for (int i = 0; i < int(aabbs.size()); ++i)
-    if (!unbounded[i]) bounded_.push_back(i);
+  bounded_.assign(bounded.begin(), bounded.end());
   if (int(bounded_.size()) >= kGridMin) grid(aabbs, pairs);
   else sweep(aabbs, pairs, int(bounded_.size()) >= kParallelMin ? std::max(1, threads) : 1);
 
@@ -39,8 +47,9 @@ void Broadphase::findPairs(const std::vector<Aabb>& aabbs, const std::vector<cha
 
 void Broadphase::sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs,
                        int threads) {
-  // Keep the previous order, drop stale or unbounded ids, append new ones.
-  seen_.assign(aabbs.size(), 0);
+  // Keep the previous order, drop stale or unbounded ids, append new ones. seen_ is all 0
+  // between calls (cleared through bounded_), so that a call costs nothing per shape left out.
+  seen_.resize(aabbs.size(), 0);
   for (int id : bounded_) seen_[id] = 1;  // 1: bounded, 2: bounded and already in the order
   size_t kept = 0;
   for (int id : order_)
@@ -51,6 +60,7 @@ void Broadphase::sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int
   order_.resize(kept);
   for (int id : bounded_)
     if (seen_[id] == 1) order_.push_back(id);
+  for (int id : bounded_) seen_[id] = 0;
 
   // Sweep along the axis the box centres spread most on (a row of ragdolls along y overlaps
   // in x), switching only when another axis spreads clearly more, so that the kept order stays

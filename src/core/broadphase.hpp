@@ -67,6 +67,12 @@ class Broadphase {
                  const std::vector<PlaneProxy>& planes, double margin,
                  std::vector<std::pair<int, int>>& pairs, Filter accept = nullptr,
                  int threads = 1, const std::vector<char>* frozen = nullptr);
+  // The same over the bounded shapes `bounded` (ascending ids) alone: the others' boxes are
+  // not read, so shapes kept elsewhere (static ones: static_tree.hpp) cost nothing here.
+  void findPairs(const std::vector<int>& bounded, const std::vector<Aabb>& aabbs,
+                 const std::vector<PlaneProxy>& planes, double margin,
+                 std::vector<std::pair<int, int>>& pairs, Filter accept = nullptr,
+                 int threads = 1, const std::vector<char>* frozen = nullptr);
 
   static constexpr int kGridMin = 768;  // bounded shapes from which the grid is used
   // Bounded shapes from which the sweep is split over threads; below it the fork costs more
@@ -83,6 +89,7 @@ class Broadphase {
 
   // scratch, kept between steps to avoid a per-step allocation
   std::vector<int> bounded_;  // ids of the bounded shapes, ascending
+  std::vector<int> ids_scratch_;  // the unbounded-flags overload's ids
   Filter accept_;  // this call's filter (empty: keep all)
   const std::vector<char>* frozen_ = nullptr;  // this call's frozen shapes (null: none)
   bool bothFrozen(int i, int j) const { return frozen_ && (*frozen_)[i] && (*frozen_)[j]; }

@@ -23,40 +23,75 @@ void World::Impl::applyPairMaterial(Contact& c, const ShapeDef& da, const ShapeD
                   : 0.0;
 }
 
+// The per-shape lists collide walks (collide.hpp), after a shape was added or removed.
+void World::Impl::rebuildShapeLists() {
+  const int n = int(shapes.size());
+  moving_shapes.clear();
+  static_shapes.clear();
+  plane_shapes.clear();
+  is_static_shape.assign(n, 0);
+  unbounded.assign(n, 1);  // removed shapes too: in no pair (neither bounded nor a plane)
+  frozen.assign(n, 0);
+  for (int s = 0; s < n; ++s) {
+    if (!shapes[s].alive) continue;
+    if (isUnbounded(shapeDef(s).geometry)) {
+      plane_shapes.push_back(s);
+      continue;
+    }
+    unbounded[s] = 0;
+    if (isDynamic(shapes[s].body) || !tuning.static_tree) {
+      moving_shapes.push_back(s);
+    } else {
+      static_shapes.push_back(s);
+      is_static_shape[s] = 1;
+    }
+  }
+  shape_lists_dirty = false;
+}
+
 void World::Impl::collide(double dt) {
   const int n = int(shapes.size());
   aabbs.resize(n);
   aabb_kept.resize(n, 0);
   shape_frames.resize(n);
-  unbounded.resize(n);
-  frozen.resize(n);
+  if (shape_lists_dirty || int(is_static_shape.size()) != n) rebuildShapeLists();
   const bool carry = tuning.carry_sleeping_pairs && !pairs_dirty;
   const double spec = def.solver.speculative_distance;
-  // Boxes in parallel (each shape its own slot), the few planes after.
-#pragma omp parallel for schedule(static) num_threads(threadCount()) if (n >= kParallelMin)
-  for (int s = 0; s < n; ++s) {
-    if (!shapes[s].alive) {  // removed: in no pair (neither bounded nor a plane)
-      unbounded[s] = 1;
-      frozen[s] = 0;
-      continue;
-    }
-    const Geometry& g = shapeDef(s).geometry;
+  const auto computeBox = [&](int s) {
     const BodyMotion& m = motions[shapes[s].body];
-    unbounded[s] = isUnbounded(g);
-    frozen[s] = carry && !unbounded[s] && !m.awake && aabb_kept[s];
-    if (unbounded[s] || (!m.awake && aabb_kept[s])) continue;
-    aabb_kept[s] = !m.awake;
     const Transform& f = shape_frames[s] = shapeFrame(s);
-    Aabb box = computeAabb(g, {m.x + f.p, f.q});
+    Aabb box = computeAabb(shapeDef(s).geometry, {m.x + f.p, f.q});
     const Vec3 grow = Vec3::Constant(spec) + (m.v * dt).cwiseAbs();
     box.lo -= grow;
     box.hi += grow;
     aabbs[s] = box;
+  };
+  // Boxes of the dynamic bodies' shapes in parallel (each shape its own slot).
+  const int moving = int(moving_shapes.size());
+#pragma omp parallel for schedule(static) num_threads(threadCount()) if (moving >= kParallelMin)
+  for (int k = 0; k < moving; ++k) {
+    const int s = moving_shapes[k];
+    const BodyMotion& m = motions[shapes[s].body];
+    frozen[s] = carry && !m.awake && aabb_kept[s];
+    if (!m.awake && aabb_kept[s]) continue;
+    aabb_kept[s] = !m.awake;
+    computeBox(s);
   }
+  // Static boxes and their tree only after a static shape was added, removed or moved.
+  const bool static_rebuilt = static_dirty;
+  if (static_dirty) {
+    for (int s : static_shapes) {
+      aabb_kept[s] = 1;
+      computeBox(s);
+    }
+    static_boxes_computed += int64_t(static_shapes.size());
+    static_tree.build(static_shapes, aabbs);
+    static_dirty = false;
+  }
+  // The few planes (their frames every step).
   planes.swap(last_planes);
   planes.clear();
-  for (int s = 0; s < n; ++s) {
-    if (!unbounded[s] || !shapes[s].alive) continue;
+  for (int s : plane_shapes) {
     const Transform& f = shape_frames[s] = shapeFrame(s);
     const Vec3 nw = f.q * shapeDef(s).geometry.normal;
     const Vec3 p = motions[shapes[s].body].x + f.p;  // world
@@ -70,18 +105,47 @@ void World::Impl::collide(double dt) {
   // the broadphase, on its threads); sort by key to merge with last step's contacts (also
   // sorted by key). The keys are sorted, not the contacts (a Contact is ~400 bytes).
   // A pair of two frozen shapes (boxes and planes as in the last step, which sleeping bodies
-  // keep) overlaps now iff it did then, and the filter has not changed since (pairs_dirty):
-  // such pairs are carried over from the last step's keys instead of found and filtered again.
-  // With few frozen shapes (every ragdoll awake, static walls) the broadphase's frozen test
-  // costs more than it saves: then nothing is carried.
-  const bool carry_now = carry && 4 * std::count(frozen.begin(), frozen.end(), char(1)) >= n;
-  if (carry && !carry_now) std::fill(frozen.begin(), frozen.end(), char(0));
+  // and static ones keep) overlaps now iff it did then, and the filter has not changed since
+  // (pairs_dirty): such pairs are carried over from the last step's keys instead of found and
+  // filtered again. With few frozen shapes among the dynamic ones and the planes (every
+  // ragdoll awake) the broadphase's frozen test costs more than it saves: then nothing is
+  // carried. Static shapes are frozen unless their tree was rebuilt in this step.
+  int frozen_count = 0;
+  for (int s : moving_shapes) frozen_count += frozen[s];
+  for (int s : plane_shapes) frozen_count += frozen[s];
+  const bool carry_now = carry && 4 * frozen_count >= moving + int(plane_shapes.size());
+  if (carry && !carry_now) {
+    for (int s : moving_shapes) frozen[s] = 0;
+    for (int s : plane_shapes) frozen[s] = 0;
+  }
+  const bool static_frozen = carry_now && !static_rebuilt;
+  const auto frozenNow = [&](int s) { return is_static_shape[s] ? static_frozen : frozen[s] != 0; };
   const auto accept = [this](int sa, int sb) {
     const int ba = shapes[sa].body, bb = shapes[sb].body;
     return ba != bb && (isDynamic(ba) || isDynamic(bb)) && !neverCollide(ba, bb);
   };
-  broadphase.findPairs(aabbs, unbounded, planes, spec, pairs, accept, threadCount(),
+  broadphase.findPairs(moving_shapes, aabbs, planes, spec, pairs, accept, threadCount(),
                        carry_now ? &frozen : nullptr);
+  // The static shapes: each dynamic shape's box queries their tree (a sleeping one only when
+  // the tree changed: its other pairs are carried), and a plane of a dynamic body (rare) tests
+  // them all, as the broadphase tests its planes.
+  const auto addStatic = [&](int d, int s) {
+    if (accept(d, s)) pairs.emplace_back(std::min(d, s), std::max(d, s));
+  };
+  if (!static_tree.empty())
+    for (int d : moving_shapes) {
+      if (static_frozen && frozen[d]) continue;
+      static_tree.query(aabbs[d], [&](int s) { addStatic(d, s); });
+    }
+  for (const PlaneProxy& p : planes) {
+    if (!isDynamic(shapes[p.shape].body)) continue;
+    for (int s : static_shapes) {
+      if (frozenNow(p.shape) && frozenNow(s)) continue;
+      const Aabb& b = aabbs[s];
+      const Vec3 c = 0.5 * (b.lo + b.hi), e = 0.5 * (b.hi - b.lo);
+      if (p.normal.dot(c) - p.normal.cwiseAbs().dot(e) <= p.offset + spec) addStatic(p.shape, s);
+    }
+  }
   pairs_dirty = false;
   pair_keys.clear();
   for (const auto& [sa, sb] : pairs) pair_keys.push_back(pairKey(sa, sb));
@@ -89,7 +153,7 @@ void World::Impl::collide(double dt) {
   carried_keys.clear();
   if (carry_now)
     for (const uint64_t key : contact_keys)
-      if (frozen[int(key >> 32)] && frozen[int(uint32_t(key))]) carried_keys.push_back(key);
+      if (frozenNow(int(key >> 32)) && frozenNow(int(uint32_t(key)))) carried_keys.push_back(key);
   if (!carried_keys.empty()) {
     merged_keys.resize(pair_keys.size() + carried_keys.size());
     std::merge(pair_keys.begin(), pair_keys.end(), carried_keys.begin(), carried_keys.end(),

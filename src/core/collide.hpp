@@ -7,6 +7,11 @@
 // feature id (warm starting, scaled where the substep changed: warmStartScale). Pairs of two
 // shapes that keep last step's box (sleeping or static bodies) or plane are carried over instead
 // of found again: their overlap cannot have changed.
+//
+// The shapes of static bodies are kept apart (static_tree.hpp): their boxes are computed and
+// their tree built only after a static shape was added, removed or moved, and each step the
+// other shapes' boxes query the tree; the broadphase sees the other shapes alone. So a step
+// costs nothing per static shape or body that no moving shape comes near.
 #pragma once
 
 #include <cstdint>
@@ -16,11 +21,22 @@
 #include "broadphase.hpp"
 #include "contact.hpp"
 #include "manifold_cache.hpp"
+#include "static_tree.hpp"
 
 namespace ragdoll_sim {
 
 struct CollideData {
   Broadphase broadphase;
+  StaticTree static_tree;  // the bounded shapes of static bodies
+  // Bounded shapes of dynamic bodies, of static bodies, and planes (alive, ascending ids), and
+  // per shape whether it is in static_shapes: rebuilt when a shape is added or removed.
+  std::vector<int> moving_shapes, static_shapes, plane_shapes;
+  std::vector<char> is_static_shape;
+  bool shape_lists_dirty = true;
+  // A static shape was added, removed or moved (or the speculative distance changed): the
+  // next collide computes the static boxes again and rebuilds static_tree.
+  bool static_dirty = true;
+  int64_t static_boxes_computed = 0;  // static boxes computed so far (the tests count them)
   std::vector<Contact> contacts, next_contacts;
   std::vector<uint64_t> contact_keys;  // contacts[k].key, sorted
   std::vector<uint64_t> carried_keys, merged_keys;

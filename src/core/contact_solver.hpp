@@ -54,6 +54,7 @@ class ContactSolver {
   // One constraint slot per selected contact, in the selected order; then prepare fills the
   // slots [begin, end) (each on its own: ranges may be prepared on different threads).
   void resize() { constraints_.resize(active_.size()); }
+  const std::vector<int>& active() const { return active_; }  // selectActive's contacts
   void prepare(const std::vector<Contact>& contacts, const StepContext& ctx, int begin, int end);
   // positions_moved: as for solve; false when a sweep already recomputed the separations at
   // the current deltas (the first relax sweep after the last position update).

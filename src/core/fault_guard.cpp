@@ -19,24 +19,24 @@ void clearContactWarmStart(Contact& c) {
 // Before the step: what was set since the last one (impulses, forces, setBodyState) must be
 // finite and in range, and velocities are clamped. A good pose is the body's last good one (it
 // may come from setBodyState); a body with a bad velocity, force or torque keeps it.
+// A static body that was not created or commanded since the last step is as it was then.
 void World::Impl::guardInputs() {
-  for (size_t i = 0; i < bodies.size(); ++i) {
-    if (!bodies[i].alive) continue;
+  forEachGuarded([this](int i) {
     BodyMotion& m = motions[i];
     if (inputsFinite(m)) {
       if (!withinWorldRange(m.x)) {
-        resetBody(int(i), BodyFaultCause::OutOfRange);
-        continue;
+        resetBody(i, BodyFaultCause::OutOfRange);
+        return;
       }
       clampNorm(m.v, def.solver.max_linear_speed);
       clampNorm(m.w, def.solver.max_angular_speed);
       last_finite[i] = {m.x, m.q};
-      continue;
+      return;
     }
     if (m.x.allFinite() && m.q.coeffs().allFinite() && withinWorldRange(m.x))
       last_finite[i] = {m.x, m.q};
-    resetBody(int(i), BodyFaultCause::Input);
-  }
+    resetBody(i, BodyFaultCause::Input);
+  });
 }
 
 void World::Impl::resetBody(int b, BodyFaultCause cause) {
@@ -83,27 +83,30 @@ void World::Impl::finishBody(int i) {
   m.torque.setZero();
 }
 
+// Only awake (dynamic) bodies are marked (finishBody).
 void World::Impl::resetFaulted() {
-  for (size_t i = 0; i < bodies.size(); ++i)
+  for (const int i : dynamic_bodies)
     if (solver_fault[i]) {
       const bool range = solver_fault[i] == kRangeFault;
       solver_fault[i] = 0;
-      resetBody(int(i), range ? BodyFaultCause::OutOfRange : BodyFaultCause::Solver);
+      resetBody(i, range ? BodyFaultCause::OutOfRange : BodyFaultCause::Solver);
       solver_reset[i] = 1;
       any_solver_reset = true;
     }
 }
 
 void World::Impl::finishStep() {
-  for (size_t i = 0; i < bodies.size(); ++i)
-    if (bodies[i].alive) finishBody(int(i));
+  forEachGuarded([this](int i) { finishBody(i); });
   resetFaulted();
+  clearTouched();
 }
 
+// The other static bodies have no forces to clear (they were cleared when last touched).
 void World::Impl::finishOutsideBodies() {
-  const int body_count = int(bodies.size());
-  for (int i = 0; i < body_count; ++i)
-    if (island_of_body[i] < 0 && bodies[i].alive) finishBody(i);
+  for (const int i : dynamic_bodies)
+    if (island_of_body[i] < 0) finishBody(i);
+  for (const int i : touched_static)
+    if (bodies[i].alive) finishBody(i);
 }
 
 // After a solver or range fault the impulses accumulated by the reset bodies' joints and

@@ -15,6 +15,16 @@ class Islands {
     parent_.resize(n);
     std::iota(parent_.begin(), parent_.end(), 0);
   }
+  // Every entry of `ids` its own island (the others, never united, stay so): a reset that
+  // costs nothing per static body.
+  void reset(int n, const std::vector<int>& ids) {
+    const int old = int(parent_.size());
+    if (n > old) {
+      parent_.resize(n);
+      std::iota(parent_.begin() + old, parent_.end(), old);
+    }
+    for (int i : ids) parent_[i] = i;
+  }
   int find(int i) {
     while (parent_[i] != i) {
       parent_[i] = parent_[parent_[i]];

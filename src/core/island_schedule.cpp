@@ -10,17 +10,17 @@
 namespace ragdoll_sim {
 
 void World::Impl::buildIslands() {
-  islands.reset(int(bodies.size()));
+  islands.reset(int(bodies.size()), dynamic_bodies);  // static bodies are never united
   for (const Joint& j : joints)
     if (!j.broken && isDynamic(j.a) && isDynamic(j.b)) islands.unite(j.a, j.b);
   for (const Contact& c : contacts)
     if (c.manifold.count > 0 && isDynamic(c.body_a) && isDynamic(c.body_b))
       islands.unite(c.body_a, c.body_b);
-  // An island with one awake body is awake as a whole.
-  for (size_t i = 0; i < bodies.size(); ++i)
-    if (motions[i].awake) motions[islands.find(int(i))].awake = true;
-  for (size_t i = 0; i < bodies.size(); ++i)
-    if (isDynamic(int(i)) && !motions[i].awake && motions[islands.find(int(i))].awake) wake(int(i));
+  // An island with one awake body is awake as a whole (only dynamic bodies are ever awake).
+  for (const int i : dynamic_bodies)
+    if (motions[i].awake) motions[islands.find(i)].awake = true;
+  for (const int i : dynamic_bodies)
+    if (!motions[i].awake && motions[islands.find(i)].awake) wake(i);
 }
 
 // The joints solved this step: not broken, one body awake.
@@ -33,19 +33,21 @@ void World::Impl::collectActiveJoints() {
 // Numbers the awake islands by their first body and groups bodies, joints and contact
 // constraints by island, so each island is a contiguous range of each.
 void World::Impl::partitionIslands() {
+  // Entries of static bodies stay -1: only the dynamic ones are set and reset.
   const int n = int(bodies.size());
-  island_of_body.assign(n, -1);
-  std::vector<int>& slot = group_offsets;  // island root -> island index (reused below)
-  slot.assign(n, -1);
+  island_of_body.resize(n, -1);
+  island_slot.resize(n, -1);
+  for (const int i : dynamic_bodies) island_of_body[i] = -1;
   int count = 0;
   island_bodies.clear();
-  for (int i = 0; i < n; ++i) {
-    if (!isDynamic(i) || !motions[i].awake) continue;
-    int& k = slot[islands.find(i)];
+  for (const int i : dynamic_bodies) {
+    if (!motions[i].awake) continue;
+    int& k = island_slot[islands.find(i)];
     if (k < 0) k = count++;
     island_of_body[i] = k;
     island_bodies.push_back(i);
   }
+  for (const int i : island_bodies) island_slot[islands.find(i)] = -1;
   island_ranges.assign(count, IslandRange());
   const auto bodyIsland = [&](int b) { return island_of_body[b]; };
   groupBy(island_bodies, count, bodyIsland, body_scratch, group_offsets, group_cursor);

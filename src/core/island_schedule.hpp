@@ -60,6 +60,7 @@ struct IslandSchedule {
   long run_work = 0;  // work of the islands in runs (none when all go along with split ones)
   std::vector<int> island_bodies;   // awake bodies, grouped by island
   std::vector<int> island_of_body;  // per body: its island, -1 when not awake or not dynamic
+  std::vector<int> island_slot;     // per island root: its island while numbering, else -1
   IslandSplitter splitter;
   // scratch, reused every step
   std::vector<std::pair<int, int>> attach_scratch;

@@ -65,13 +65,24 @@ void World::Impl::prepareSolverBody(int i) {
   s.inv_inertia = R * m.inv_inertia_local * R.transpose();
 }
 
-// Solver bodies outside the islands (static, asleep) here; an island's bodies, joints and
-// contacts are prepared by the thread that solves it, right before it does, so they are in
-// its core's cache.
+// Solver bodies outside the islands (asleep, and the static ones that this step's joints and
+// contacts read: no other static one is read, so they cost nothing) here; an island's bodies,
+// joints and contacts are prepared by the thread that solves it, right before it does, so
+// they are in its core's cache.
 void World::Impl::prepareOutsideBodies() {
-  const int body_count = int(bodies.size());
-  for (int i = 0; i < body_count; ++i)
-    if (island_of_body[i] < 0 && bodies[i].alive) prepareSolverBody(i);
+  for (const int i : dynamic_bodies)
+    if (island_of_body[i] < 0) prepareSolverBody(i);
+  const auto prepareStatic = [this](int b) {
+    if (!isDynamic(b) && bodies[b].alive) prepareSolverBody(b);
+  };
+  for (const int ci : contact_solver.active()) {
+    prepareStatic(contacts[ci].body_a);
+    prepareStatic(contacts[ci].body_b);
+  }
+  for (const Joint* j : active_joints) {
+    prepareStatic(j->a);
+    prepareStatic(j->b);
+  }
 }
 
 void World::Impl::prepareIsland(const IslandRange& p, const StepContext& c) {

@@ -29,13 +29,15 @@ void World::Impl::markResting(bool rest_mode) {
 
 void World::Impl::updateSleep(double dt) {
   if (!def.sleep.enabled) return;
+  // Per-body arrays are reset at the dynamic bodies only (island roots are dynamic bodies).
   const int n = int(bodies.size());
   // Per island root: twice its kinetic energy and its mass (the energy rule, SleepDef).
   const double island_speed = def.sleep.island_speed;
   if (island_speed > 0.0) {
-    island_energy.assign(n, 0.0);
-    island_mass.assign(n, 0.0);
-    for (int i = 0; i < n; ++i) {
+    island_energy.resize(n);
+    island_mass.resize(n);
+    for (const int i : dynamic_bodies) island_energy[i] = island_mass[i] = 0.0;
+    for (const int i : dynamic_bodies) {
       const BodyMotion& m = motions[i];
       if (!m.awake || !(m.inv_mass > 0.0)) continue;
       const int root = islands.find(i);
@@ -46,8 +48,9 @@ void World::Impl::updateSleep(double dt) {
   }
   // island root's sleep_time becomes the island minimum (roots have the smallest index)
   std::vector<double>& slow = island_slow;
-  slow.assign(n, 1e300);
-  for (int i = 0; i < n; ++i) {
+  slow.resize(n);
+  for (const int i : dynamic_bodies) slow[i] = 1e300;
+  for (const int i : dynamic_bodies) {
     BodyMotion& m = motions[i];
     if (!m.awake) continue;
     const int root = islands.find(i);
@@ -58,7 +61,7 @@ void World::Impl::updateSleep(double dt) {
     double& r = slow[root];
     r = std::min(r, m.sleep_time);
   }
-  for (int i = 0; i < n; ++i) {
+  for (const int i : dynamic_bodies) {
     BodyMotion& m = motions[i];
     if (!m.awake || slow[islands.find(i)] < def.sleep.time) continue;
     m.awake = false;

@@ -48,6 +48,7 @@ void World::step(double dt) {
   w.breakJoints();
   w.finishOutsideBodies();
   w.resetFaulted();
+  w.clearTouched();
   if (w.any_solver_reset) w.clearWarmStart();
 
   // Sleep: islands slow for long enough go to sleep.
@@ -67,6 +68,7 @@ void World::setSolverSettings(const SolverSettings& solver) {
   if (solver.speculative_distance != w.def.solver.speculative_distance) {
     // Kept boxes are grown by the old distance and cached manifolds were made within it.
     std::fill(w.aabb_kept.begin(), w.aabb_kept.end(), char(0));
+    w.static_dirty = true;
     for (ManifoldCache& c : w.manifold_caches) c.valid = false;
     w.pairs_dirty = true;
     w.settled = false;
@@ -91,7 +93,34 @@ void WorldInternals::setTuning(World& world, const WorldTuning& tuning) {
   w.tuning = tuning;
   for (ManifoldCache& c : w.manifold_caches) c.valid = false;
   w.pairs_dirty = true;
+  w.shape_lists_dirty = true;
+  w.static_dirty = true;
   w.settled = false;
+}
+
+int64_t WorldInternals::staticTreeBuilds(const World& world) {
+  return world.impl_->static_tree.builds();
+}
+
+int64_t WorldInternals::staticBoxesComputed(const World& world) {
+  return world.impl_->static_boxes_computed;
+}
+
+std::vector<std::pair<int, int>> WorldInternals::pairs(const World& world) {
+  std::vector<std::pair<int, int>> out;
+  for (const uint64_t key : world.impl_->contact_keys)
+    out.emplace_back(int(key >> 32), int(uint32_t(key)));
+  return out;
+}
+
+const std::vector<Aabb>& WorldInternals::shapeBoxes(const World& world) { return world.impl_->aabbs; }
+
+std::vector<char> WorldInternals::boundedShapes(const World& world) {
+  const World::Impl& w = *world.impl_;
+  std::vector<char> out(w.shapes.size(), 0);
+  for (size_t s = 0; s < w.shapes.size(); ++s)
+    out[s] = w.shapes[s].alive && !isUnbounded(w.shapeDef(int(s)).geometry);
+  return out;
 }
 
 }  // namespace ragdoll_sim

@@ -51,7 +51,11 @@ BodyId World::createBody(const BodyDef& def) {
   w.last_finite.push_back({m.x, m.q});
   w.solver_reset.push_back(0);
   w.solver_fault.push_back(0);
-  return BodyId{int32_t(w.bodies.size() - 1)};
+  w.static_touched.push_back(0);
+  const int index = int(w.bodies.size() - 1);
+  if (def.type == BodyType::Dynamic) w.dynamic_bodies.push_back(index);
+  else w.touchStatic(index);
+  return BodyId{int32_t(index)};
 }
 
 void World::addShape(BodyId id, const ShapeDef& def) {
@@ -66,6 +70,7 @@ void World::addShape(BodyId id, const ShapeDef& def) {
   b.shape_ids.push_back(int(impl_->shapes.size()));
   impl_->shapes.push_back({id.index, int(b.shapes.size() - 1)});
   impl_->settled = false;
+  impl_->shapesChanged(id.index);
   // farthest shape point from the COM, for the sleep speed
   BodyMotion& m = impl_->motions[id.index];
   m.extent = std::max(m.extent, maxExtent(def.geometry, def.local, m.local_com));
@@ -169,6 +174,7 @@ void World::destroyBody(BodyId id) {
     if (w.joint_alive[k] && (w.joints[k].a == b || w.joints[k].b == b)) w.removeJoint(int(k));
   w.removeContacts([b](const Contact& c) { return c.body_a == b || c.body_b == b; });
   Body& body = w.bodies[b];
+  if (!body.shape_ids.empty()) w.shapesChanged(b);
   for (const int s : body.shape_ids) w.shapes[s].alive = false;
   body.shapes.clear();
   body.shape_ids.clear();
@@ -178,6 +184,8 @@ void World::destroyBody(BodyId id) {
     v.erase(std::remove(v.begin(), v.end(), b), v.end());
   }
   body.alive = false;
+  w.dynamic_bodies.erase(std::remove(w.dynamic_bodies.begin(), w.dynamic_bodies.end(), b),
+                         w.dynamic_bodies.end());
   BodyMotion& m = w.motions[b];
   m.awake = false;
   m.v.setZero();
@@ -198,6 +206,7 @@ void World::removeShape(BodyId id, int index) {
   const int s = body.shape_ids[index];
   w.removeContacts([s](const Contact& c) { return c.shape_a == s || c.shape_b == s; });
   w.shapes[s].alive = false;
+  w.shapesChanged(id.index);
   body.shapes.erase(body.shapes.begin() + index);
   body.shape_ids.erase(body.shape_ids.begin() + index);
   for (int k = index; k < int(body.shape_ids.size()); ++k) w.shapes[body.shape_ids[k]].index = k;

@@ -54,6 +54,13 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
   // woken, set or reset since: the next step would give the same contacts and move nothing,
   // so it only advances the time (a world whose ragdolls all sleep costs almost nothing).
   bool settled = false;
+  // The per-step body loops walk these instead of every body, so that static bodies cost
+  // nothing per step: the alive dynamic bodies (ascending), and the static bodies created or
+  // commanded (state, force, impulse) since the last step, which the fault guard checks and
+  // whose forces are cleared (static_touched: per body, whether it is listed).
+  std::vector<int> dynamic_bodies;
+  std::vector<int> touched_static;
+  std::vector<char> static_touched;
 
   int threadCount() const {
 #ifdef _OPENMP
@@ -117,12 +124,34 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
   }
   void wake(int b) {
     settled = false;  // also for a static body: setBodyState moves it through here
-    if (!isDynamic(b)) return;
+    if (!isDynamic(b)) return touchStatic(b);
     motions[b].awake = true;
     motions[b].sleep_time = 0.0;
   }
   bool anyAwake() const {
-    return std::any_of(motions.begin(), motions.end(), [](const BodyMotion& m) { return m.awake; });
+    return std::any_of(dynamic_bodies.begin(), dynamic_bodies.end(),
+                       [this](int i) { return motions[i].awake; });
+  }
+  void touchStatic(int b) {
+    if (static_touched[b]) return;
+    static_touched[b] = 1;
+    touched_static.push_back(b);
+  }
+  // f(i) for the dynamic and the touched static bodies, alive, in ascending order.
+  template <class F>
+  void forEachGuarded(F&& f) {
+    std::sort(touched_static.begin(), touched_static.end());
+    size_t a = 0, b = 0;
+    while (a < dynamic_bodies.size() || b < touched_static.size()) {
+      const bool dyn = b == touched_static.size() ||
+                       (a < dynamic_bodies.size() && dynamic_bodies[a] < touched_static[b]);
+      const int i = dyn ? dynamic_bodies[a++] : touched_static[b++];
+      if (bodies[i].alive) f(i);
+    }
+  }
+  void clearTouched() {
+    for (int b : touched_static) static_touched[b] = 0;
+    touched_static.clear();
   }
 
   // The one way to change Body::no_collide: the broadphase filter changes with it, so the next
@@ -143,9 +172,17 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
   void forgetBoxes(int b) {
     for (int s : bodies[b].shape_ids)
       if (s < int(aabb_kept.size())) aabb_kept[s] = 0;
+    if (bodies[b].def.type == BodyType::Static && !bodies[b].shape_ids.empty())
+      static_dirty = true;
+  }
+  // A shape of body b was added or removed (collide.hpp's lists; the static tree for a static b).
+  void shapesChanged(int b) {
+    shape_lists_dirty = true;
+    if (bodies[b].def.type == BodyType::Static) static_dirty = true;
   }
 
   // collide.cpp
+  void rebuildShapeLists();
   void collide(double dt);
   void applyPairMaterial(Contact& c, const ShapeDef& da, const ShapeDef& db) const;
 

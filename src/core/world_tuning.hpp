@@ -2,9 +2,14 @@
 // benchmark (the public WorldDef leaves them out; constants.hpp holds their defaults).
 #pragma once
 
+#include <cstdint>
 #include <string>
 
+#include <utility>
+#include <vector>
+
 #include "constants.hpp"
+#include "narrowphase.hpp"
 #include "ragdoll_sim/world.hpp"
 
 namespace ragdoll_sim {
@@ -13,6 +18,9 @@ struct WorldTuning {
   // Pairs of shapes that keep last step's box or plane are carried over instead of found again
   // (collide.hpp). Off: every pair is found every step; the result is the same bit for bit.
   bool carry_sleeping_pairs = true;
+  // Shapes of static bodies in their own tree (collide.hpp). Off: they go through the
+  // broadphase with the others every step; the pairs and the result are the same bit for bit.
+  bool static_tree = true;
   // m, manifold_cache.hpp; 0 (or a value not below speculative_distance) turns the cache off.
   double manifold_cache_distance = kManifoldCacheDistance;
 };
@@ -24,6 +32,15 @@ struct WorldInternals {
   static const WorldTuning& tuning(const World& world);
   // Throws std::invalid_argument with worldTuningError's message, changing nothing.
   static void setTuning(World& world, const WorldTuning& tuning);
+  // Counters of the static shapes' tree (collide.hpp): how often it was built, and how many
+  // static boxes were computed for it; stepping alone changes neither.
+  static int64_t staticTreeBuilds(const World& world);
+  static int64_t staticBoxesComputed(const World& world);
+  // The last collide's pairs (shape ids, a < b), in key order, and every shape's box in it
+  // (bounded[s]: an alive shape with a box, not a plane), for comparing with brute force.
+  static std::vector<std::pair<int, int>> pairs(const World& world);
+  static const std::vector<Aabb>& shapeBoxes(const World& world);
+  static std::vector<char> boundedShapes(const World& world);
 };
 
 }  // namespace ragdoll_sim
