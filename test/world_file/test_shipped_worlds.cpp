@@ -302,3 +302,47 @@ TEST(ShippedWorlds, RagdollPushedDownTheStairsEndsLower) {
   EXPECT_LT(end_level, start_level);
   EXPECT_LE(max_penetration, 0.005);
 }
+
+// config/materials.yaml's link_materials on the bundled ragdoll: rubber soles, a leather jacket,
+// so a foot on the concrete ramp and a sleeve on steel take the table's two different rows.
+TEST(ShippedWorlds, BundledRagdollHasRubberSolesAndLeatherElsewhere) {
+  const MaterialFileResult mat = materials();
+  const UrdfLoadResult u = loadUrdfFile(sourceFile("urdf/ragdoll.urdf"));
+  ASSERT_TRUE(u.ok) << u.error;
+  SceneDef sd;
+  sd.world.materials = mat.table;
+  sd.link_materials = mat.link_materials;
+  Scene scene(sd);
+  std::string error;
+  ASSERT_TRUE(scene.loadWorld(shippedWorld("ramp"), &error)) << error;
+  SpawnDef spawn;
+  spawn.name = "ragdoll";
+  spawn.def = u.def;
+  spawn.pose = Transform(Vec3(-3, 0, 1.5), Quat::Identity());
+  ASSERT_EQ(scene.addRagdoll(spawn, &error), SpawnResult::Added) << error;
+  ASSERT_TRUE(scene.start(&error)) << error;
+  const MaterialTable& table = scene.world().def().materials;
+  const int rubber = table.find("rubber"), leather = table.find("leather");
+  ASSERT_GT(rubber, 0);
+  ASSERT_GT(leather, 0);
+  const int k = scene.find("ragdoll");
+  int feet = 0, others = 0;
+  for (size_t l = 0; l < u.def.links.size(); ++l) {
+    const std::string& name = u.def.links[l].name;
+    const bool foot = name == "foot_l" || name == "foot_r";
+    for (const ShapeDef& s : scene.world().bodyShapes(scene.bodies(k).bodies[l])) {
+      EXPECT_EQ(s.material.id, foot ? rubber : leather) << name;
+      ++(foot ? feet : others);
+    }
+  }
+  EXPECT_GT(feet, 0);
+  EXPECT_GT(others, 0);
+  // The ramp's concrete against each: the rubber-concrete row and, for leather, the combine rule.
+  const int concrete = table.find("concrete"), steel = table.find("steel");
+  ASSERT_GT(concrete, 0);
+  ASSERT_GT(steel, 0);
+  EXPECT_DOUBLE_EQ(table.resolve(table.material(rubber), table.material(concrete)).static_friction, 1.0);
+  EXPECT_DOUBLE_EQ(table.resolve(table.material(rubber), table.material(concrete)).kinetic_friction, 0.725);
+  EXPECT_DOUBLE_EQ(table.resolve(table.material(leather), table.material(steel)).static_friction, 0.4);
+  EXPECT_DOUBLE_EQ(table.resolve(table.material(leather), table.material(steel)).kinetic_friction, 0.2);
+}
