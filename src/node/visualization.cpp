@@ -120,7 +120,7 @@ constexpr double kSlabSize = 20.0;       // m
 }  // namespace
 
 void Visualizer::addBodyMarkers(const World& world, const std::string& ns, int* id, BodyId body,
-                                const Rgba& c) {
+                                const Rgba& c, bool planes) {
   if (!world.isValid(body)) return;
   for (const ShapeDef& s : world.bodyShapes(body)) {
     const Geometry& g = s.geometry;
@@ -156,6 +156,7 @@ void Visualizer::addBodyMarkers(const World& world, const std::string& ns, int* 
         break;
       }
       case ShapeType::Plane:
+        if (!planes) break;
         addShapeMarker(ns, (*id)++, body, s.local * planeSlab(g, kSlabThickness), Marker::CUBE,
                        Vec3(kSlabSize, kSlabSize, kSlabThickness), c);
         break;
@@ -173,22 +174,23 @@ void Visualizer::setScene(const World& world, const std::vector<RagdollView>& ra
   for (size_t r = 0; r < ragdolls.size(); ++r) {
     if (!ragdolls[r].ragdoll) continue;
     int id = 0;
-    for (const BodyId body : ragdolls[r].ragdoll->bodies) {
-      if (!world.isValid(body)) continue;
-      bool plane = false;  // planes on ragdoll links make no sense to draw
-      for (const ShapeDef& s : world.bodyShapes(body)) plane = plane || s.geometry.type == ShapeType::Plane;
-      if (!plane) addBodyMarkers(world, ragdolls[r].name, &id, body, ragdollColor(r));
-    }
+    // Planes on ragdoll links make no sense to draw; their other shapes are drawn.
+    for (const BodyId body : ragdolls[r].ragdoll->bodies)
+      addBodyMarkers(world, ragdolls[r].name, &id, body, ragdollColor(r), /*planes=*/false);
   }
 
+  bool ground_drawn = false;  // a world's plane replacing the ground is drawn as its object
   for (const ObjectView& o : objects) {
     if (!o.def) continue;
     int id = 0;
-    for (size_t i = 0; i < o.bodies.size() && i < o.def->links.size(); ++i)
-      addBodyMarkers(world, o.name, &id, o.bodies[i], objectColor(o.def->links[i], o.is_static));
+    for (size_t i = 0; i < o.bodies.size() && i < o.def->links.size(); ++i) {
+      addBodyMarkers(world, o.name, &id, o.bodies[i], objectColor(o.def->links[i], o.is_static),
+                     /*planes=*/true);
+      ground_drawn = ground_drawn || o.bodies[i] == ground;
+    }
   }
 
-  if (ground.valid() && world.isValid(ground)) {
+  if (!ground_drawn && ground.valid() && world.isValid(ground)) {
     for (const ShapeDef& s : world.bodyShapes(ground)) {
       if (s.geometry.type != ShapeType::Plane) continue;
       addShapeMarker("ground", 0, ground, s.local * planeSlab(s.geometry, kSlabThickness),

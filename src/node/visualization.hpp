@@ -102,9 +102,9 @@ class Visualizer {
   visualization_msgs::Marker& addShapeMarker(const std::string& ns, int id, BodyId body,
                                              const Transform& local, int type, const Vec3& scale,
                                              const Rgba& color);
-  // One marker per collision shape of `body` (planes as a slab), ids from *id on.
+  // One marker per collision shape of `body` (planes as a slab, or left out), ids from *id on.
   void addBodyMarkers(const World& world, const std::string& ns, int* id, BodyId body,
-                      const Rgba& color);
+                      const Rgba& color, bool planes);
   void appendContacts(const World& world, const ros::Time& stamp);
   void appendArrows(const World& world, const ros::Time& stamp, double sim_time);
   visualization_msgs::Marker& appendMarker(const std::string& ns, int id, const ros::Time& stamp);

@@ -306,3 +306,30 @@ TEST(Visualizer, ObjectsDrawnInTheirNamespaceStaticPlanesAsSlabs) {
   EXPECT_NEAR(f[0]->pose.position.z + 0.5 * f[0]->scale.z, -1.0, 1e-9);  // top face on the plane
   EXPECT_LT(f[0]->color.r, c[0]->color.r);
 }
+
+// A world's plane that replaced the ground is drawn once, as its object; a ragdoll link that
+// carries a plane keeps its other shapes drawn (the plane itself is not).
+TEST(Visualizer, WorldGroundDrawnOnceAndRagdollPlanesLeftOut) {
+  World world;
+  BodyDef plane_def;
+  plane_def.type = BodyType::Static;
+  const BodyId plane = world.createBody(plane_def);
+  world.addShape(plane, {Geometry::plane(Vec3::UnitZ(), 0.0), Transform(), Material()});
+  const BodyId link = world.createBody(BodyDef());
+  world.addShape(link, {Geometry::box(Vec3(0.1, 0.1, 0.1)), Transform(), Material()});
+  world.addShape(link, {Geometry::plane(Vec3::UnitZ(), -5.0), Transform(), Material()});
+  RagdollDef floor;
+  floor.links.resize(1);
+  Ragdoll ragdoll;
+  ragdoll.bodies = {link};
+  RagdollDef ragdoll_def;
+  ragdoll_def.links.resize(1);
+  Visualizer viz(MarkerSettings(), "world");
+  viz.setScene(world, {{"r", "r", &ragdoll_def, &ragdoll}}, plane, {{"floor", &floor, {plane}, true}});
+  const MarkerArray a = viz.update(world, ros::Time(1.0), 0.0);
+  EXPECT_EQ(inNs(a, "floor").size(), 1u);
+  EXPECT_EQ(inNs(a, "ground").size(), 0u);
+  const auto r = inNs(a, "r");
+  ASSERT_EQ(r.size(), 1u);
+  EXPECT_EQ(r[0]->type, Marker::CUBE);
+}
