@@ -16,9 +16,11 @@
 #include <vector>
 
 #include "ragdoll_sim/balance.hpp"
+#include "ragdoll_sim/injury.hpp"
 #include "ragdoll_sim/material.hpp"
 #include "ragdoll_sim/math.hpp"
 #include "ragdoll_sim/ragdoll.hpp"
+#include "ragdoll_sim/scene_reports.hpp"
 #include "ragdoll_sim/world.hpp"
 #include "ragdoll_sim/world_file.hpp"
 
@@ -82,7 +84,8 @@ struct TargetPoseCommand {
   std::vector<double> position, velocity;
 };
 
-using SceneCommandVariant = std::variant<ImpulseCommand, ForceCommand, TargetPoseCommand>;
+using SceneCommandVariant =
+    std::variant<ImpulseCommand, ForceCommand, TargetPoseCommand, JointEffortCommand>;
 
 // The surface of ragdolls and ground unless ~materials name others.
 inline Material defaultSurface() { return Material{0.8, 0.6, 0.0, 0.05}; }
@@ -117,6 +120,8 @@ struct SceneDef {
   Material object_surface = defaultSurface();  // objects' links that name no material
   // The balance controllers' law (their hold motors use `motor`, then the per-joint gains).
   BalanceDef balance;
+  ImpactDef impacts;
+  InjuryDef injury;  // every ragdoll's head and neck unless setInjury names others
 };
 
 struct SpawnDef {
@@ -274,6 +279,32 @@ class Scene {
   bool setSolverSettings(const SolverSettings& solver, std::string* error);
   // One surface for every ragdoll shape and the ground, and the pair table.
   void setMaterials(const Material& surface, const MaterialTable& table);
+
+  // --- reports of the last step (scene_reports.hpp, injury.hpp) ---
+  // "ragdoll/link", "object/link" (static objects too) or "ground".
+  std::string bodyName(const BodyRef& body) const;
+  BodyRef bodyRef(BodyId body) const;  // all -1 for a body of no ragdoll, object or ground
+  // Touching pairs after the last step, into `out` (cleared, capacity reused).
+  void contacts(std::vector<SceneContact>& out) const;
+  // Ragdoll k's loads after the last step: one LinkLoad per RagdollDef link, one JointLoad per
+  // RagdollDef joint (into the vectors, cleared, capacity reused).
+  void loads(int k, std::vector<LinkLoad>& links, std::vector<JointLoad>& joints) const;
+  // Ragdoll k's axis efforts in axisNames(k) order (motor + limit + commanded effort).
+  void jointEfforts(int k, std::vector<double>& out) const;
+  size_t activeEffortCount() const;  // axes with a commanded effort acting now
+  void setImpacts(const ImpactDef& def);
+  const std::vector<ImpactEvent>& impacts() const;  // found in the last step()
+  // Head and neck of ragdoll k: "" names are guessed as InjuryDef says. False with *error
+  // naming an unknown link or joint, changing nothing.
+  bool setInjury(int k, const InjuryDef& def, std::string* error);
+  const std::string& headLink(int k) const;   // "" when it has none (no injury record)
+  const std::string& neckJoint(int k) const;  // "" when none
+  // The fall record of ragdoll k so far (reason "").
+  InjuryReport injury(int k) const;
+  // Ends ragdoll k's record now (reason "reset") and starts a new one; returns the ended one.
+  InjuryReport resetInjury(int k);
+  // Falls that ended in the last step() (reason "rest") or with their ragdoll's removal.
+  const std::vector<InjuryReport>& injuryReports() const;
 
   // --- stepping ---
   // Called every step after the due commands and before the forces (the node's drag springs).

@@ -72,6 +72,15 @@ struct Material {
   // contact patch of soft bodies such as limbs and heads (Box2D v3's rollingResistance).
   // Dimensionless; pairs combine with max. Boxes and hulls roll on their edges, not radii.
   double rolling_resistance = 0.0;
+  // Contact compliance (a padded mat, soft ground): with contact_hertz > 0 the normal of a
+  // contact is a spring-damper of this natural frequency (Hz) and damping ratio while the
+  // bodies approach as well as while they push apart, so an impact is stopped over a time of
+  // about 1/(4 contact_hertz) instead of one substep. 0 = rigid (the solver's contact_hertz
+  // then softens only the push-out). A pair takes the softer surface's (the lower hertz > 0)
+  // pair of values. Peak accelerations and HIC of a rigid-body model depend on it
+  // (docs/injury.md).
+  double contact_hertz = 0.0;
+  double contact_damping_ratio = 1.0;
   int id = 0;  // index in the material table; 0 = unnamed
 };
 

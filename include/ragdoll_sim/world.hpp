@@ -12,6 +12,7 @@
 #include "ragdoll_sim/joint.hpp"
 #include "ragdoll_sim/material.hpp"
 #include "ragdoll_sim/shape.hpp"
+#include "ragdoll_sim/world_reports.hpp"
 
 namespace ragdoll_sim {
 
@@ -284,6 +285,28 @@ class World {
   Vec3 angularMomentum(const Vec3& about) const;
   double kineticEnergy() const;
   std::vector<ContactInfo> contacts() const;
+
+  // --- reports of the last step (world_reports.hpp) --------------------------------------
+  // The step sums each contact point's normal impulse over its substeps (step_impulse,
+  // peak_force) only while this is on: nobody pays for what nobody reads. Off by default.
+  void setContactImpulseTracking(bool on);
+  bool contactImpulseTracking() const;
+  // Touching shape pairs after the last step, into `out` (cleared; its capacity is reused, so
+  // a caller that keeps `out` allocates nothing once it is large enough).
+  void contactReports(std::vector<ContactReport>& out) const;
+  // Throws std::out_of_range for an invalid joint. A broken joint reports zero.
+  JointWrench jointWrench(JointId joint) const;
+  // Efforts about the joint's axes in the last substep, into out[0..n): hinge 1 (N m about its
+  // axis), prismatic 1 (N along its axis), ball 3 (N m about each Euler axis as the chain of
+  // revolute joints it stands for has it at the current angles), fixed 0. Each is motor (with
+  // its damping) + limit, on B about +axis: the effort of that joint's actuator in the sign
+  // robot_state_publisher and ros_control use. Returns n.
+  int jointAxisEfforts(JointId joint, double out[3]) const;
+  // A tracked body's velocities are kept at the end of every substep (substepVelocities).
+  // Throws std::out_of_range for an invalid body.
+  void trackBody(BodyId body, bool on);
+  // False when `body` is not tracked or no step ran since it was.
+  bool substepVelocities(BodyId body, SubstepVelocities* out) const;
 
  private:
   friend struct WorldInternals;  // src/core: the switches that check an optimisation

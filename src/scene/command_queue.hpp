@@ -26,7 +26,7 @@ struct QueuedCommand {
   std::string ragdoll;  // "" = the first ragdoll
   RagdollId ragdoll_id; // resolved when it was submitted
   CommandCheck link;    // an impulse's or force's link and frame, resolved then too
-  std::variant<ImpulseCommand, ForceCommand, TargetPoseCommand> command;
+  SceneCommandVariant command;
 };
 
 class CommandQueue {

@@ -21,6 +21,7 @@ std::string which(const std::string& ragdoll) {
 const char* what(const SceneCommandVariant& c) {
   if (std::holds_alternative<ImpulseCommand>(c)) return "impulse";
   if (std::holds_alternative<ForceCommand>(c)) return "force";
+  if (std::holds_alternative<JointEffortCommand>(c)) return "joint effort";
   return "target pose";
 }
 
@@ -88,6 +89,8 @@ void Scene::Impl::applyCommand(const QueuedCommand& q) {
       ok = applyForce(r, *f, q.link);
     else if (const auto* t = std::get_if<TargetPoseCommand>(&q.command))
       ok = applyTargetPose(r, *t);
+    else if (const auto* e = std::get_if<JointEffortCommand>(&q.command))
+      ok = applyJointEffort(r, *e);
   }
   ++(ok ? applied : rejected);
 }

@@ -2,7 +2,8 @@
 // each: scene.cpp (ragdolls and the World), scene_commands.cpp (queue and commands),
 // scene_forces.cpp (timed forces, their budgets and caps), scene_motors.cpp (targets and
 // balance), scene_step.cpp (settings, the step, reports), scene_objects.cpp (world files,
-// objects, static objects).
+// objects, static objects), scene_reports.cpp (contacts, loads, impacts, joint efforts),
+// scene_injury.cpp (injury records).
 #pragma once
 
 #include <cstdint>
@@ -110,6 +111,14 @@ struct Scene::Impl {
   // scene_step.cpp
   void reportBodyFaults();
   void collectBrokenJoints();
+
+  // scene_reports.cpp: joint effort commands, impacts
+  bool applyJointEffort(scene::RagdollInstance& r, const JointEffortCommand& cmd);
+  void applyActiveEfforts(scene::RagdollInstance& r);  // each step, before World::step
+  void findImpacts();                                  // after World::step
+
+  // scene_injury.cpp
+  void updateInjury();  // after World::step: the head's samples, falls that ended
 };
 
 }  // namespace ragdoll_sim

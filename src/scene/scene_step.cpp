@@ -20,6 +20,7 @@ void Scene::step() {
   if (s.before_forces) s.before_forces(world, s.simTime());
   for (RagdollInstance& r : s.ragdolls) {
     s.applyActiveForces(r);
+    s.applyActiveEfforts(r);
     for (int i : r.moving_targets) s.applyAxisMotor(r, i);  // targets that move with their velocity
     // applyAxisMotor drops a target that overflowed: it moves no more.
     r.moving_targets.erase(std::remove_if(r.moving_targets.begin(), r.moving_targets.end(),
@@ -33,6 +34,8 @@ void Scene::step() {
   s.reportBodyFaults();
   for (RagdollInstance& r : s.ragdolls) s.expireForces(r);
   s.collectBrokenJoints();
+  s.findImpacts();
+  s.updateInjury();
 }
 
 void Scene::Impl::reportBodyFaults() {
