@@ -2,7 +2,8 @@
 // each: scene.cpp (ragdolls and the World), scene_commands.cpp (queue and commands),
 // scene_forces.cpp (timed forces, their budgets and caps), scene_motors.cpp (targets and
 // balance), scene_step.cpp (settings, the step, reports), scene_objects.cpp (world files,
-// objects, static objects), scene_reports.cpp (contacts, loads, impacts, joint efforts),
+// objects, static objects), scene_reports.cpp (contacts and impacts by name),
+// scene_efforts.cpp (joint loads, efforts and effort commands),
 // scene_injury.cpp (injury records).
 #pragma once
 
@@ -112,10 +113,12 @@ struct Scene::Impl {
   void reportBodyFaults();
   void collectBrokenJoints();
 
-  // scene_reports.cpp: joint effort commands, impacts
+  // scene_efforts.cpp: joint effort commands
   bool applyJointEffort(scene::RagdollInstance& r, const JointEffortCommand& cmd);
   void applyActiveEfforts(scene::RagdollInstance& r);  // each step, before World::step
-  void findImpacts();                                  // after World::step
+
+  // scene_reports.cpp: contacts by name, impacts
+  void findImpacts();  // after World::step
 
   // scene_injury.cpp
   void updateInjury();  // after World::step: the head's samples, falls that ended
