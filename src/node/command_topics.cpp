@@ -24,6 +24,8 @@ CommandTopics::CommandTopics(NodeContext& ctx) : ctx_(ctx) {
   impulse_sub_ = ctx_.pnh.subscribe("apply_impulse", kQueue, &CommandTopics::onImpulse, this,
                                     no_delay);
   force_sub_ = ctx_.pnh.subscribe("apply_force", kQueue, &CommandTopics::onForce, this, no_delay);
+  effort_sub_ = ctx_.pnh.subscribe("joint_effort", kQueue, &CommandTopics::onJointEffort, this,
+                                   no_delay);
 }
 
 void CommandTopics::onImpulse(const ragdoll_sim::ApplyImpulse::ConstPtr& msg) {
@@ -46,28 +48,43 @@ void CommandTopics::onForce(const ragdoll_sim::ApplyForce::ConstPtr& msg) {
   submit(msg->ragdoll, cmd, msg->header.stamp);
 }
 
-void CommandTopics::onTargetPose(const sensor_msgs::JointState::ConstPtr& msg) {
-  // Names are "<joint>" (the first ragdoll) or "<ragdoll>/<joint>", one ragdoll per message.
+bool CommandTopics::splitNames(const sensor_msgs::JointState& msg, const std::string& kind,
+                               std::string* ragdoll, std::vector<std::string>* joints) {
   const Scene& scene = *ctx_.scene;
-  std::string first;
-  TargetPoseCommand cmd;
-  for (size_t i = 0; i < msg->name.size(); ++i) {
-    std::string ragdoll, joint;
-    scene::splitQualifiedName(msg->name[i],
-                              [&](const std::string& n) { return scene.find(n) >= 0; }, &ragdoll,
-                              &joint);
-    if (i > 0 && ragdoll != first) {
-      ctx_.scene->reject("target pose/two ragdolls",
-                         "target pose rejected: it names joints of " + which(first) + " and of " +
-                             which(ragdoll) + " (one ragdoll per message); target pose dropped");
-      return;
+  ragdoll->clear();
+  for (size_t i = 0; i < msg.name.size(); ++i) {
+    std::string r, joint;
+    scene::splitQualifiedName(msg.name[i], [&](const std::string& n) { return scene.find(n) >= 0; },
+                              &r, &joint);
+    if (i > 0 && r != *ragdoll) {
+      ctx_.scene->reject(kind + "/two ragdolls",
+                         kind + " rejected: it names joints of " + which(*ragdoll) + " and of " +
+                             which(r) + " (one ragdoll per message); " + kind + " dropped");
+      return false;
     }
-    first = ragdoll;
-    cmd.names.push_back(joint);
+    *ragdoll = r;
+    joints->push_back(joint);
   }
+  return true;
+}
+
+void CommandTopics::onTargetPose(const sensor_msgs::JointState::ConstPtr& msg) {
+  std::string ragdoll;
+  TargetPoseCommand cmd;
+  if (!splitNames(*msg, "target pose", &ragdoll, &cmd.names)) return;
   cmd.position = msg->position;
   cmd.velocity = msg->velocity;
-  submit(first, cmd, msg->header.stamp);
+  submit(ragdoll, cmd, msg->header.stamp);
+}
+
+void CommandTopics::onJointEffort(const sensor_msgs::JointState::ConstPtr& msg) {
+  // `effort` only; the Scene checks names, lengths, NaN and the caps when it applies it.
+  std::string ragdoll;
+  JointEffortCommand cmd;
+  if (!splitNames(*msg, "joint effort", &ragdoll, &cmd.names)) return;
+  cmd.efforts = msg->effort;
+  cmd.duration = ctx_.config.joint_effort_duration;
+  submit(ragdoll, cmd, msg->header.stamp);
 }
 
 void CommandTopics::submit(const std::string& ragdoll, SceneCommandVariant command,

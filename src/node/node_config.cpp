@@ -212,6 +212,51 @@ bool loadRvizSettings(Source& pnh, NodeConfig* c, std::string* error) {
          read(pnh, "drag/handle_height", "a number (m)", &c->drag.handle_height, error);
 }
 
+// ~injury/ragdolls: {<ragdoll>: {head_link: <link>, neck_joint: <joint>}}, both keys optional.
+bool loadInjuryRagdolls(const ros::NodeHandle& pnh, NodeConfig* c, std::string* error) {
+  XmlRpc::XmlRpcValue v;
+  if (!pnh.getParam("injury/ragdolls", v)) return true;
+  const std::string where = "parameter " + pnh.resolveName("injury/ragdolls");
+  const std::string shape = " must be a dictionary: ragdoll name -> {head_link, neck_joint}";
+  if (v.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
+    *error = where + shape;
+    return false;
+  }
+  for (auto& [name, entry] : v) {
+    if (entry.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
+      *error = where + "/" + name + " must be a dictionary {head_link, neck_joint}";
+      return false;
+    }
+    NodeConfig::HeadAndNeck& h = c->injury_ragdolls[name];
+    for (auto& [key, value] : entry) {
+      if ((key != "head_link" && key != "neck_joint") ||
+          value.getType() != XmlRpc::XmlRpcValue::TypeString) {
+        *error = where + "/" + name + "/" + key +
+                 (key == "head_link" || key == "neck_joint"
+                      ? " must be a string"
+                      : " is an unknown key (known: head_link, neck_joint)");
+        return false;
+      }
+      (key == "head_link" ? h.head_link : h.neck_joint) = std::string(value);
+    }
+  }
+  return true;
+}
+
+// ~contacts, ~impacts, ~injury, ~joint_effort (report_topics.hpp, command_topics.hpp).
+bool loadReportSettings(Source& pnh, NodeConfig* c, std::string* error) {
+  InjuryDef& injury = c->scene.injury;
+  return read(pnh, "contacts/rate", "a number (Hz)", &c->contacts_rate, error) &&
+         read(pnh, "impacts/min_impulse", "a number (N*s)", &c->scene.impacts.min_impulse, error) &&
+         read(pnh, "impacts/min_speed", "a number (m/s)", &c->scene.impacts.min_speed, error) &&
+         read(pnh, "injury/head_link", "a string", &c->injury_head_link, error) &&
+         read(pnh, "injury/neck_joint", "a string", &c->injury_neck_joint, error) &&
+         read(pnh, "injury/fall_speed", "a number (m/s)", &injury.fall_speed, error) &&
+         read(pnh, "injury/rest_speed", "a number (m/s)", &injury.rest_speed, error) &&
+         read(pnh, "injury/rest_time", "a number (s)", &injury.rest_time, error) &&
+         read(pnh, "joint_effort/duration", "a number (s)", &c->joint_effort_duration, error);
+}
+
 // The named surface of the table, or the fallback when the name is empty.
 bool surface(const MaterialTable& t, const std::string& name, const char* param,
              const Material& fallback, Material* out, std::string* error) {
@@ -253,13 +298,34 @@ std::string physicsRangeError(const NodeConfig& c) {
   return e.str();
 }
 
+// The reports' thresholds and rates; a fall must start above the speed it ends below.
+std::string reportSettingsError(const NodeConfig& c) {
+  std::string e;
+  for (const auto& [name, v] :
+       {std::pair<const char*, double>{"contacts/rate", c.contacts_rate},
+        {"impacts/min_impulse", c.scene.impacts.min_impulse},
+        {"impacts/min_speed", c.scene.impacts.min_speed},
+        {"injury/rest_speed", c.scene.injury.rest_speed},
+        {"injury/rest_time", c.scene.injury.rest_time}})
+    if (!(e = nonNegativeError(name, v)).empty()) return "parameter ~" + e;
+  if (!(e = positiveError("injury/fall_speed", c.scene.injury.fall_speed)).empty())
+    return "parameter ~" + e;
+  if (!(c.scene.injury.fall_speed > c.scene.injury.rest_speed))
+    return "parameter ~injury/fall_speed must be above ~injury/rest_speed, got " +
+           std::to_string(c.scene.injury.fall_speed) + " <= " +
+           std::to_string(c.scene.injury.rest_speed);
+  if (!(e = finiteError("joint_effort/duration", c.joint_effort_duration)).empty())
+    return "parameter ~" + e + " (s; < 0 = until replaced)";
+  return "";
+}
+
 }  // namespace
 
 bool loadNodeConfig(const ros::NodeHandle& node, NodeConfig* c, std::string* error) {
   const Vec3& g = c->scene.world.gravity;
   std::vector<double> gravity{g.x(), g.y(), g.z()};
   Source pnh{node, &c->differing_from_defaults};
-  for (const char* dict : {"materials", "link_materials", "joint_defaults", "joints"})
+  for (const char* dict : {"materials", "link_materials", "joint_defaults", "joints", "injury/ragdolls"})
     if (node.hasParam(dict)) c->differing_from_defaults.push_back(std::string("~") + dict + " (set)");
   bool ok = read(pnh, "physics_rate", "a number (Hz)", &c->physics_rate, error) &&
             read(pnh, "real_time_factor", "a number", &c->real_time_factor, error) &&
@@ -326,7 +392,8 @@ bool loadNodeConfig(const ros::NodeHandle& node, NodeConfig* c, std::string* err
             read(pnh, "sleep/rest_relax_iterations", "an integer",
                  &c->scene.world.sleep.rest_relax_iterations, error) &&
             loadMaterials(node, &c->scene, error) && loadJointSettings(node, c, error) &&
-            loadRvizSettings(pnh, c, error);
+            loadRvizSettings(pnh, c, error) && loadReportSettings(pnh, c, error) &&
+            loadInjuryRagdolls(node, c, error);
   if (!ok) return false;
   if (gravity.size() != 3) {
     *error = "parameter " + node.resolveName("gravity") + " must be a list of 3 numbers, got " +
@@ -397,6 +464,7 @@ std::string validateNodeConfig(const NodeConfig& c) {
   if (!(e = scene::validateMotorGains(c.scene.motor, "parameter ~motor")).empty()) return e;
   if (!std::isfinite(c.scene.balance.kp) || !std::isfinite(c.scene.balance.kd))
     return "parameters ~balance/kp and ~balance/kd must be finite";
+  if (!(e = reportSettingsError(c)).empty()) return e;
   if (!(e = scene::validateMarkerSettings(c.markers)).empty()) return e;
   if (!(e = scene::validatePokeSettings(c.poke)).empty()) return e;
   return scene::validateDragSettings(c.drag);

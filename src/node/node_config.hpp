@@ -1,6 +1,7 @@
 // All parameters of ragdoll_sim_node, read once at start-up from the private namespace (~).
 #pragma once
 
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -52,6 +53,16 @@ struct NodeConfig {
   double max_position = 1e4;           // m from the origin: farther poses (~spawn,
                                        // ~set_ragdoll_state) are refused
   bool publish_markers = true;
+  // Reports (report_topics.hpp); SceneDef::impacts and SceneDef::injury hold the rest.
+  double contacts_rate = 0.0;          // Hz of sim time for ~contacts; 0 = every publish cycle
+  double joint_effort_duration = -1.0; // s of sim time a ~joint_effort acts; < 0: until replaced
+  std::string injury_head_link;        // every ragdoll's head and neck; "" = the Scene's guess
+  std::string injury_neck_joint;
+  struct HeadAndNeck {
+    std::string head_link, neck_joint;
+  };
+  // ~injury/ragdolls: the head and neck of the ragdolls named here, before the two above.
+  std::map<std::string, HeadAndNeck> injury_ragdolls;
   scene::MarkerSettings markers;              // ~markers/... (publish_markers switches them all)
   scene::PokeSettings poke;                   // ~poke/...
   scene::DragSettings drag;                   // ~drag/...

@@ -10,10 +10,12 @@ void NodeContext::stepOnce() {
   scene->step();
   clock.publish(scene->timeNs(), /*force=*/false, config.clock_rate);
   publishers->publishBrokenJoints();
+  reports->afterStep();
 }
 
 void NodeContext::structureChanged() {
   publishers->rebuild();
+  reports->rebuild();
   const std::vector<scene::RagdollView> views = publishers->views();
   visualizer->setScene(scene->world(), views, scene->ground(), publishers->objectViews());
   interaction->setScene(&scene->world(), views);

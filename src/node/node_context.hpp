@@ -15,6 +15,7 @@
 #include "node_config.hpp"
 #include "pacing.hpp"
 #include "publishers.hpp"
+#include "report_topics.hpp"
 #include "ragdoll_sim/scene.hpp"
 #include "scene_log.hpp"
 #include "sim_clock.hpp"
@@ -56,6 +57,7 @@ struct NodeContext {
   std::unique_ptr<Visualizer> visualizer;     // ~markers: shapes, contacts, arrows
   std::unique_ptr<Interaction> interaction;   // /clicked_point pokes, ~drag marker
   std::unique_ptr<Publishers> publishers;
+  std::unique_ptr<ReportTopics> reports;       // ~contacts, ~link_loads, ~impacts, ~injury
   std::unique_ptr<SpawnedParams> spawned_params;  // <name>/robot_description of ~spawn
   scene::Pacer pacer;
   bool paused = false;
@@ -65,7 +67,7 @@ struct NodeContext {
 
   NodeContext(const ros::NodeHandle& n, const ros::NodeHandle& p) : nh(n), pnh(p) {}
 
-  // One Scene step, then /clock and ~joint_broken.
+  // One Scene step, then /clock, ~joint_broken and the reports of the step.
   void stepOnce();
   // Publishing buffers, markers and drag handles follow a change of the ragdolls or the World.
   void structureChanged();

@@ -190,6 +190,7 @@ void Publishers::buildJointState(RagdollTopics& r, int k) {
   }
   r.joint_state.position.assign(r.joint_state.name.size(), 0.0);
   r.joint_state.velocity.assign(r.joint_state.name.size(), 0.0);
+  r.joint_state.effort.assign(r.joint_state.name.size(), 0.0);
   r.prev_positions.assign(r.joint_state.name.size(), 0.0);
   r.prev_joint_ns = -1;
 }
@@ -197,7 +198,8 @@ void Publishers::buildJointState(RagdollTopics& r, int k) {
 void Publishers::publishJointStates(const ros::Time& stamp) {
   const World& world = ctx_.scene->world();
   const int64_t sim_ns = ctx_.scene->timeNs();
-  for (RagdollTopics& r : ragdolls_) {
+  for (size_t k = 0; k < ragdolls_.size(); ++k) {
+    RagdollTopics& r = ragdolls_[k];
     if (r.object) continue;  // objects have no joint_states topic
     std::vector<double>& q = r.joint_state.position;
     for (const RagdollTopics::JointSource& s : r.joint_sources) {
@@ -222,6 +224,14 @@ void Publishers::publishJointStates(const ros::Time& stamp) {
     }
     r.prev_positions = q;
     r.prev_joint_ns = sim_ns;
+    // Efforts about the same axes (N m or N), into the message's own vector.
+    std::vector<double>& effort = r.joint_state.effort;
+    ctx_.scene->jointEfforts(static_cast<int>(k), effort);
+    if (effort.size() != q.size()) {
+      ROS_ERROR_THROTTLE(10.0, "joint_states of '%s': %zu efforts for %zu joints; sent as zeros",
+                         r.name.c_str(), effort.size(), q.size());
+      effort.assign(q.size(), 0.0);
+    }
     r.joint_state.header.stamp = stamp;
     r.joint_states_pub.publish(r.joint_state);
   }
@@ -288,14 +298,17 @@ void Publishers::publish() {
   const ros::Time stamp = ctx_.clock.stamp(s.timeNs());
   // TF and the states only when sim time advanced (or the set of ragdolls changed): a
   // repeated stamp would make every tf2 listener complain (TF_REPEATED_DATA) while paused.
-  if (s.steps() != last_publish_step_) {
+  const bool advanced = s.steps() != last_publish_step_;
+  if (advanced) {
     publishTf(stamp);
     publishJointStates(stamp);
     publishLinkStates(stamp);
     last_publish_step_ = s.steps();
   }
   ctx_.interaction->update(s.time());
-  if (ctx_.config.publish_markers && markers_pub_.getNumSubscribers() > 0) publishMarkers(stamp);
+  const bool markers = ctx_.config.publish_markers && markers_pub_.getNumSubscribers() > 0;
+  if (markers) publishMarkers(stamp);
+  ctx_.reports->publish(markers, advanced);
   if (stats_pub_.getNumSubscribers() > 0) publishStats(stamp);
 }
 

@@ -101,6 +101,7 @@ bool SimNode::init(std::string* error) {
   // --- ROS interface ---
   ctx_.publishers = std::make_unique<Publishers>(ctx_);
   ctx_.publishers->addRagdoll(std::move(first));
+  ctx_.reports = std::make_unique<ReportTopics>(ctx_);
   ctx_.visualizer = std::make_unique<Visualizer>(config.markers, config.world_frame);
   ctx_.log.setVisualizer(ctx_.visualizer.get());
   ctx_.interaction = std::make_unique<Interaction>(

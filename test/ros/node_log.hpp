@@ -20,6 +20,18 @@ class NodeWarnings {
     sub_ = nh.subscribe("/rosout", 100, &NodeWarnings::onLog, this);
   }
 
+  // The warnings so far that contain every one of `words`.
+  size_t count(const std::vector<std::string>& words) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    size_t n = 0;
+    for (const auto& w : warnings_) {
+      bool all = true;
+      for (const auto& word : words) all = all && w.msg.find(word) != std::string::npos;
+      n += all;
+    }
+    return n;
+  }
+
   // Waits up to `timeout` s for a warning of the node containing every one of `words`.
   bool wait(const std::vector<std::string>& words, double timeout) {
     const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
