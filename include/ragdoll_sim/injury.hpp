@@ -44,9 +44,13 @@ class HicMeter {
 
 // Which links of a ragdoll are head and neck, and when a fall ends.
 struct InjuryDef {
-  // "" = the bundled ragdoll's ("head", "neck"), else guessed by name (a link named like
-  // "head" / "skull"; the joint whose child is the head), with an INFO line saying which.
+  // Off: no records and no tracked heads (nothing runs per step).
+  bool enabled = true;
+  // "" = the bundled ragdoll's (link "head"), else guessed by name (the first link whose name
+  // holds "head" or "skull"), with an INFO line saying which, or that none is (no record).
   std::string head_link;
+  // A RagdollDef joint name or one of its URDF joints ("neck_y" names the bundled ragdoll's
+  // ball "neck_y+neck_x+neck_z"); "" = the joint whose child is the head.
   std::string neck_joint;
   // A fall starts when some link moves faster than fall_speed and ends once every link has
   // been slower than rest_speed for rest_time (or the ragdoll sleeps): its report is made then.

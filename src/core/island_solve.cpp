@@ -199,6 +199,11 @@ class World::Impl::IslandPass {
 
   void projectPositions();
 
+  // The tracked bodies' velocities at the end of substep `sub` (substep_samples.hpp).
+  void sample(int sub) {
+    parts([&](const IslandRange& p) { w.sampleSubstep(p, sub); });
+  }
+
  private:
   // f(the island), or for a split island f(each of this thread's halves and the islands
   // attached to it).
@@ -306,6 +311,7 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx) {
     pass.solveBiasedAndIntegrate();
     for (int it = 0; it < ctx.relax; ++it) pass.relax(it);
     pass.markBreaks();
+    if (!tracks.empty()) pass.sample(sub);
   }
   pass.projectPositions();
 }
@@ -320,6 +326,7 @@ void World::Impl::restitute(int begin, int end, const StepContext& c) {
 // The island's bodies take the step (joint breaks only mark the joints).
 void World::Impl::finishIslandBodies(const IslandRange& p) {
   for (int k = p.body_begin; k < p.body_end; ++k) finishBody(island_bodies[k]);
+  if (!tracks.empty()) sampleFinish(p);
 }
 
 // A split island by the whole team (two threads at most: it has two halves): each thread

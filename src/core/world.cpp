@@ -25,6 +25,7 @@ void World::step(double dt) {
   const bool any_awake = w.anyAwake();
   if (w.settled && !any_awake) {
     // Nothing built, woken, set or reset since a step found no body awake: only the time moves.
+    if (!w.tracks.empty()) w.beginSamples(ctx, /*solved=*/false);
     w.finishStep();  // clears the forces, as a full step does
     w.time += dt;
     return;
@@ -38,6 +39,7 @@ void World::step(double dt) {
   w.collectActiveJoints();
   w.partitionIslands();
   w.markResting(ctx.rest_mode);  // sleep: islands that take the rest substeps
+  if (!w.tracks.empty()) w.beginSamples(ctx, /*solved=*/true);  // World::trackBody
 
   // Island solve: substeps, position sweeps, restitution, bodies take the step.
   w.prepareOutsideBodies();

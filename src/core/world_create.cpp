@@ -184,6 +184,7 @@ void World::destroyBody(BodyId id) {
     v.erase(std::remove(v.begin(), v.end(), b), v.end());
   }
   body.alive = false;
+  w.untrack(b);
   w.dynamic_bodies.erase(std::remove(w.dynamic_bodies.begin(), w.dynamic_bodies.end(), b),
                          w.dynamic_bodies.end());
   BodyMotion& m = w.motions[b];

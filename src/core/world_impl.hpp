@@ -8,6 +8,7 @@
 //   world_create.cpp     the create and destroy API, breakJoints
 //   world_query.cpp      commands and queries
 //   static_overlap.cpp   World::staticOverlap (spawn checks)
+//   substep_samples.cpp  tracked bodies' velocities per substep (World::trackBody)
 //   world.cpp            the constructor, World::step (the phase list) and the settings
 //   world_tuning.hpp     the internal switches that check an optimisation (WorldInternals)
 #pragma once
@@ -30,6 +31,7 @@
 #include "island_solve.hpp"
 #include "joint.hpp"
 #include "sleep.hpp"
+#include "substep_samples.hpp"
 #include "world_tuning.hpp"
 
 namespace ragdoll_sim {
@@ -40,7 +42,8 @@ struct ShapeRef {
   bool alive = true;  // false once removed: collide puts it in no pair
 };
 
-struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, SleepData {
+struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, SleepData,
+                     SubstepSampleData {
   WorldDef def;
   WorldTuning tuning;  // world_tuning.hpp
   double time = 0.0;
@@ -226,6 +229,12 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
   bool islandResting(const IslandRange& r) const;
   void markResting(bool rest_mode);
   void updateSleep(double dt);
+
+  // substep_samples.cpp (each only while something is tracked)
+  void beginSamples(const StepContexts& ctx, bool solved);
+  void sampleSubstep(const IslandRange& p, int sub);
+  void sampleFinish(const IslandRange& p);
+  void untrack(int body);
 
   // world_create.cpp
   void breakJoints();

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "injury_record.hpp"
 #include "joint_control.hpp"
 #include "ragdoll_sim/balance.hpp"
 #include "ragdoll_sim/ragdoll.hpp"
@@ -43,6 +44,8 @@ struct RagdollInstance {
 
   std::vector<ActiveForce> forces;   // re-applied every step
   bool forces_capped_said = false;   // the cap's WARN for this set of forces was given
+
+  InjuryRecord injury;  // ragdolls only (scene_injury.cpp)
 };
 
 }  // namespace scene

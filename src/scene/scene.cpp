@@ -158,6 +158,7 @@ bool Scene::Impl::buildWorld(bool may_refuse, std::string* error) {
   for (RagdollInstance& r : ragdolls) {
     if (!spawnInWorld(r, may_refuse, error)) return false;
     setBalance(r, r.balance_on, /*log=*/false);
+    startInjury(r);  // a new World: the records start afresh
   }
   return true;
 }
@@ -227,6 +228,7 @@ SpawnResult Scene::Impl::addInstance(RagdollInstance r, std::string* error) {
   }
   rebindControllers();  // the vector may have moved the instances
   applyAllMotors(ragdolls.back());
+  startInjury(ragdolls.back());
   return SpawnResult::Added;
 }
 
@@ -240,6 +242,9 @@ SpawnResult Scene::addRagdoll(SpawnDef spawn, std::string* error) {
   RagdollInstance r;
   if (!s.makeInstance(std::move(spawn), &r, error)) return SpawnResult::BadModel;
   s.resolveSurfaces(r, /*say_unknown=*/true);
+  std::string unknown;  // SceneDef::injury names a link or joint this model lacks
+  if (!s.resolveInjury(r, s.def.injury, /*say=*/true, &unknown))
+    s.warn("injury/unknown", unknown + ": no injury record for it");
   return s.addInstance(std::move(r), error);
 }
 
@@ -261,6 +266,7 @@ bool Scene::removeRagdoll(const std::string& name, std::string* error) {
   }
   RagdollInstance& r = s.ragdolls[static_cast<size_t>(k)];
   r.balance.reset();
+  s.injuryRemoved(r);
   if (s.world)
     for (BodyId b : r.ragdoll.bodies)
       if (s.world->isValid(b)) s.world->destroyBody(b);

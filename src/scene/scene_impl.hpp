@@ -121,7 +121,16 @@ struct Scene::Impl {
   void findImpacts();  // after World::step
 
   // scene_injury.cpp
+  std::vector<InjuryReport> injury_reports;
+  SubstepVelocities samples_scratch;  // the head's, reused every step
+  size_t injury_reports_old = 0;  // those made before or in the last step (updateInjury drops them)
   void updateInjury();  // after World::step: the head's samples, falls that ended
+  // r's head and neck by `def` (names checked, "" guessed); false with *error, r unchanged.
+  bool resolveInjury(scene::RagdollInstance& r, const InjuryDef& def, bool say,
+                     std::string* error);
+  void startInjury(scene::RagdollInstance& r);  // r is in the World: track its head, new record
+  InjuryReport endInjury(const scene::RagdollInstance& r, const char* reason) const;
+  void injuryRemoved(scene::RagdollInstance& r);  // a fall under way is reported
 };
 
 }  // namespace ragdoll_sim
