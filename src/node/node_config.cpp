@@ -201,6 +201,7 @@ bool loadRvizSettings(Source& pnh, NodeConfig* c, std::string* error) {
          read(pnh, "markers/force_scale", "a number (m/N)", &c->markers.force_scale, error) &&
          read(pnh, "markers/max_arrow", "a number (m)", &c->markers.max_arrow, error) &&
          read(pnh, "markers/max_arrows", "an integer", &c->markers.max_arrows, error) &&
+         read(pnh, "markers/impact_flash", "a number (s)", &c->markers.impact_flash, error) &&
          read(pnh, "poke/enabled", "a bool", &c->poke.enabled, error) &&
          read(pnh, "poke/impulse", "a number (N*s)", &c->poke.impulse, error) &&
          read(pnh, "poke/max_distance", "a number (m)", &c->poke.max_distance, error) &&

@@ -135,7 +135,7 @@ void ReportTopics::rebuild() {
 
 void ReportTopics::afterStep() {
   const Scene& s = *ctx_.scene;
-  if (impacts_on_ && !s.impacts().empty() && impacts_subscribed_) {
+  if (impacts_subscribed_ && !s.impacts().empty()) {
     const ros::Time stamp = ctx_.clock.stamp(s.timeNs());
     ragdoll_sim::Impact m;
     m.header.stamp = stamp;
@@ -162,16 +162,10 @@ void ReportTopics::afterStep() {
   }
 }
 
-void ReportTopics::publish(bool markers_subscribed, bool advanced) {
+void ReportTopics::publish(bool advanced) {
   contacts_subscribed_ = contacts_pub_.getNumSubscribers() > 0;
   impacts_subscribed_ = impacts_pub_.getNumSubscribers() > 0;
-  const bool impacts = impacts_subscribed_ || markers_subscribed;
-  if (impacts != impacts_on_) {
-    ImpactDef def = ctx_.config.scene.impacts;
-    def.enabled = impacts;
-    ctx_.scene->setImpacts(def);
-    impacts_on_ = impacts;
-  }
+  ctx_.needImpacts(NodeContext::kImpactsTopic, impacts_subscribed_);
   if (!contacts_subscribed_) next_contacts_ns_ = 0;  // a new subscriber gets one at once
   else if (advanced && ctx_.config.contacts_rate <= 0) publishContacts();
   if (advanced && link_loads_pub_.getNumSubscribers() > 0) publishLinkLoads();

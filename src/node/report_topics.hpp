@@ -1,8 +1,8 @@
 // The Scene's reports of the last step as topics: ~contacts, ~link_loads, ~impacts, ~injury,
 // and the service ~injury/reset. Each topic is filled only while it has subscribers (counted
 // once per publish cycle, so a step with nobody listening costs a few flag tests), into
-// buffers kept between messages. Impact detection in the Scene is on only while ~impacts or the
-// markers have subscribers.
+// buffers kept between messages. Impact detection in the Scene is on only while ~impacts (or
+// the markers) has subscribers.
 #pragma once
 
 #include <cstdint>
@@ -32,9 +32,9 @@ class ReportTopics {
   // After every step: ~impacts events, ~injury records that ended, ~contacts when due at
   // ~contacts/rate.
   void afterStep();
-  // Each publish cycle: subscriber counts, impact detection on or off; when the sim advanced
-  // since the last cycle, ~contacts (rate 0) and ~link_loads.
-  void publish(bool markers_subscribed, bool advanced);
+  // Each publish cycle: subscriber counts, impact detection on or off (NodeContext::
+  // needImpacts); when the sim advanced since the last cycle, ~contacts (rate 0), ~link_loads.
+  void publish(bool advanced);
 
  private:
   void publishContacts();
@@ -47,7 +47,6 @@ class ReportTopics {
   ros::Publisher contacts_pub_, link_loads_pub_, impacts_pub_, injury_pub_;
   ros::ServiceServer reset_srv_;
   bool contacts_subscribed_ = false, impacts_subscribed_ = false;
-  bool impacts_on_ = false;
   int64_t next_contacts_ns_ = 0;  // sim time the next ~contacts is due (rate > 0)
   std::vector<SceneContact> contacts_;
   ragdoll_sim::ContactsState contacts_msg_;

@@ -170,6 +170,7 @@ void Visualizer::setScene(const World& world, const std::vector<RagdollView>& ra
   sources_.clear();
   for (const Arrow& a : arrows_) deleted_.push_back(a.id);
   arrows_.clear();
+  rebindInjuryTexts(ragdolls);
 
   for (size_t r = 0; r < ragdolls.size(); ++r) {
     if (!ragdolls[r].ragdoll) continue;
@@ -352,8 +353,14 @@ const visualization_msgs::MarkerArray& Visualizer::update(const World& world,
     m.header.stamp = stamp;
     toMsg(world.bodyPose(sources_[k].body) * sources_[k].local, &m.pose);
   }
-  if (settings_.contacts) appendContacts(world, stamp);
+  if (settings_.contacts) {
+    appendContacts(world, stamp);
+    appendContactForces(world, stamp);
+  }
   appendArrows(world, stamp, sim_time);
+  appendFlashes(stamp, sim_time);
+  appendInjuryTexts(world, stamp);
+  last_update_ = sim_time;
   return out_;
 }
 

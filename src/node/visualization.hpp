@@ -1,7 +1,8 @@
 // Visualizer: the node's rviz markers (visualization_msgs/MarkerArray) built from the World and
 // the list of ragdolls: every collision shape in its ragdoll's colour (namespace = ragdoll
-// name), the ground, optional contact points and normals, and arrows for applied impulses and
-// forces that fade out over sim time and are then deleted.
+// name), the ground, optional contact points, normals and force arrows, arrows for applied
+// impulses and forces that fade out over sim time and are then deleted, impact flashes and
+// the injury text over a head after a fall (visualization_events.cpp).
 #pragma once
 
 #include <cstdint>
@@ -14,6 +15,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "ragdoll_sim/ragdoll.hpp"
+#include "ragdoll_sim/scene.hpp"
 #include "ragdoll_sim/world.hpp"
 #include "ragdoll_view.hpp"
 #include "rviz_settings.hpp"
@@ -46,6 +48,10 @@ Rgba ragdollColor(size_t i);
 Rgba impulseArrowColor();
 Rgba forceArrowColor();
 Rgba contactColor();
+Rgba impactColor();
+
+// The text over a head once a fall ended: "<ragdoll>: peak <g> g, HIC15 <hic>".
+std::string injuryText(const InjuryReport& r);
 
 // Opacity of an arrow whose push ended `since_end` s of sim time ago (negative: still going):
 // 1 until the end, then linear down to 0 at `fade`. Faded (delete it) when this is 0.
@@ -74,13 +80,28 @@ class Visualizer {
                const Vec3& force);
   void endPull(int key, double sim_time);
 
+  // After every Scene step (NodeContext::stepOnce): its impacts become flashes, the falls that
+  // ended injury texts. Two size tests when neither happened.
+  void recordStep(const Scene& scene);
+  // A sphere at the impact's point, diameter impulse * impulse_scale (5 cm to max_arrow),
+  // fading over impact_flash s of sim time from the event's time.
+  void addImpact(const ImpactEvent& event);
+  // The report's text over link `link` (its head) of ragdoll `ragdoll`, whose body is `head`
+  // now; it replaces that ragdoll's last one and stays while the ragdoll does.
+  void setInjury(const std::string& ragdoll, int link, BodyId head, const InjuryReport& report);
+  // Flashes need the Scene's impacts: while impact_flash > 0 and someone watches the markers
+  // (update() ran within the last second of sim time; it runs only for subscribers).
+  bool wantsImpacts(double sim_time) const;
+
   // The markers at this instant: shapes posed from the world, contacts, arrows (faded ones
-  // once as DELETE). The reference stays valid until the next call.
+  // once as DELETE), flashes, injury texts. The reference stays valid until the next call.
   const visualization_msgs::MarkerArray& update(const World& world, const ros::Time& stamp,
                                                 double sim_time);
 
   size_t shapeMarkerCount() const { return sources_.size(); }
   size_t arrowCount() const { return arrows_.size(); }
+  size_t flashCount() const { return flashes_.size(); }
+  size_t injuryTextCount() const { return texts_.size(); }
 
  private:
   struct Source {
@@ -105,7 +126,25 @@ class Visualizer {
   // One marker per collision shape of `body` (planes as a slab, or left out), ids from *id on.
   void addBodyMarkers(const World& world, const std::string& ns, int* id, BodyId body,
                       const Rgba& color, bool planes);
+  struct Flash {
+    int id = 0;
+    Vec3 point = Vec3::Zero();
+    double diameter = 0.0;  // m
+    double time = 0.0;      // sim time of the impact
+  };
+  struct InjuryMark {
+    std::string ragdoll;
+    int link = -1;
+    BodyId head;
+    std::string text;
+    int id = 0;
+  };
   void appendContacts(const World& world, const ros::Time& stamp);
+  void appendContactForces(const World& world, const ros::Time& stamp);
+  void appendFlashes(const ros::Time& stamp, double sim_time);
+  void appendInjuryTexts(const World& world, const ros::Time& stamp);
+  // Injury texts follow their ragdoll into a new World, or go with it (setScene).
+  void rebindInjuryTexts(const std::vector<scene::RagdollView>& ragdolls);
   void appendArrows(const World& world, const ros::Time& stamp, double sim_time);
   visualization_msgs::Marker& appendMarker(const std::string& ns, int id, const ros::Time& stamp);
 
@@ -117,6 +156,15 @@ class Visualizer {
   std::vector<int> deleted_;             // arrow ids to send one DELETE for
   int next_arrow_id_ = 0;
   bool contacts_shown_ = false;          // contact markers are in rviz (DELETE them when none)
+  std::vector<ContactReport> reports_;   // scratch of the contact force arrows
+  int force_arrows_shown_ = 0;           // contact force arrows in rviz (ids 0..n-1)
+  std::deque<Flash> flashes_;
+  std::vector<int> flashes_deleted_;
+  int next_flash_id_ = 0;
+  std::vector<InjuryMark> texts_;
+  std::vector<int> texts_deleted_;
+  int next_text_id_ = 0;
+  double last_update_ = -1.0;            // sim time of the last update(); < 0: never
 };
 
 }  // namespace node

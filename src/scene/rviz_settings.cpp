@@ -24,6 +24,8 @@ std::string validateMarkerSettings(const MarkerSettings& s) {
     e << "parameter ~markers/max_arrow must be >= 0.05 m, got " << s.max_arrow;
   else if (s.max_arrows < 1)
     e << "parameter ~markers/max_arrows must be >= 1, got " << s.max_arrows;
+  else if (!nonNegative(s.impact_flash))
+    e << "parameter ~markers/impact_flash must be >= 0 s (0: no flashes), got " << s.impact_flash;
   return e.str();
 }
 

@@ -11,12 +11,16 @@ namespace scene {
 
 // ~markers/*.
 struct MarkerSettings {
-  bool contacts = false;         // contact points (spheres) and normals (lines)
+  // Contact points (spheres), normals (lines) and the force of each touching pair (arrows of
+  // force_scale, from the pair's centre along the force on its dynamic body).
+  bool contacts = false;
   double arrow_fade = 1.0;       // s of sim time an arrow takes to fade once its push is over
-  double impulse_scale = 0.02;   // m of arrow per N*s
-  double force_scale = 0.002;    // m of arrow per N
+  double impulse_scale = 0.02;   // m of arrow (and impact flash diameter) per N*s
+  // m of arrow per N: applied forces (5 cm at least) and contact forces (0: none of those)
+  double force_scale = 0.002;
   double max_arrow = 1.0;        // m, the longest arrow (the shortest is 5 cm)
-  int max_arrows = 64;           // beyond this many the oldest arrows go first
+  int max_arrows = 64;           // beyond this many the oldest arrows (and flashes) go first
+  double impact_flash = 0.3;     // s of sim time an impact's sphere fades over; 0: none
 };
 
 // ~poke/*: a clicked point (/clicked_point) hits the nearest link.

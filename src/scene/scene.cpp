@@ -152,6 +152,8 @@ bool Scene::Impl::buildWorld(bool may_refuse, std::string* error) {
     return false;
   }
   ground = BodyId();
+  bodiesChanged();  // every id is new
+  applyImpactTracking();
   if (def.ground && !ground_replaced) makeDefaultGround();
   for (scene::StaticObject& o : statics)
     if (!createStaticBodies(o, error)) return false;
@@ -218,6 +220,7 @@ SpawnResult Scene::Impl::addInstance(RagdollInstance r, std::string* error) {
   ragdoll_index[ragdolls.back().name] = ragdolls.size() - 1;
   if (!world) return SpawnResult::Added;  // start() spawns it
   RagdollInstance& added = ragdolls.back();
+  bodiesChanged();
   const int first_new = world->bodyCount();  // ids append, so what it created is above this
   if (!spawnInWorld(added, /*may_refuse=*/true, error)) {
     for (int b = first_new; b < world->bodyCount(); ++b)
@@ -272,6 +275,7 @@ bool Scene::removeRagdoll(const std::string& name, std::string* error) {
       if (s.world->isValid(b)) s.world->destroyBody(b);
   s.ragdoll_index.erase(r.name);
   s.ragdolls.erase(s.ragdolls.begin() + k);
+  s.bodiesChanged();
   s.reindexRagdolls(static_cast<size_t>(k));
   s.rebindControllers();  // the erase moved the instances behind it
   return true;

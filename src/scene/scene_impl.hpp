@@ -12,6 +12,7 @@
 #include <memory>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "command_queue.hpp"
@@ -121,6 +122,19 @@ struct Scene::Impl {
 
   // scene_reports.cpp: contacts by name, impacts
   void findImpacts();  // after World::step
+  // Who owns each BodyId index (Scene::bodyRef), rebuilt on the first lookup after the
+  // bodies changed: lookups cost nothing per step and spawns nothing per body.
+  void bodiesChanged() { body_refs_stale = true; }
+  BodyRef refOf(BodyId body) const;
+  std::string nameOf(const BodyRef& body) const;  // Scene::bodyName
+  // Impulse tracking on for impacts (a World rebuilt by reset() gets it back).
+  void applyImpactTracking();
+  mutable std::vector<BodyRef> body_refs;  // by BodyId index
+  mutable bool body_refs_stale = true;
+  mutable std::vector<ContactReport> contact_scratch;  // reused by contacts() and impacts
+  std::vector<std::pair<uint64_t, int>> impact_keys;   // (link body, other body) -> report
+  std::vector<ImpactEvent> impact_events;              // of the last step
+  bool tracking_was_on = false;  // impulse tracking was on before impacts turned it on
 
   // scene_injury.cpp
   std::vector<InjuryReport> injury_reports;

@@ -108,6 +108,7 @@ bool Scene::Impl::addStatic(StaticObject o, std::string* error) {
     for (const ShapeDef& shape : o.def.links[l].shapes)
       if (shape.geometry.type == ShapeType::Plane) o.plane_link = static_cast<int>(l);
   if (world && !createStaticBodies(o, error)) return false;
+  bodiesChanged();
   static_index[o.name] = statics.size();
   statics.push_back(std::move(o));
   const StaticObject& added = statics.back();
@@ -122,6 +123,7 @@ bool Scene::Impl::addStatic(StaticObject o, std::string* error) {
 }
 
 void Scene::Impl::removeStatic(size_t i) {
+  bodiesChanged();
   StaticObject& o = statics.at(i);
   if (world)
     for (BodyId b : o.bodies)

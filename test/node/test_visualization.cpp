@@ -333,3 +333,151 @@ TEST(Visualizer, WorldGroundDrawnOnceAndRagdollPlanesLeftOut) {
   ASSERT_EQ(r.size(), 1u);
   EXPECT_EQ(r[0]->type, Marker::CUBE);
 }
+
+// Issue 57: the force of each touching pair as an arrow of ~markers/force_scale, from the
+// pair's centre up out of the ground (the force on the dynamic body); 0 turns them off.
+TEST(Visualizer, DISABLED_ContactForceArrowsScaledByForceScale) {
+  test::TwoRagdolls scene(0.1, /*gravity=*/true);  // pelvis boxes resting on the ground
+  MarkerSettings s;
+  s.contacts = true;
+  s.force_scale = 0.001;
+  Visualizer viz(s, "world");
+  viz.setScene(scene.world, scene.views(), scene.ground);
+  for (int i = 0; i < 300; ++i) scene.world.step(1e-3);
+  auto arrows = inNs(viz.update(scene.world, ros::Time(1), 0.3), "contact_forces");
+  // Each stick (30 kg) stands on its pelvis box: one pair each, holding m g.
+  ASSERT_EQ(arrows.size(), 2u);
+  for (const Marker* m : arrows) {
+    EXPECT_EQ(m->type, Marker::ARROW);
+    ASSERT_EQ(m->points.size(), 2u);
+    const Vec3 tail = vec(m->points[0]), tip = vec(m->points[1]);
+    EXPECT_NEAR(tail.z(), 0.0, 0.01);
+    EXPECT_NEAR(tip.z() - tail.z(), 30.0 * 9.81 * 0.001, 0.02 * 30.0 * 9.81 * 0.001);
+    EXPECT_NEAR((tip - tail).head<2>().norm(), 0.0, 1e-3);
+  }
+  // Lifted off: the two arrows go with one DELETE each, then nothing.
+  for (const Ragdoll* r : {&scene.a, &scene.b})
+    for (BodyId b : r->bodies) {
+      const Transform pose = scene.world.bodyPose(b);
+      scene.world.setBodyState(b, Transform(pose.p + Vec3(0, 0, 2), pose.q), Vec3::Zero(), Vec3::Zero());
+    }
+  scene.world.setGravity(Vec3::Zero());
+  scene.world.step(1e-3);
+  arrows = inNs(viz.update(scene.world, ros::Time(2), 0.301), "contact_forces");
+  ASSERT_EQ(arrows.size(), 2u);
+  for (const Marker* m : arrows) EXPECT_EQ(m->action, Marker::DELETE);
+  EXPECT_TRUE(inNs(viz.update(scene.world, ros::Time(3), 0.302), "contact_forces").empty());
+
+  s.force_scale = 0.0;  // off
+  Visualizer off(s, "world");
+  test::TwoRagdolls resting(0.1, true);
+  off.setScene(resting.world, resting.views(), resting.ground);
+  for (int i = 0; i < 50; ++i) resting.world.step(1e-3);
+  const MarkerArray a = off.update(resting.world, ros::Time(1), 0.05);
+  EXPECT_TRUE(inNs(a, "contact_forces").empty());
+  EXPECT_EQ(inNs(a, "contacts").size(), 2u);  // points and normals still
+}
+
+TEST(Visualizer, ImpactFlashSizedByImpulseFadesThenOneDelete) {
+  test::TwoRagdolls scene(1.0);
+  MarkerSettings s;
+  s.impact_flash = 0.3;
+  s.impulse_scale = 0.02;
+  Visualizer viz(s, "world");
+  viz.setScene(scene.world, scene.views(), scene.ground);
+  EXPECT_FALSE(viz.wantsImpacts(0.0));  // nobody watched yet
+  viz.update(scene.world, ros::Time(1), 0.0);
+  EXPECT_TRUE(viz.wantsImpacts(0.5));
+  EXPECT_FALSE(viz.wantsImpacts(1.5));  // a second without update(): nobody watches
+  ImpactEvent e;
+  e.point = Vec3(0.5, 0, 0);
+  e.impulse = 10.0;
+  e.time = 2.0;
+  viz.addImpact(e);
+  ASSERT_EQ(viz.flashCount(), 1u);
+  auto flashes = inNs(viz.update(scene.world, ros::Time(2), 2.0), "impacts");
+  ASSERT_EQ(flashes.size(), 1u);
+  EXPECT_EQ(flashes[0]->type, Marker::SPHERE);
+  EXPECT_NEAR(flashes[0]->scale.x, 10.0 * 0.02, 1e-9);  // 0.2 m for 10 N s
+  EXPECT_NEAR(flashes[0]->pose.position.x, 0.5, 1e-9);
+  const float a0 = flashes[0]->color.a;
+  flashes = inNs(viz.update(scene.world, ros::Time(3), 2.15), "impacts");
+  ASSERT_EQ(flashes.size(), 1u);
+  EXPECT_NEAR(flashes[0]->color.a, 0.5 * a0, 1e-6);  // half of 0.3 s gone
+  flashes = inNs(viz.update(scene.world, ros::Time(4), 2.31), "impacts");
+  ASSERT_EQ(flashes.size(), 1u);
+  EXPECT_EQ(flashes[0]->action, Marker::DELETE);
+  EXPECT_EQ(viz.flashCount(), 0u);
+  EXPECT_TRUE(inNs(viz.update(scene.world, ros::Time(5), 2.4), "impacts").empty());
+
+  e.impulse = 1e4;  // clamped to max_arrow
+  viz.addImpact(e);
+  flashes = inNs(viz.update(scene.world, ros::Time(6), 2.0), "impacts");
+  ASSERT_EQ(flashes.size(), 1u);
+  EXPECT_NEAR(flashes[0]->scale.x, s.max_arrow, 1e-9);
+
+  s.impact_flash = 0.0;  // off: no flashes, and no need of the Scene's impacts
+  Visualizer off(s, "world");
+  off.setScene(scene.world, scene.views(), scene.ground);
+  off.addImpact(e);
+  EXPECT_EQ(off.flashCount(), 0u);
+  off.update(scene.world, ros::Time(1), 0.0);
+  EXPECT_FALSE(off.wantsImpacts(0.0));
+}
+
+// A Scene step's impact events become flashes (recordStep), only while someone reads them.
+TEST(Visualizer, DISABLED_RecordStepTurnsSceneImpactsIntoFlashes) {
+  SceneDef d;
+  d.impacts.enabled = true;
+  Scene scene(d);
+  SpawnDef ball;
+  ball.name = "ball";
+  LinkDef link;
+  link.name = "l";
+  link.mass = 1.0;
+  link.inertia = Mat3::Identity() * 0.004;
+  link.shapes.push_back({Geometry::sphere(0.1), Transform(), Material()});
+  ball.def.links.push_back(link);
+  ball.pose = Transform(Vec3(0, 0, 1.1), Quat::Identity());
+  std::string error;
+  ASSERT_EQ(scene.addObject(ball, &error), SpawnResult::Added) << error;
+  ASSERT_TRUE(scene.start(&error)) << error;
+  Visualizer viz(MarkerSettings(), "world");
+  size_t events = 0;
+  for (int i = 0; i < 600; ++i) {
+    scene.step();
+    events += scene.impacts().size();
+    viz.recordStep(scene);
+  }
+  EXPECT_EQ(events, 1u);
+  EXPECT_EQ(viz.flashCount(), 1u);
+}
+
+TEST(Visualizer, InjuryTextOverTheHeadFollowsItsRagdoll) {
+  test::TwoRagdolls scene(1.0);
+  Visualizer viz(MarkerSettings(), "world");
+  viz.setScene(scene.world, scene.views(), scene.ground);
+  InjuryReport r;
+  r.ragdoll = "first";
+  r.peak_g = 42.26;
+  r.hic15 = 311.6;
+  EXPECT_EQ(injuryText(r), "first: peak 42.3 g, HIC15 312");
+  viz.setInjury("first", 1, scene.a.bodies[1], r);
+  r.hic15 = 500.0;
+  viz.setInjury("first", 1, scene.a.bodies[1], r);  // a later fall replaces it
+  ASSERT_EQ(viz.injuryTextCount(), 1u);
+  auto texts = inNs(viz.update(scene.world, ros::Time(1), 0.0), "injury");
+  ASSERT_EQ(texts.size(), 1u);
+  EXPECT_EQ(texts[0]->type, Marker::TEXT_VIEW_FACING);
+  EXPECT_EQ(texts[0]->text, "first: peak 42.3 g, HIC15 500");
+  const Vec3 torso = scene.world.bodyPose(scene.a.bodies[1]).p;
+  EXPECT_NEAR(texts[0]->pose.position.z, torso.z() + 0.35, 1e-9);
+  EXPECT_NEAR(texts[0]->pose.position.x, torso.x(), 1e-9);
+  // The ragdoll gone from the scene: one DELETE, then nothing.
+  viz.setScene(scene.world, {scene.views()[1]}, scene.ground);
+  EXPECT_EQ(viz.injuryTextCount(), 0u);
+  texts = inNs(viz.update(scene.world, ros::Time(2), 0.0), "injury");
+  ASSERT_EQ(texts.size(), 1u);
+  EXPECT_EQ(texts[0]->action, Marker::DELETE);
+  EXPECT_TRUE(inNs(viz.update(scene.world, ros::Time(3), 0.0), "injury").empty());
+}

@@ -132,6 +132,11 @@ TEST(RvizSettings, RangeChecksNameTheParameter) {
   m = MarkerSettings();
   m.max_arrows = 0;
   EXPECT_NE(validateMarkerSettings(m).find("~markers/max_arrows"), std::string::npos);
+  m = MarkerSettings();
+  m.impact_flash = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NE(validateMarkerSettings(m).find("~markers/impact_flash"), std::string::npos);
+  m.impact_flash = 0.0;  // no flashes
+  EXPECT_EQ(validateMarkerSettings(m), "");
   PokeSettings p;
   p.impulse = std::numeric_limits<double>::quiet_NaN();
   EXPECT_NE(validatePokeSettings(p).find("~poke/impulse"), std::string::npos);
