@@ -118,7 +118,6 @@ struct Scene::Impl {
   bool applyJointEffort(scene::RagdollInstance& r, const JointEffortCommand& cmd);
   void applyActiveEfforts(scene::RagdollInstance& r);  // each step, before World::step
   size_t activeEffortCount() const;
-  std::vector<ContactReport> contact_scratch;  // Scene::loads, capacity kept
 
   // scene_reports.cpp: contacts by name, impacts
   void findImpacts();  // after World::step
@@ -131,7 +130,7 @@ struct Scene::Impl {
   void applyImpactTracking();
   mutable std::vector<BodyRef> body_refs;  // by BodyId index
   mutable bool body_refs_stale = true;
-  mutable std::vector<ContactReport> contact_scratch;  // reused by contacts() and impacts
+  mutable std::vector<ContactReport> contact_scratch;  // reused by contacts(), impacts, loads()
   std::vector<std::pair<uint64_t, int>> impact_keys;   // (link body, other body) -> report
   std::vector<ImpactEvent> impact_events;              // of the last step
   bool tracking_was_on = false;  // impulse tracking was on before impacts turned it on
