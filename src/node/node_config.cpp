@@ -250,6 +250,7 @@ bool loadReportSettings(Source& pnh, NodeConfig* c, std::string* error) {
   return read(pnh, "contacts/rate", "a number (Hz)", &c->contacts_rate, error) &&
          read(pnh, "impacts/min_impulse", "a number (N*s)", &c->scene.impacts.min_impulse, error) &&
          read(pnh, "impacts/min_speed", "a number (m/s)", &c->scene.impacts.min_speed, error) &&
+         read(pnh, "injury/enabled", "a bool", &injury.enabled, error) &&
          read(pnh, "injury/head_link", "a string", &c->injury_head_link, error) &&
          read(pnh, "injury/neck_joint", "a string", &c->injury_neck_joint, error) &&
          read(pnh, "injury/fall_speed", "a number (m/s)", &injury.fall_speed, error) &&

@@ -115,7 +115,7 @@ void ReportTopics::rebuild() {
       def.neck_joint = own->second.neck_joint;
       param = "~injury/ragdolls/" + scene.name(i);
     }
-    if (def.head_link.empty() && def.neck_joint.empty()) continue;  // the Scene's guess
+    if (!def.enabled || (def.head_link.empty() && def.neck_joint.empty())) continue;
     std::string error;
     if (!scene.setInjury(i, def, &error)) {
       // The launch-time ragdoll and a named one are those the parameters were written for.
@@ -264,8 +264,10 @@ bool ReportTopics::onResetInjury(ragdoll_sim::ResetInjury::Request& req,
     return refuse("unknown ragdoll", "no ragdoll named " + scene::quoted(req.ragdoll) +
                                          (k >= 0 ? " (it is an object)" : ""));
   if (scene.headLink(k).empty())
-    return refuse("no head", "ragdoll '" + scene.name(k) +
-                                 "' has no head link, so no injury record (set ~injury/head_link)");
+    return refuse("no head", "ragdoll '" + scene.name(k) + "' has no injury record (" +
+                                 (ctx_.config.scene.injury.enabled
+                                      ? "no head link: set ~injury/head_link)"
+                                      : "~injury/enabled is false)"));
   const InjuryReport r = scene.resetInjury(k);
   fill(r, ctx_.clock.stamp(scene.timeNs()), ctx_.config.world_frame, &res.injury);
   injury_pub_.publish(res.injury);

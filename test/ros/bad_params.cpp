@@ -46,6 +46,10 @@ TEST(BadParams, NodeExitsNonZeroNamingTheParameter) {
       {"_sleep/speed:=20.0", {"~sleep/speed", "[0, 10]", "got 20"}},
       {"_static_friction:=20.0", {"~static_friction", "[0, 10]", "got 20"}},
       {"_sleep/time:=100.0", {"~sleep/time", "[0, 60]", "got 100"}},
+      // The reports' rates and thresholds.
+      {"_contacts/rate:=-1.0", {"~contacts/rate", "got -1"}},
+      {"_impacts/min_impulse:=-2.0", {"~impacts/min_impulse", "got -2"}},
+      {"_injury/fall_speed:=0.01", {"~injury/fall_speed", "~injury/rest_speed"}},
   };
   int k = 0;
   for (const auto& [args, words] : cases) {
