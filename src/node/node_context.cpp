@@ -8,20 +8,10 @@ namespace node {
 
 void NodeContext::stepOnce() {
   scene->step();
+  visualizer->recordStep(*scene);  // impact flashes, injury texts
   clock.publish(scene->timeNs(), /*force=*/false, config.clock_rate);
   publishers->publishBrokenJoints();
-  visualizer->recordStep(*scene);
-  needImpacts(kImpactsMarkers, visualizer->wantsImpacts(scene->time()));
   reports->afterStep();
-}
-
-void NodeContext::needImpacts(unsigned reader, bool on) {
-  const unsigned readers = on ? (impact_readers | reader) : (impact_readers & ~reader);
-  if (readers == impact_readers) return;
-  impact_readers = readers;
-  ImpactDef def = scene->def().impacts;
-  def.enabled = readers != 0;
-  scene->setImpacts(def);
 }
 
 void NodeContext::structureChanged() {

@@ -70,11 +70,6 @@ struct NodeContext {
   // One Scene step, then /clock, ~joint_broken, the markers' record and the reports of the
   // step.
   void stepOnce();
-  // The Scene's impacts cost impulse tracking every step, so they are on only while one of
-  // their readers (a bit each) needs them; only a change of a reader's need touches the Scene.
-  enum ImpactReader : unsigned { kImpactsTopic = 1u, kImpactsMarkers = 2u };
-  void needImpacts(unsigned reader, bool on);
-  unsigned impact_readers = 0;
   // Publishing buffers, markers and drag handles follow a change of the ragdolls or the World.
   void structureChanged();
   void restartPacing();

@@ -306,8 +306,9 @@ void Publishers::publish() {
     last_publish_step_ = s.steps();
   }
   ctx_.interaction->update(s.time());
-  if (ctx_.config.publish_markers && markers_pub_.getNumSubscribers() > 0) publishMarkers(stamp);
-  ctx_.reports->publish(advanced);
+  const bool markers = ctx_.config.publish_markers && markers_pub_.getNumSubscribers() > 0;
+  if (markers) publishMarkers(stamp);
+  ctx_.reports->publish(markers, advanced);
   if (stats_pub_.getNumSubscribers() > 0) publishStats(stamp);
 }
 

@@ -162,10 +162,17 @@ void ReportTopics::afterStep() {
   }
 }
 
-void ReportTopics::publish(bool advanced) {
+void ReportTopics::publish(bool markers_subscribed, bool advanced) {
   contacts_subscribed_ = contacts_pub_.getNumSubscribers() > 0;
   impacts_subscribed_ = impacts_pub_.getNumSubscribers() > 0;
-  ctx_.needImpacts(NodeContext::kImpactsTopic, impacts_subscribed_);
+  const bool impacts =
+      impacts_subscribed_ || (markers_subscribed && ctx_.config.markers.impact_flash > 0.0);
+  if (impacts != impacts_on_) {  // only a change touches the Scene
+    ImpactDef def = ctx_.config.scene.impacts;
+    def.enabled = impacts;
+    ctx_.scene->setImpacts(def);
+    impacts_on_ = impacts;
+  }
   if (!contacts_subscribed_) next_contacts_ns_ = 0;  // a new subscriber gets one at once
   else if (advanced && ctx_.config.contacts_rate <= 0) publishContacts();
   if (advanced && link_loads_pub_.getNumSubscribers() > 0) publishLinkLoads();

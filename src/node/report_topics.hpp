@@ -32,9 +32,10 @@ class ReportTopics {
   // After every step: ~impacts events, ~injury records that ended, ~contacts when due at
   // ~contacts/rate.
   void afterStep();
-  // Each publish cycle: subscriber counts, impact detection on or off (NodeContext::
-  // needImpacts); when the sim advanced since the last cycle, ~contacts (rate 0), ~link_loads.
-  void publish(bool advanced);
+  // Each publish cycle: subscriber counts, impact detection on or off (for ~impacts, and for
+  // the markers' flashes while they are watched); when the sim advanced since the last cycle,
+  // ~contacts (rate 0) and ~link_loads.
+  void publish(bool markers_subscribed, bool advanced);
 
  private:
   void publishContacts();
@@ -47,6 +48,7 @@ class ReportTopics {
   ros::Publisher contacts_pub_, link_loads_pub_, impacts_pub_, injury_pub_;
   ros::ServiceServer reset_srv_;
   bool contacts_subscribed_ = false, impacts_subscribed_ = false;
+  bool impacts_on_ = false;  // the Scene's impact detection
   int64_t next_contacts_ns_ = 0;  // sim time the next ~contacts is due (rate > 0)
   std::vector<SceneContact> contacts_;
   ragdoll_sim::ContactsState contacts_msg_;

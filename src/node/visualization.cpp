@@ -360,7 +360,6 @@ const visualization_msgs::MarkerArray& Visualizer::update(const World& world,
   appendArrows(world, stamp, sim_time);
   appendFlashes(stamp, sim_time);
   appendInjuryTexts(world, stamp);
-  last_update_ = sim_time;
   return out_;
 }
 

@@ -89,9 +89,6 @@ class Visualizer {
   // The report's text over link `link` (its head) of ragdoll `ragdoll`, whose body is `head`
   // now; it replaces that ragdoll's last one and stays while the ragdoll does.
   void setInjury(const std::string& ragdoll, int link, BodyId head, const InjuryReport& report);
-  // Flashes need the Scene's impacts: while impact_flash > 0 and someone watches the markers
-  // (update() ran within the last second of sim time; it runs only for subscribers).
-  bool wantsImpacts(double sim_time) const;
 
   // The markers at this instant: shapes posed from the world, contacts, arrows (faded ones
   // once as DELETE), flashes, injury texts. The reference stays valid until the next call.
@@ -164,7 +161,6 @@ class Visualizer {
   std::vector<InjuryMark> texts_;
   std::vector<int> texts_deleted_;
   int next_text_id_ = 0;
-  double last_update_ = -1.0;            // sim time of the last update(); < 0: never
 };
 
 }  // namespace node

@@ -20,7 +20,6 @@ const char* kImpactNs = "impacts";
 const char* kInjuryNs = "injury";
 
 constexpr double kMinFlash = 0.05;        // m, the smallest flash diameter
-constexpr double kWatchedFor = 1.0;       // s of sim time since update() that means watched
 constexpr double kTextAboveHead = 0.35;   // m over the head link's origin (world z)
 constexpr double kTextHeight = 0.1;       // m, rviz text size
 constexpr double kMinContactArrow = 1e-3; // m: shorter contact force arrows are left out
@@ -111,11 +110,6 @@ void Visualizer::rebindInjuryTexts(const std::vector<scene::RagdollView>& ragdol
     it->head = view->ragdoll->bodies[static_cast<size_t>(it->link)];
     ++it;
   }
-}
-
-bool Visualizer::wantsImpacts(double sim_time) const {
-  return settings_.impact_flash > 0.0 && last_update_ >= 0.0 &&
-         sim_time - last_update_ <= kWatchedFor;
 }
 
 // One arrow per touching pair, from its force-weighted centre along the force on its dynamic
