@@ -233,7 +233,8 @@ class Scene {
   const std::vector<BodyId>& staticObjectBodies(int i) const;  // one per link
   // Removes the ragdoll, dynamic object or static object `name`.
   bool remove(const std::string& name, std::string* error);
-  // Every ragdoll back at its spawn pose with its joints whole; active forces end. A ragdoll
+  // Every ragdoll back at its spawn pose with its joints whole; active forces and joint
+  // efforts end. A ragdoll
   // that overlaps static geometry there is lifted (WARN), whatever spawn_overlap says.
   bool reset(std::string* error);
   // Rigid move of ragdoll k: root link to `root`, every body with linear velocity
@@ -265,7 +266,9 @@ class Scene {
   void reject(const std::string& kind, const std::string& text);
   void applyDueCommands();  // those due at the current sim time
   size_t activeForceCount() const;
-  size_t clearForces();     // returns how many ended
+  // Ends every active force and joint effort (JointEffortCommand); returns how many ended
+  // (forces plus effort axes).
+  size_t clearForces();
   void clearTargets();
   void setBalance(bool on);  // every ragdoll
   bool balanceOn(int k) const;

@@ -9,10 +9,5 @@ namespace ragdoll_sim {
 void World::setContactImpulseTracking(bool) {}
 bool World::contactImpulseTracking() const { return false; }
 void World::contactReports(std::vector<ContactReport>& out) const { out.clear(); }
-JointWrench World::jointWrench(JointId) const { return JointWrench(); }
-int World::jointAxisEfforts(JointId, double out[3]) const {
-  out[0] = out[1] = out[2] = 0.0;
-  return 0;
-}
 
 }  // namespace ragdoll_sim

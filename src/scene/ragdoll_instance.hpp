@@ -17,6 +17,15 @@
 namespace ragdoll_sim {
 namespace scene {
 
+// A joint effort command's effort on one axis (scene_efforts.cpp), applied every step until
+// steps_left reaches 0; one that reached 0 stays listed until the next step, so that the
+// efforts reported after its last step include it.
+struct ActiveEffort {
+  int axis = -1;          // AxisTable index
+  double effort = 0.0;    // N m (N for a prismatic axis), on the child about +axis
+  int64_t steps_left = 1; // < 0: until replaced or cleared
+};
+
 struct RagdollInstance {
   std::string name;       // unique; commands name it ("" = the first)
   RagdollId id;
@@ -43,6 +52,7 @@ struct RagdollInstance {
   bool balance_on = false;
 
   std::vector<ActiveForce> forces;   // re-applied every step
+  std::vector<ActiveEffort> efforts; // joint effort commands, at most one per axis
   bool forces_capped_said = false;   // the cap's WARN for this set of forces was given
 
   InjuryRecord injury;  // ragdolls only (scene_injury.cpp)

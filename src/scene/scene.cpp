@@ -279,7 +279,10 @@ bool Scene::removeRagdoll(const std::string& name, std::string* error) {
 
 bool Scene::reset(std::string* error) {
   // A fresh world with every ragdoll at its spawn pose rejoins broken joints.
-  for (RagdollInstance& r : impl_->ragdolls) r.forces.clear();
+  for (RagdollInstance& r : impl_->ragdolls) {
+    r.forces.clear();
+    r.efforts.clear();
+  }
   return impl_->buildWorld(/*may_refuse=*/false, error);
 }
 

@@ -106,8 +106,11 @@ void Scene::Impl::expireForces(RagdollInstance& r) {
 size_t Scene::activeForceCount() const { return impl_->activeForceCount(); }
 
 size_t Scene::clearForces() {
-  const size_t n = impl_->activeForceCount();
-  for (RagdollInstance& r : impl_->ragdolls) r.forces.clear();
+  const size_t n = impl_->activeForceCount() + impl_->activeEffortCount();
+  for (RagdollInstance& r : impl_->ragdolls) {
+    r.forces.clear();
+    r.efforts.clear();
+  }
   return n;
 }
 

@@ -116,6 +116,8 @@ struct Scene::Impl {
   // scene_efforts.cpp: joint effort commands
   bool applyJointEffort(scene::RagdollInstance& r, const JointEffortCommand& cmd);
   void applyActiveEfforts(scene::RagdollInstance& r);  // each step, before World::step
+  size_t activeEffortCount() const;
+  std::vector<ContactReport> contact_scratch;  // Scene::loads, capacity kept
 
   // scene_reports.cpp: contacts by name, impacts
   void findImpacts();  // after World::step
