@@ -302,3 +302,27 @@ TEST(SceneInjury, RemovalReportsAFallAndResetRetracks) {
   EXPECT_GT(r.peak_g, 20.0);
   EXPECT_NEAR(r.peak_time - reset_at, std::sqrt(2 * 0.5 / kStandardGravity), 0.01);
 }
+
+// The bundled ragdoll collapsing from standing: the neck (World::jointWrench) holds at least the
+// head's weight at some point, and the fall ends at rest within the run.
+TEST(SceneInjury, BundledRagdollNeckLoads) {
+  Scene scene{SceneDef()};
+  std::string e;
+  const RagdollDef def = test::bundledRagdoll();
+  SpawnDef s = drop(def, 0.0);
+  s.pose.p.z() = 1.05;  // its lowest point 5 cm above the ground
+  ASSERT_EQ(scene.addRagdoll(s, &e), SpawnResult::Added) << e;
+  ASSERT_TRUE(scene.start(&e)) << e;
+  const InjuryReport r = stepUntilReport(scene, 4.0);
+  ASSERT_EQ(r.reason, "rest");
+  EXPECT_EQ(r.neck_joint, "neck_y+neck_x+neck_z");
+  const double head_weight = def.links[static_cast<size_t>(def.findLink("head"))].mass * kStandardGravity;
+  EXPECT_GT(r.peak_neck_force, head_weight);
+  EXPECT_TRUE(std::isfinite(r.peak_neck_force));
+  EXPECT_GT(r.peak_neck_torque, 0.0);
+  EXPECT_TRUE(std::isfinite(r.peak_neck_torque));
+  EXPECT_GT(r.peak_g, 1.0);
+  std::printf("[ injury   ] bundled ragdoll from standing: peak %.0f g at %.3f s, HIC15 %.0f, "
+              "neck %.0f N / %.1f N m, fall %.3f-%.3f s\n", r.peak_g, r.peak_time, r.hic15,
+              r.peak_neck_force, r.peak_neck_torque, r.start_time, r.end_time);
+}
