@@ -5,6 +5,7 @@
 // compliance of the surfaces (Material::contact_hertz).
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -19,7 +20,7 @@ constexpr double kStandardGravity = 9.80665;  // m/s^2: 1 g
 // with a the resultant acceleration in g and t in s. Each sample is the mean acceleration over
 // its interval (a piecewise-constant signal, as a substep's velocity change over h is), so
 // the integral over whole intervals is exact; windows start and end on sample boundaries.
-// O(window / dt) per sample; nothing is allocated per sample once the ring is full.
+// O(window / dt) per sample at most; nothing is allocated per sample once the rings are full.
 class HicMeter {
  public:
   explicit HicMeter(double window = 0.015);  // s
@@ -32,13 +33,43 @@ class HicMeter {
   double window() const { return window_; }
 
  private:
+  // A queue, oldest first, in a vector whose size is a power of two (doubled when full).
+  template <class T>
+  struct Ring {
+    std::vector<T> v;
+    size_t first = 0, count = 0;
+    T& operator[](size_t i) { return v[(first + i) & (v.size() - 1)]; }
+    T& front() { return (*this)[0]; }
+    T& back() { return (*this)[count - 1]; }
+    void popFront() { first = (first + 1) & (v.size() - 1), --count; }
+    void popBack() { --count; }
+    void clear() { first = count = 0; }
+    void push(const T& x) {
+      if (count == v.size()) {
+        std::vector<T> grown(v.empty() ? 16 : 2 * v.size());
+        for (size_t i = 0; i < count; ++i) grown[i] = (*this)[i];
+        v.swap(grown);
+        first = 0;
+      }
+      ++count;
+      back() = x;
+    }
+  };
   struct Sample {
     double t_end;     // s from the first sample
     double integral;  // int a dt from the start of the record to t_end (g s)
   };
+  struct Peak {
+    double t_end;  // of its sample
+    double accel;  // g
+  };
   double window_;
   double time_ = 0.0, integral_ = 0.0;
-  std::vector<Sample> ring_;  // the samples whose end lies within `window_` of the newest
+  Ring<Sample> ring_;  // the sample boundaries within `window_` of the newest
+  // The samples inside the ring that no later one reaches (a sliding maximum): peaks_.front()
+  // is the largest, and no window ending at the newest sample beats span * it^2.5, so most
+  // samples (at rest, in flight) skip the search.
+  Ring<Peak> peaks_;
   double hic_ = 0.0, t1_ = 0.0, t2_ = 0.0;
 };
 
@@ -52,8 +83,9 @@ struct InjuryDef {
   // A RagdollDef joint name or one of its URDF joints ("neck_y" names the bundled ragdoll's
   // ball "neck_y+neck_x+neck_z"); "" = the joint whose child is the head.
   std::string neck_joint;
-  // A fall starts when some link moves faster than fall_speed and ends once every link has
-  // been slower than rest_speed for rest_time (or the ragdoll sleeps): its report is made then.
+  // A fall starts when some link moves faster than fall_speed (its record covers the step
+  // that found it) and ends once every link has been slower than rest_speed for rest_time (or
+  // the ragdoll sleeps): its report is made then. Between falls nothing is measured.
   double fall_speed = 0.5;  // m/s
   double rest_speed = 0.05; // m/s
   double rest_time = 0.5;   // s

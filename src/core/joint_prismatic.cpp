@@ -5,12 +5,13 @@
 namespace ragdoll_sim {
 
 PrismaticJoint::PrismaticJoint(const PrismaticJointDef& def)
-    : axis(def.axis.normalized()), limit_enabled(def.enable_limit), lower(def.lower),
-      upper(def.upper), motor(def.motor) {}
+    : axis(def.axis.normalized()),
+      off_axis_in_a(anyPerpendicular(def.frame_a.q * def.axis.normalized())),
+      limit_enabled(def.enable_limit), lower(def.lower), upper(def.upper), motor(def.motor) {}
 
 void PrismaticJoint::prepare(JointBase& j, const StepContext& ctx) {
   const auto& m = *ctx.motions;
-  slider.prepare(m[j.a], m[j.b], j.frame_a.p, j.frame_b.p, j.frame_a.q * axis);
+  slider.prepare(m[j.a], m[j.b], j.frame_a.p, j.frame_b.p, j.frame_a.q * axis, off_axis_in_a);
   angle_lock.prepare(j.frameRotationA(m[j.a].q), j.frameRotationB(m[j.b].q));
 }
 

@@ -21,6 +21,7 @@ struct PrismaticJoint {
   explicit PrismaticJoint(const PrismaticJointDef& def);
 
   Vec3 axis = Vec3::UnitX();  // joint frame of A
+  Vec3 off_axis_in_a = Vec3::UnitY();  // link frame of A: the line part's first row
   bool limit_enabled = false;
   double lower = 0.0, upper = 0.0;  // m
   JointMotor motor;             // linear (PrismaticJointDef::motor)

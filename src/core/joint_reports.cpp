@@ -87,9 +87,8 @@ struct PrismaticReading {
 PrismaticReading prismaticReading(const JointBase& j, const PrismaticJoint& pj,
                                   const JointPoses& p) {
   PrismaticReading r;
-  const Vec3 axis_in_a = j.frame_a.q * pj.axis;
-  r.axis = p.A.q * axis_in_a;
-  const Vec3 n1 = p.A.q * offAxisNormal(axis_in_a), n2 = r.axis.cross(n1);
+  r.axis = p.A.q * (j.frame_a.q * pj.axis);
+  const Vec3 n1 = p.A.q * pj.off_axis_in_a, n2 = r.axis.cross(n1);
   const Vec3 pb = p.B.linkPose().apply(j.frame_b.p);
   double lambda = pj.linear_motor.impulse;
   if (pj.limit_enabled) lambda += pj.linear_limit.lower_impulse - pj.linear_limit.upper_impulse;

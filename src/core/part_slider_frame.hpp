@@ -23,22 +23,20 @@ struct SliderPose {
   Vec3 leverA() const { return rA + d; }
 };
 
-// The first off-axis direction, fixed in A (link frame): the line part's impulse keeps its
-// meaning while A turns, so World::jointWrench can read it back at A's current pose.
-inline Vec3 offAxisNormal(const Vec3& axis_in_a) { return anyPerpendicular(axis_in_a); }
-
 struct SliderFrame {
   Vec3 rA0 = Vec3::Zero(), rB0 = Vec3::Zero(), delta_center = Vec3::Zero();
   Vec3 axis0 = Vec3::UnitX(), n1_0 = Vec3::UnitY(), n2_0 = Vec3::UnitZ();
 
-  // Anchors in each body's link frame; axis in A's link frame (unit).
+  // Anchors in each body's link frame; axis and n1 in A's link frame (unit, perpendicular).
+  // n1 is fixed in A so that the line part's impulse keeps its meaning while A turns (and
+  // World::jointWrench reads it back at A's current pose).
   void prepare(const BodyMotion& A, const BodyMotion& B, const Vec3& anchor_a,
-               const Vec3& anchor_b, const Vec3& axis_in_a) {
+               const Vec3& anchor_b, const Vec3& axis_in_a, const Vec3& n1_in_a) {
     rA0 = A.q * (anchor_a - A.local_com);
     rB0 = B.q * (anchor_b - B.local_com);
     delta_center = centerOffset(A, B);
     axis0 = A.q * axis_in_a;
-    n1_0 = A.q * offAxisNormal(axis_in_a);
+    n1_0 = A.q * n1_in_a;
     n2_0 = axis0.cross(n1_0);
   }
 

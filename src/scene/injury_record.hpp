@@ -17,10 +17,11 @@ struct InjuryRecord {
   std::string head_name, neck_name;
   InjuryReport report;  // peaks and times so far (names and reason filled when reported)
   HicMeter hic15{0.015}, hic36{0.036};
-  bool falling = false;   // a link went faster than fall_speed since the record started
+  // A link went faster than fall_speed: the record runs (between falls it stays empty).
+  bool falling = false;
   double slow_for = 0.0;  // s every link has been below rest_speed while falling
 
-  // A new record from sim time t (peaks cleared, no fall under way).
+  // An empty record from sim time t (peaks cleared, no fall under way).
   void restart(double t) {
     report = InjuryReport();
     report.start_time = report.end_time = t;

@@ -1,8 +1,8 @@
 // Scene: one injury record per ragdoll (injury.hpp, injury_record.hpp; docs/injury.md). The
-// head's centre of mass is tracked (World::trackBody); every step its substep velocities give
-// the proper acceleration into the HIC meters and the peaks, the neck's wrench its peaks, and
-// the links' speeds tell when a fall starts and ends. A rebuilt World (reset) starts every
-// record afresh; removal reports a fall under way.
+// head's centre of mass is tracked (World::trackBody). The links' speeds tell when a fall
+// starts and ends; during a fall, every step's substep velocities of the head give the proper
+// acceleration into the HIC meters and the peaks, and the neck's wrench its peaks. A rebuilt
+// World (reset) starts every record afresh; removal reports a fall under way.
 #include <algorithm>
 #include <cctype>
 
@@ -151,6 +151,17 @@ void Scene::Impl::updateInjury() {
   for (RagdollInstance& r : ragdolls) {
     InjuryRecord& rec = r.injury;
     if (!rec.on) continue;
+    double fastest = 0.0;
+    bool asleep = true;
+    for (const BodyId b : r.ragdoll.bodies) {
+      fastest = std::max(fastest, world->bodyState(b).linear_velocity.norm());
+      asleep = asleep && !world->isAwake(b);
+    }
+    if (!rec.falling) {  // between falls nothing is measured: the step that starts one is
+      if (!(fastest > rec.def.fall_speed)) continue;
+      rec.restart(t0);
+      rec.falling = true;
+    }
     SubstepVelocities& s = samples_scratch;
     if (world->substepVelocities(r.ragdoll.bodies[static_cast<size_t>(rec.head)], &s))
       addSamples(rec, s, gravity, t0);
@@ -163,14 +174,6 @@ void Scene::Impl::updateInjury() {
       }
     }
     rec.report.end_time = now;
-    double fastest = 0.0;
-    bool asleep = true;
-    for (const BodyId b : r.ragdoll.bodies) {
-      fastest = std::max(fastest, world->bodyState(b).linear_velocity.norm());
-      asleep = asleep && !world->isAwake(b);
-    }
-    if (!rec.falling && fastest > rec.def.fall_speed) rec.falling = true;
-    if (!rec.falling) continue;
     rec.slow_for = fastest < rec.def.rest_speed ? rec.slow_for + dt : 0.0;
     if (asleep || rec.slow_for >= rec.def.rest_time) {
       injury_reports.push_back(endInjury(r, "rest"));

@@ -6,6 +6,9 @@
 // builds from a world file, as one line "world=NAME status=ok models=N static_shapes=S
 // dynamic_bodies=D skipped=K unresolved=U", its notes and warnings, then a drop of the model (the
 // bundled ragdoll by default) into it through a ROS-free Scene (world_check.hpp).
+// --injury (with or without --world): the drop through a Scene, then the head's injury reports
+// (injury_check.hpp, docs/injury.md): peak g, HIC15 / HIC36 with their windows, peak angular
+// acceleration, peak neck force and torque.
 // Exit: 0 loaded (and finite), 1 refused (by a loader, or the spawn), 2 bad usage, 3 the drop went
 // non-finite.
 #include <cstdio>
@@ -55,7 +58,8 @@ int usage() {
   std::fprintf(stderr,
                "usage: ragdoll_check <file.urdf> [--seconds S] [--no-drop]\n"
                "       ragdoll_check --world FILE [MODEL.urdf] [--spawn X Y Z] [--strict] [--seconds S]"
-               " [--no-drop]\n");
+               " [--no-drop] [--injury]\n"
+               "       ragdoll_check --injury [MODEL.urdf] [--spawn X Y Z] [--seconds S]\n");
   return 2;
 }
 
@@ -64,7 +68,7 @@ int usage() {
 int main(int argc, char** argv) {
   std::string file, world;
   DropSettings drop;
-  bool run_drop = true, strict = false;
+  bool run_drop = true, strict = false, injury = false;
   std::optional<Vec3> spawn;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -78,6 +82,8 @@ int main(int argc, char** argv) {
         if (end == argv[i] || *end != '\0') return usage();
       }
       spawn = p;  // a non-finite one is the Scene's to refuse (exit 1)
+    } else if (a == "--injury") {
+      injury = true;
     } else if (a == "--strict") {
       strict = true;
     } else if (a == "--seconds" && i + 1 < argc) {
@@ -91,13 +97,15 @@ int main(int argc, char** argv) {
       file = a;
     }
   }
-  if (!world.empty()) {
+  if (!world.empty() || injury) {
+    if (injury && !run_drop) return usage();
     WorldCheckArgs w;
     w.world = world;
     w.model = file;
     w.spawn = spawn;
     w.strict = strict;
     w.drop = run_drop;
+    w.injury = injury;
     w.settings = drop;
     return checkWorld(w, argv[0]);
   }

@@ -1,5 +1,6 @@
 // See world_check.hpp.
 #include "world_check.hpp"
+#include "injury_check.hpp"
 
 #include <unistd.h>
 
@@ -82,17 +83,23 @@ std::string packageFile(const std::string& relative, const char* argv0) {
 }
 
 int checkWorld(const WorldCheckArgs& args, const char* argv0) {
-  WorldLoadOptions options;
-  options.strict = args.strict;
-  const WorldLoadResult r = loadWorldFile(args.world, options);
-  if (!r.ok) {
-    std::fprintf(stderr, "ragdoll_check: %s: %s\n", args.world.c_str(), r.error.c_str());
-    return 1;
+  WorldLoadResult r;
+  if (!args.world.empty()) {
+    WorldLoadOptions options;
+    options.strict = args.strict;
+    r = loadWorldFile(args.world, options);
+    if (!r.ok) {
+      std::fprintf(stderr, "ragdoll_check: %s: %s\n", args.world.c_str(), r.error.c_str());
+      return 1;
+    }
+    std::printf("%s\n", worldSummaryLine(r.def).c_str());
+    printLines("notes", r.def.notes);
+    printLines("warnings", r.def.warnings);
+    if (!args.drop) return 0;
+  } else {
+    r.ok = true;
+    r.def.name = "ground";  // the Scene's default plane alone
   }
-  std::printf("%s\n", worldSummaryLine(r.def).c_str());
-  printLines("notes", r.def.notes);
-  printLines("warnings", r.def.warnings);
-  if (!args.drop) return 0;
 
   const std::string model = args.model.empty() ? packageFile("urdf/ragdoll.urdf", argv0) : args.model;
   if (model.empty()) {
@@ -126,7 +133,7 @@ int checkWorld(const WorldCheckArgs& args, const char* argv0) {
   std::string error;
   StderrListener listener;
   Scene scene(sd, &listener);
-  if (!scene.loadWorld(r.def, &error)) {
+  if (!args.world.empty() && !scene.loadWorld(r.def, &error)) {
     std::fprintf(stderr, "ragdoll_check: %s: %s\n", args.world.c_str(), error.c_str());
     return 1;
   }
@@ -147,8 +154,11 @@ int checkWorld(const WorldCheckArgs& args, const char* argv0) {
     return 1;
   }
   const int k = scene.find(spawn.name);
-  const DropReport rep =
-      measureDrop(scene.world(), scene.bodies(k), scene.def(k), [&] { scene.step(); }, args.settings);
+  std::vector<InjuryReport> falls;  // that ended during the drop
+  const DropReport rep = measureDrop(scene.world(), scene.bodies(k), scene.def(k), [&] {
+    scene.step();
+    for (const InjuryReport& f : scene.injuryReports()) falls.push_back(f);
+  }, args.settings);
   const Vec3 p = scene.spawnPose(k).p;
   std::printf("drop: %s into world '%s', %.2f s of sim time from root (%.3f %.3f %.3f)\n",
               fs::path(model).filename().c_str(), r.def.name.c_str(), rep.seconds, p.x(), p.y(), p.z());
@@ -159,6 +169,13 @@ int checkWorld(const WorldCheckArgs& args, const char* argv0) {
       r.def.name.c_str(), fs::path(model).filename().c_str(), p.z(), rep.seconds, rep.finite ? 0 : 1,
       1e3 * rep.max_penetration, 1e3 * rep.max_anchor_error, rep.rest_height, 1e3 * rep.lowest_point,
       1e3 * rep.min_lowest_point, rep.final_speed, rep.final_contact_speed, rep.late_energy_change);
+  if (args.injury) {
+    if (scene.headLink(k).empty())
+      std::printf("injury: no head link found in %s (name one: a link named like 'head')\n",
+                  fs::path(model).filename().c_str());
+    else
+      printInjury(falls, scene.injury(k));
+  }
   return rep.finite ? 0 : 3;
 }
 

@@ -11,16 +11,18 @@
 namespace ragdoll_sim {
 
 struct WorldCheckArgs {
-  std::string world;             // the world file
+  std::string world;             // the world file; "": the default ground alone (--injury)
   std::string model;             // URDF to drop; "": the bundled ragdoll
   std::optional<Vec3> spawn;     // root link position; none: above the highest static point
   bool strict = false;           // unresolved <include>s are errors
   bool drop = true;              // false: the world line, notes and warnings only
+  bool injury = false;           // print the head's injury reports of the drop (injury_check.hpp)
   DropSettings settings;
 };
 
-// Prints the summary line, notes, warnings and the drop metrics; returns the exit code
-// (0 ok, 1 refused: world, model, materials or spawn, 3 the drop went non-finite).
+// Prints the summary line, notes, warnings and the drop metrics (without a world file: the
+// drop metrics only) and, with `injury`, the injury reports; returns the exit code (0 ok, 1
+// refused: world, model, materials or spawn, 3 the drop went non-finite).
 int checkWorld(const WorldCheckArgs& args, const char* argv0);
 
 // `relative` ("urdf/ragdoll.urdf") in this package: found through $ROS_PACKAGE_PATH, next to

@@ -101,3 +101,40 @@ TEST(WorldCheckTool, BadUsageExitsTwo) {
     EXPECT_NE(r.out.find("usage:"), std::string::npos) << args << ": " << r.out;
   }
 }
+
+// The key=value pairs of the line starting with "injury: status=".
+std::map<std::string, std::string> injuryLine(const std::string& out) {
+  const size_t at = out.find("injury: status=");
+  if (at == std::string::npos) return {};
+  return summary("summary: " + out.substr(at + 8, out.find('\n', at) - at - 8) + "\n");
+}
+
+// --injury: the bundled ragdoll dropped on the default ground (and into a world): its fall
+// ends at rest within the run, with a finite peak above 1 g and HIC windows around the peak.
+TEST(WorldCheckTool, InjuryReportOfADrop) {
+  const ToolRun r = ragdollCheck("--injury --spawn 0 0 2 --seconds 3.2");
+  EXPECT_EQ(r.code, 0) << r.out;
+  std::printf("%s", r.out.substr(r.out.find("injury:")).c_str());
+  EXPECT_NE(r.out.find("injury: ragdoll 'ragdoll', head 'head', neck 'neck_y+neck_x+neck_z'"),
+            std::string::npos) << r.out;
+  const auto kv = injuryLine(r.out);
+  EXPECT_EQ(kv.count("status") ? kv.at("status") : "", "rest") << r.out;
+  const double peak = number(kv, "peak_g"), at = number(kv, "peak_s");
+  EXPECT_GT(peak, 5.0) << r.out;
+  EXPECT_LT(peak, 1e5) << r.out;
+  EXPECT_GT(number(kv, "hic15"), 0.0) << r.out;
+  EXPECT_GE(number(kv, "hic36"), number(kv, "hic15")) << r.out;
+  EXPECT_LE(number(kv, "hic15_t1"), at) << r.out;
+  EXPECT_GE(number(kv, "hic15_t2"), at) << r.out;
+  EXPECT_GT(number(kv, "end_s"), at) << r.out;
+  EXPECT_LE(number(kv, "end_s"), 3.2) << r.out;
+  for (const char* key : {"peak_angular_acceleration", "neck_force_n", "neck_torque_nm"})
+    EXPECT_TRUE(std::isfinite(number(kv, key))) << key << ": " << r.out;
+
+  const ToolRun w = ragdollCheck("--world " + shipped("ramp") + " --injury --seconds 0.2");
+  EXPECT_EQ(w.code, 0) << w.out;
+  const auto wk = injuryLine(w.out);
+  EXPECT_EQ(wk.count("status") ? wk.at("status") : "", "running") << w.out;
+  EXPECT_TRUE(std::isfinite(number(wk, "peak_g"))) << w.out;
+  EXPECT_EQ(ragdollCheck("--injury --no-drop").code, 2);
+}
