@@ -65,6 +65,13 @@ struct Joint : JointBase {
   JointMotor& motorAt(int axis) {
     return visit([&](auto& t) -> JointMotor& { return t.motorAt(axis); });
   }
+  // A motor turned off drops its accumulated impulse: its solve no longer updates it, and the
+  // warm start would otherwise keep applying it while the joint's other rows are active.
+  void clearMotorImpulse(int axis) {
+    if (HingeJoint* h = std::get_if<HingeJoint>(&kind)) h->axes.motor_parts.at(axis).impulse = 0.0;
+    else if (BallJoint* b = std::get_if<BallJoint>(&kind)) b->axes.motor_parts.at(axis).impulse = 0.0;
+    else if (PrismaticJoint* p = std::get_if<PrismaticJoint>(&kind)) p->linear_motor.impulse = 0.0;
+  }
 };
 static_assert(std::variant_size_v<JointKind> == 4, "Joint::visit has a case per type");
 static_assert(std::is_same_v<std::variant_alternative_t<size_t(JointType::Prismatic), JointKind>,

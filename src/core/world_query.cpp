@@ -180,6 +180,7 @@ void World::setJointMotor(JointId id, int axis, const JointMotor& motor) {
                                 " of the joint between '" + impl_->bodies[j.a].def.name +
                                 "' and '" + impl_->bodies[j.b].def.name + "': motor." + e);
   j.motorAt(axis) = motor;
+  if (!motor.enabled) j.clearMotorImpulse(axis);
   impl_->wake(j.a);
   impl_->wake(j.b);
 }

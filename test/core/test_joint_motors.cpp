@@ -83,3 +83,57 @@ TEST(JointMotor, DampingDecaysSwing) {
   // I w' = -c w  ->  w(t) = w0 exp(-c t / I), I about the pivot = 0.27
   EXPECT_NEAR(arm.w.bodyState(arm.bar).angular_velocity.y(), 4.0 * std::exp(-0.5 / 0.27), 0.02);
 }
+
+// A position motor holds a level bar (the joint's limit keeps its rows active); turned off, it
+// lets go: the bar falls under gravity instead of being held by the motor's last impulse.
+TEST(JointMotor, TurnedOffMotorLetsGo) {
+  JointMotor hold;
+  hold.enabled = true;
+  hold.hertz = 30.0;
+  hold.max_torque = 1e4;
+  for (const JointType type : {JointType::Hinge, JointType::Ball, JointType::Prismatic}) {
+    World w(noSleep());
+    const BodyId anchor = addAnchor(w);
+    BodyDef d;
+    d.mass = 2.0;
+    d.com = Vec3(0.5, 0, 0);
+    d.inertia = Mat3::Identity() * 0.04;
+    const BodyId bar = w.createBody(d);
+    JointId j;
+    int axis = 0;
+    if (type == JointType::Hinge) {
+      HingeJointDef h;
+      h.body_a = anchor;
+      h.body_b = bar;
+      h.axis = Vec3::UnitY();
+      h.enable_limit = true;
+      h.lower = -2.0;
+      h.upper = 2.0;
+      h.motor = hold;
+      j = w.createHingeJoint(h);
+    } else if (type == JointType::Ball) {
+      BallJointDef b;
+      b.body_a = anchor;
+      b.body_b = bar;
+      b.motors = {hold, hold, hold};
+      j = w.createBallJoint(b);
+      axis = 1;  // y: the one gravity turns
+    } else {
+      PrismaticJointDef p;
+      p.body_a = anchor;
+      p.body_b = bar;
+      p.axis = Vec3::UnitZ();
+      p.enable_limit = true;
+      p.lower = -2.0;
+      p.upper = 2.0;
+      p.motor = hold;
+      j = w.createPrismaticJoint(p);
+    }
+    for (int i = 0; i < 500; ++i) w.step(kDt);
+    const Vec3 held = w.comPosition(bar);
+    w.setJointMotor(j, axis, JointMotor());
+    for (int i = 0; i < 300; ++i) w.step(kDt);
+    // Free fall drops the COM by ~0.44 m in 0.3 s; a pendulum turning about y by ~0.3 m.
+    EXPECT_LT(w.comPosition(bar).z(), held.z() - 0.2) << int(type);
+  }
+}

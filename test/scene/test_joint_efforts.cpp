@@ -262,7 +262,7 @@ TEST(JointEffort, HeldArmReportsMotorPlusCommand) {
 }
 
 // At rest on the ground the links' contact forces add up to the weight.
-TEST(JointEffort, DISABLED_LoadsAtRestCarryTheWeight) {
+TEST(JointEffort, LoadsAtRestCarryTheWeight) {
   Recorder rec;
   SceneDef sd;
   Scene scene(sd, &rec);
