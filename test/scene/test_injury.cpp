@@ -197,6 +197,29 @@ TEST(SceneInjury, DroppedHeadIsReportedAtRest) {
   EXPECT_EQ(now.hic15, 0.0);
 }
 
+// The same drop on a padded mat (Material::contact_hertz 30 Hz): the head is stopped over a
+// few ms instead of one substep, so its peak g and HIC are far lower.
+TEST(SceneInjury, SofterGroundGivesLowerPeak) {
+  const auto dropOn = [](double hertz) {
+    SceneDef d;
+    d.ground_surface.contact_hertz = hertz;
+    Scene scene{d};
+    std::string e;
+    EXPECT_EQ(scene.addRagdoll(drop(headModel(), 0.5), &e), SpawnResult::Added) << e;
+    EXPECT_TRUE(scene.start(&e)) << e;
+    return stepUntilReport(scene, 3.0);
+  };
+  const InjuryReport rigid = dropOn(0.0), soft = dropOn(30.0);
+  ASSERT_EQ(rigid.reason, "rest");
+  ASSERT_EQ(soft.reason, "rest");
+  EXPECT_LT(soft.peak_g, 0.5 * rigid.peak_g);
+  EXPECT_GT(soft.peak_g, 2.0);
+  EXPECT_LT(soft.hic15, rigid.hic15);
+  std::printf("[ injury   ] 0.5 m drop: rigid %.0f g HIC15 %.0f; mat 30 Hz %.1f g HIC15 %.1f "
+              "(%.4f-%.4f s)\n", rigid.peak_g, rigid.hic15, soft.peak_g, soft.hic15,
+              soft.hic15_t1, soft.hic15_t2);
+}
+
 TEST(SceneInjury, ResetInjuryReturnsTheRecordAndStartsAnew) {
   Scene scene{SceneDef()};
   std::string e;
