@@ -224,6 +224,9 @@ int main(int argc, char** argv) {
   // and Coulomb friction F (N m), as a URDF <dynamics> on every joint would give (ragdoll15 has
   // none; a what-if for the rest speed, not part of the peers' scenes)
   double joint_damping = 0.0, joint_friction = 0.0;
+  // --opt track=1: contact impulse tracking on; reports=1: and World::contactReports after
+  // every step, timed with it (what a contacts subscriber costs the loop)
+  bool track = false, reports = false;
   std::string urdf = "../shared/peers/ragdoll15.urdf";
   for (int i = 1; i < argc; ++i) {
     const std::string s = argv[i];
@@ -271,6 +274,8 @@ int main(int argc, char** argv) {
         else if (k == "hash") hash = v != 0.0;
         else if (k == "joint_damping") joint_damping = v;
         else if (k == "joint_friction") joint_friction = v;
+        else if (k == "track") track = v != 0.0;
+        else if (k == "reports") reports = track = v != 0.0;
         else {
           std::fprintf(stderr, "unknown option %s\n", k.c_str());
           return 2;
@@ -317,6 +322,9 @@ int main(int argc, char** argv) {
 
   World world(wd);
   WorldInternals::setTuning(world, tuning);
+  world.setContactImpulseTracking(track);
+  std::vector<ContactReport> contact_reports;
+  size_t reported_points = 0;  // summed over the steps, so the reports cannot be optimised away
   BodyDef ground;
   ground.type = BodyType::Static;
   Material mat;
@@ -356,6 +364,10 @@ int main(int argc, char** argv) {
   for (int step = 1; step <= steps; ++step) {
     const auto t0 = std::chrono::steady_clock::now();
     world.step(dt);
+    if (reports) {
+      world.contactReports(contact_reports);
+      for (const ContactReport& r : contact_reports) reported_points += size_t(r.count);
+    }
     const double dt_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     wall += dt_wall;
     if (step <= window) wall_first += dt_wall;
@@ -416,6 +428,12 @@ int main(int argc, char** argv) {
     char buf[96];
     std::snprintf(buf, sizeof buf, " joint_damping=%g joint_friction=%g", joint_damping,
                   joint_friction);
+    extra += buf;
+  }
+  if (track) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, " track=1 reports=%d reported_points=%zu", reports ? 1 : 0,
+                  reported_points);
     extra += buf;
   }
   if (hash) {

@@ -16,7 +16,9 @@ bool parseCombineRule(const std::string& text, CombineRule* rule);
 double combine(CombineRule rule, double a, double b);
 
 // "" when every coefficient is finite and >= 0 and restitution <= 1, else the first that is not,
-// named as in Material ("restitution must be a finite number in [0, 1], got 1.5").
+// named as in Material ("restitution must be a finite number in [0, 1], got 1.5"). A
+// contact_hertz above a quarter of the substep rate is accepted and capped by the solver at
+// each step, as SolverSettings::contact_hertz is.
 std::string materialError(const Material& m);
 
 class MaterialTable {
@@ -32,10 +34,13 @@ class MaterialTable {
   int size() const { return int(materials_.size()); }
 
   // Coefficients for the pair (a, b), in either order. `given`: how many of the leading
-  // coefficients the pair sets (2: the frictions, 3: and restitution, 4: all); the rest come
-  // from the two surfaces by the combine rules, as for a pair not listed (a friction table
-  // measures friction, not restitution).
-  void setPair(int a, int b, const Material& pair, int given = 4);
+  // coefficients the pair sets (2: the frictions, 3: and restitution, 4: and rolling
+  // resistance, 5 or 6: and the compliance, contact_hertz with contact_damping_ratio); the rest
+  // come from the two surfaces by the combine rules, as for a pair not listed (a friction
+  // table measures friction, not restitution), and the compliance from the softer surface
+  // (Material::contact_hertz).
+  static constexpr int kAllCoefficients = 6;
+  void setPair(int a, int b, const Material& pair, int given = kAllCoefficients);
   // How many coefficients the pair (a, b) sets (setPair's `given`); 0 when it is not listed.
   int pairGiven(int a, int b) const;
   // The pair's listed coefficients, else the combination of the two surfaces' own.

@@ -3,9 +3,9 @@
 //
 //   materials:
 //     combine: {friction: geometric_mean, restitution: max}  # geometric_mean | average | min | max
-//     surfaces: {name: [mu_s, mu_k, e(, c_r)], ...}           # one material against anything
+//     surfaces: {name: [mu_s, mu_k, e(, c_r(, hertz(, zeta)))], ...}  # one material against anything
 //     pairs:                                                   # measured pairs, either order
-//       - [a, b, mu_s, mu_k(, e(, c_r))]   # a column left out comes from the two surfaces
+//       - [a, b, mu_s, mu_k(, e(, c_r(, hertz(, zeta))))]  # a column left out comes from the two surfaces
 //       - [a, [b, c], mu_s, mu_k]          # a list on one side: the row holds for each name
 //   link_materials: {link_name: surface, "*": surface}         # "*": every other link
 //

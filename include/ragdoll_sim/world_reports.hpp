@@ -13,17 +13,20 @@
 namespace ragdoll_sim {
 
 // One point of a touching shape pair after the last step. Forces are the last substep's
-// accumulated impulses divided by its length (the force that held during it).
+// accumulated impulses divided by its length (the force that held during it; in the step of a
+// bounce the rigid restitution impulse is in it too). The point and depth are those of the
+// step's collide (the poses at its start).
 struct ContactPointReport {
   Vec3 point = Vec3::Zero();           // world, midway between the surfaces
   double depth = 0.0;                  // m, > 0 when the surfaces overlap
   double normal_force = 0.0;           // N, on B along the normal (>= 0)
   Vec3 friction_force = Vec3::Zero();  // N, on B, world, in the tangent plane
   // Over the whole step (World::setContactImpulseTracking on; else 0): the normal impulse
-  // summed over the substeps and restitution (N s), and the largest substep normal force (N).
+  // summed over the substeps and restitution (N s), the largest substep normal force (N), and
+  // the approach speed v_c = (v_a - v_b).n at the point before the step (m/s, > 0 approaching).
   double step_impulse = 0.0;
   double peak_force = 0.0;
-  double closing_speed = 0.0;     // m/s, v_c = -(v_a - v_b).n at the point before the step
+  double closing_speed = 0.0;
   double separating_speed = 0.0;  // m/s, (v_b - v_a).n at the point after the step
 };
 

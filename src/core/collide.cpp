@@ -21,6 +21,8 @@ void World::Impl::applyPairMaterial(Contact& c, const ShapeDef& da, const ShapeD
   c.rolling = pair.rolling_resistance > 0.0
                   ? pair.rolling_resistance * std::max(rollingRadius(da.geometry), rollingRadius(db.geometry))
                   : 0.0;
+  c.contact_hertz = pair.contact_hertz;
+  c.contact_damping_ratio = pair.contact_damping_ratio;
 }
 
 // The per-shape lists collide walks (collide.hpp), after a shape was added or removed.

@@ -19,6 +19,8 @@ struct Contact {
   Vec3 friction_impulse[Manifold::kMaxPoints] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};  // world, re-projected on new tangents
   double static_friction = 0.0, kinetic_friction = 0.0, restitution = 0.0;
   double rolling = 0.0;  // m: rolling_resistance * rolling radius (max of the two shapes)
+  // The pair's compliance (Material::contact_hertz, its damping ratio); 0 Hz: rigid.
+  double contact_hertz = 0.0, contact_damping_ratio = 1.0;
   Vec3 rolling_impulse = Vec3::Zero();  // N m s, world, in the tangent plane (warm start)
   double impulse_h = 0.0;  // s: the substep the impulses were accumulated over (0: none yet)
   // Separating-axis cache: the last narrowphase found the shapes apart along this world axis
@@ -26,6 +28,16 @@ struct Contact {
   // distance, the pair is skipped (a projection gap is a lower bound on the distance).
   Vec3 sep_axis = Vec3::Zero();
   bool sep_valid = false;
+};
+
+// What impulse tracking (World::setContactImpulseTracking) kept of a contact's last step, per
+// manifold point: the normal impulse summed over the substeps and restitution, the largest
+// substep force, and the approach speed before the step.
+struct ContactTrack {
+  uint64_t key = 0;  // the contact's key; 0: the last step did not solve it
+  double step_impulse[Manifold::kMaxPoints] = {};
+  double peak_force[Manifold::kMaxPoints] = {};
+  double closing_speed[Manifold::kMaxPoints] = {};
 };
 
 inline uint64_t pairKey(int shape_a, int shape_b) {

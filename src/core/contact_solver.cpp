@@ -15,6 +15,14 @@
 //   velocities), so the correction splits between the bodies by their inverse masses and
 //   inertias and adds no kinetic energy: two boxes created overlapping in free space separate
 //   and stop.
+// Compliant contacts (Contact::contact_hertz > 0, a padded surface): an overlapping point is
+//   a spring-damper of that frequency and damping ratio (the soft step with bias_rate * s, no
+//   slop, no push-out cap) in every sweep, approaching or not: the relax sweeps solve the
+//   spring of the biased sweep again (the Gauss-Seidel of a manifold's points), so an impact is
+//   stopped over about a quarter period instead of one substep; a point apart (s > 0) takes no
+//   impulse, so a body enters the surface one substep late at most instead of being stopped
+//   on it. The spring's damping ratio sets the rebound (restitution is not applied) and its
+//   compression is the rest depth (no position projection).
 // Friction: two tangent rows, impulse clamped to the Coulomb disc |lambda_t| <= mu lambda_n,
 //   mu = static coefficient when the pair was sliding slower than static_friction_speed at the
 //   start of the step, kinetic otherwise.
@@ -134,6 +142,10 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
     cc.count = c.manifold.count;
     cc.moved_sweep = 0;
     cc.restitution = c.restitution;
+    cc.compliant = c.contact_hertz > 0.0;
+    if (cc.compliant)
+      cc.compliance = Softness::make(std::min(c.contact_hertz, 0.25 * ctx.inv_h),
+                                     c.contact_damping_ratio, ctx.h);
     const SolverBody &A = bodies[cc.a], &B = bodies[cc.b];
     // The points are relative to c.origin, a centre on the grid: the lever arms come from
     // exact differences of centres, the same wherever the pair is (body.hpp).
@@ -210,6 +222,18 @@ bool idleIn(const ContactConstraint& cc, const PairVelocity<kLiveA>& u, double i
   return noImpulse(cc);
 }
 
+// The normal impulse of a compliant point (see the file comment): the biased sweep sets the
+// spring's bias from the separation, the relax sweeps solve the same spring again.
+template <bool kLiveA>
+double compliantImpulse(ContactConstraintPoint& p, const ContactConstraint& cc,
+                        const PairVelocity<kLiveA>& u, bool use_bias) {
+  const Softness& k = cc.compliance;
+  if (use_bias) p.spring_bias = p.separation > 0.0 ? 1.0 : k.bias_rate * p.separation;
+  if (p.spring_bias > 0.0) return -p.normal_impulse;  // apart: let go
+  const double vn = u.rowVelocity(p.normal_row, cc.normal);
+  return -p.normal_row.mass * k.mass_scale * (vn + p.spring_bias) - k.impulse_scale * p.normal_impulse;
+}
+
 template <bool kLiveA>
 void warmStartConstraint(ContactConstraint& cc, SolverBody& A, SolverBody& B,
                          bool positions_moved) {
@@ -236,19 +260,24 @@ void solveConstraint(ContactConstraint& cc, SolverBody& A, SolverBody& B, const 
   if (idleIn(cc, u, ctx.inv_h)) return;
   for (int i = 0; i < cc.count; ++i) {
     ContactConstraintPoint& p = cc.points[i];
-    const double s = p.separation;
-    double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
-    if (s > 0.0) {
-      bias = s * ctx.inv_h;
-    } else if (use_bias) {
-      bias = std::max(soft.bias_rate * std::min(s + settings.linear_slop, 0.0),
-                      -settings.max_push_velocity);
-      mass_scale = soft.mass_scale;
-      impulse_scale = soft.impulse_scale;
+    double lambda;
+    if (cc.compliant) {
+      lambda = compliantImpulse(p, cc, u, use_bias);
+    } else {
+      const double s = p.separation;
+      double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
+      if (s > 0.0) {
+        bias = s * ctx.inv_h;
+      } else if (use_bias) {
+        bias = std::max(soft.bias_rate * std::min(s + settings.linear_slop, 0.0),
+                        -settings.max_push_velocity);
+        mass_scale = soft.mass_scale;
+        impulse_scale = soft.impulse_scale;
+      }
+      const double vn = u.rowVelocity(p.normal_row, cc.normal);
+      if (vn < 0.0) mass_scale = 1.0, impulse_scale = 0.0;  // approaching: rigid
+      lambda = -p.normal_row.mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
     }
-    const double vn = u.rowVelocity(p.normal_row, cc.normal);
-    if (vn < 0.0) mass_scale = 1.0, impulse_scale = 0.0;  // approaching: rigid
-    double lambda = -p.normal_row.mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
     const double next = std::max(p.normal_impulse + lambda, 0.0);
     lambda = next - p.normal_impulse;
     p.normal_impulse = next;
@@ -319,7 +348,7 @@ bool ContactSolver::project(const StepContext& ctx, int begin, int end, int swee
   for (int k = begin; k < end; ++k) {
     ContactConstraint& cc = constraints_[k];
     SolverBody &A = bodies[cc.a], &B = bodies[cc.b];
-    if (unchangedSince(sweep, cc.moved_sweep, A, B)) continue;
+    if (cc.compliant || unchangedSince(sweep, cc.moved_sweep, A, B)) continue;
     for (int i = 0; i < cc.count; ++i) {
       const ContactConstraintPoint& p = cc.points[i];
       const Vec3 rA = A.dq * p.rA, rB = B.dq * p.rB;
@@ -341,7 +370,7 @@ void ContactSolver::applyRestitution(const StepContext& ctx, int begin, int end)
   const double threshold = ctx.settings->restitution_threshold;
   for (int k = begin; k < end; ++k) {
     ContactConstraint& cc = constraints_[k];
-    if (cc.restitution == 0.0) continue;
+    if (cc.restitution == 0.0 || cc.compliant) continue;
     SolverBody &A = bodies[cc.a], &B = bodies[cc.b];
     for (int i = 0; i < cc.count; ++i) {
       ContactConstraintPoint& p = cc.points[i];
@@ -352,6 +381,7 @@ void ContactSolver::applyRestitution(const StepContext& ctx, int begin, int end)
       const double next = std::max(p.normal_impulse + lambda, 0.0);
       lambda = next - p.normal_impulse;
       p.normal_impulse = next;
+      if (ctx.track_impulses) p.step_impulse += lambda;
       u.applyRow(p.normal_row, cc.normal, lambda);
       u.store(A, B);
     }
@@ -370,6 +400,37 @@ void ContactSolver::storeImpulses(std::vector<Contact>& contacts, double h, int 
       c.friction_impulse[i] = p.tangent_impulse[0] * cc.tangent[0] + p.tangent_impulse[1] * cc.tangent[1];
     }
     c.rolling_impulse = cc.rolling_impulse[0] * cc.tangent[0] + cc.rolling_impulse[1] * cc.tangent[1];
+  }
+}
+
+void ContactSolver::trackSubstep(int begin, int end, bool first) {
+  for (int k = begin; k < end; ++k) {
+    ContactConstraint& cc = constraints_[k];
+    for (int i = 0; i < cc.count; ++i) {
+      ContactConstraintPoint& p = cc.points[i];
+      if (first) {
+        p.step_impulse = p.peak_impulse = p.normal_impulse;
+      } else {
+        p.step_impulse += p.normal_impulse;
+        p.peak_impulse = std::max(p.peak_impulse, p.normal_impulse);
+      }
+    }
+  }
+}
+
+void ContactSolver::storeTracks(std::vector<ContactTrack>& tracks,
+                                const std::vector<Contact>& contacts, double h, int begin,
+                                int end) const {
+  for (int k = begin; k < end; ++k) {
+    const ContactConstraint& cc = constraints_[k];
+    ContactTrack& t = tracks[cc.contact];
+    t.key = contacts[cc.contact].key;
+    for (int i = 0; i < cc.count; ++i) {
+      const ContactConstraintPoint& p = cc.points[i];
+      t.step_impulse[i] = p.step_impulse;
+      t.peak_force[i] = p.peak_impulse / h;
+      t.closing_speed[i] = -p.relative_velocity;
+    }
   }
 }
 

@@ -25,12 +25,20 @@ struct ContactConstraintPoint {
   double normal_impulse, tangent_impulse[2];
   double max_normal_impulse;
   double relative_velocity;     // normal approach speed before the step (for restitution)
+  // A compliant point's spring bias of its biased sweep (> 0: apart, no push), which the relax
+  // sweeps of the substep solve again.
+  double spring_bias;
+  double step_impulse, peak_impulse;  // impulse tracking: sum and largest over the substeps
 };
 
 struct ContactConstraint {
   int a, b, contact;
   Vec3 normal, tangent[2];
   double friction, restitution;
+  // Contact::contact_hertz > 0: the normal rows are this spring-damper in every sweep, whether
+  // the bodies approach or part, and take neither restitution nor position projection.
+  bool compliant;
+  Softness compliance;
   // Rolling resistance (rolling > 0 only): angular rows J = [0, -t_k, 0, t_k] along the two
   // tangents, IA^-1 t_k and IB^-1 t_k premultiplied, the 2x2 effective mass, the impulses.
   double rolling;
@@ -69,6 +77,13 @@ class ContactSolver {
   // [begin, end) (after the island's substeps), accumulated over substeps of h.
   void applyRestitution(const StepContext& ctx, int begin, int end);
   void storeImpulses(std::vector<Contact>& contacts, double h, int begin, int end) const;
+
+  // Impulse tracking (StepContext::track_impulses): after each substep (first: the step's
+  // first), each point's accumulated normal impulse is what the substep applied; it is summed
+  // and its largest kept. After restitution, storeTracks files them by contact index.
+  void trackSubstep(int begin, int end, bool first);
+  void storeTracks(std::vector<ContactTrack>& tracks, const std::vector<Contact>& contacts,
+                   double h, int begin, int end) const;
 
  private:
   std::vector<ContactConstraint> constraints_;

@@ -28,6 +28,7 @@ StepContexts World::Impl::makeContexts(double dt) {
     c.inv_h = 1.0 / c.h;
     c.substeps = n;
     c.relax = std::max(0, relax);
+    c.track_impulses = track_contacts;
     c.settings = &def.solver;
     c.bodies = &solver;
     c.motions = &motions;
@@ -197,6 +198,17 @@ class World::Impl::IslandPass {
     });
   }
 
+  // Impulse tracking after a substep: each thread reads the contacts it solved last (its
+  // halves and its boundary group), so no barrier is needed.
+  void trackImpulses(bool first) {
+    parts([&](const IslandRange& p) {
+      w.contact_solver.trackSubstep(p.contact_begin, p.contact_end, first);
+    });
+    if (!r.split) return;
+    for (int k = t; k < 2; k += nt)
+      w.contact_solver.trackSubstep(r.boundaryBegin(k), r.boundaryEnd(k), first);
+  }
+
   void projectPositions();
 
  private:
@@ -306,6 +318,7 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx) {
     pass.solveBiasedAndIntegrate();
     for (int it = 0; it < ctx.relax; ++it) pass.relax(it);
     pass.markBreaks();
+    if (ctx.track_impulses) pass.trackImpulses(sub == 0);
   }
   pass.projectPositions();
 }
@@ -315,6 +328,7 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx) {
 void World::Impl::restitute(int begin, int end, const StepContext& c) {
   contact_solver.applyRestitution(c, begin, end);
   contact_solver.storeImpulses(contacts, c.h, begin, end);
+  if (c.track_impulses) contact_solver.storeTracks(contact_tracks, contacts, c.h, begin, end);
 }
 
 // The island's bodies take the step (joint breaks only mark the joints).
@@ -353,6 +367,7 @@ void World::Impl::solveSplitIsland(const IslandRange& r, const StepContexts& ctx
 // run of islands first, then what is left of the others' (run_queue.hpp).
 void World::Impl::solveIslands(const StepContexts& ctx) {
   contact_solver.resize();
+  if (track_contacts) contact_tracks.assign(contacts.size(), ContactTrack());
   const int count = int(island_ranges.size());
   for (const IslandRange& r : island_ranges)
     if (r.split) solveSplitIsland(r, ctx);

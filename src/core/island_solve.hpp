@@ -36,6 +36,10 @@ struct SolveData {
   // the solver body, advanced by integratePositions; only that reads it).
   std::vector<Mat3> rotations;
   ContactSolver contact_solver;
+  // Impulse tracking (World::setContactImpulseTracking): on, the step files what it kept of
+  // each contact it solved by contact index (the others' keys are 0); off, nothing is written.
+  bool track_contacts = false;
+  std::vector<ContactTrack> contact_tracks;
   TeamBarrier team_barrier;  // the two threads of a split island
   // Whether each thread of a split island moved a body in a position sweep, by the sweep's
   // parity (IslandPass::projectPositions).

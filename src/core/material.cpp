@@ -30,7 +30,9 @@ std::string materialError(const Material& m) {
   return firstError({nonNegativeError("static_friction", m.static_friction),
                      nonNegativeError("kinetic_friction", m.kinetic_friction),
                      rangeError("restitution", m.restitution, 0.0, 1.0),
-                     nonNegativeError("rolling_resistance", m.rolling_resistance)});
+                     nonNegativeError("rolling_resistance", m.rolling_resistance),
+                     nonNegativeError("contact_hertz", m.contact_hertz),
+                     nonNegativeError("contact_damping_ratio", m.contact_damping_ratio)});
 }
 
 std::string MaterialTable::error() const {
@@ -83,7 +85,7 @@ void MaterialTable::setPair(int a, int b, const Material& pair, int given) {
   grow(std::max(a, b) + 1);
   for (const auto& [i, j] : {std::make_pair(a, b), std::make_pair(b, a)}) {
     pairs_[size_t(i) * n_ + j] = pair;
-    given_[size_t(i) * n_ + j] = char(std::clamp(given, 2, 4));
+    given_[size_t(i) * n_ + j] = char(std::clamp(given, 2, kAllCoefficients));
   }
 }
 
@@ -92,19 +94,39 @@ int MaterialTable::pairGiven(int a, int b) const {
   return given_[size_t(a) * n_ + b];
 }
 
+namespace {
+// The softer surface's compliance: the lower contact_hertz > 0 (equal ones: the higher damping
+// ratio, so that the order of the two does not matter); none when both are rigid.
+const Material* softerSurface(const Material& a, const Material& b) {
+  if (!(a.contact_hertz > 0.0)) return b.contact_hertz > 0.0 ? &b : nullptr;
+  if (!(b.contact_hertz > 0.0) || a.contact_hertz < b.contact_hertz) return &a;
+  if (b.contact_hertz < a.contact_hertz) return &b;
+  return a.contact_damping_ratio >= b.contact_damping_ratio ? &a : &b;
+}
+}  // namespace
+
 Material MaterialTable::resolve(const Material& a, const Material& b) const {
   const int given = pairGiven(a.id, b.id);
-  if (given == 4) return pairs_[size_t(a.id) * n_ + b.id];
+  if (given == kAllCoefficients) return pairs_[size_t(a.id) * n_ + b.id];
   Material m;
   m.static_friction = combine(friction_rule, a.static_friction, b.static_friction);
   m.kinetic_friction = combine(friction_rule, a.kinetic_friction, b.kinetic_friction);
   m.restitution = combine(restitution_rule, a.restitution, b.restitution);
   m.rolling_resistance = std::max(a.rolling_resistance, b.rolling_resistance);
+  if (const Material* soft = softerSurface(a, b)) {
+    m.contact_hertz = soft->contact_hertz;
+    m.contact_damping_ratio = soft->contact_damping_ratio;
+  }
   if (given > 0) {
     const Material& p = pairs_[size_t(a.id) * n_ + b.id];
     m.static_friction = p.static_friction;
     m.kinetic_friction = p.kinetic_friction;
     if (given >= 3) m.restitution = p.restitution;
+    if (given >= 4) m.rolling_resistance = p.rolling_resistance;
+    if (given >= 5) {
+      m.contact_hertz = p.contact_hertz;
+      m.contact_damping_ratio = p.contact_damping_ratio;
+    }
   }
   return m;
 }

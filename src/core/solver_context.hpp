@@ -17,6 +17,7 @@ struct StepContext {
   double inv_h = 0.0;
   int substeps = 1;       // h = dt / substeps
   int relax = 0;          // contact relax sweeps per substep (the first joint_relax_iterations also relax the joints)
+  bool track_impulses = false;  // World::setContactImpulseTracking
   Softness contact_softness;
   Softness joint_softness;
   const SolverSettings* settings = nullptr;

@@ -37,15 +37,31 @@ bool number(const YAML::Node& n, double* out) {
   }
 }
 
-// Coefficients list[first ...] (at least `least`, at most 4 of them) into *m; *given: how many.
+// The coefficients of an entry, in the order they are listed.
+constexpr const char* kFields =
+    "static_friction, kinetic_friction, restitution(, rolling_resistance(, contact_hertz(, "
+    "contact_damping_ratio)))";
+constexpr const char* kRanges = "numbers >= 0, restitution <= 1";
+
+// Coefficients list[first ...] (at least `least`, at most kAllCoefficients of them) into *m;
+// *given: how many.
 bool coefficients(const YAML::Node& list, size_t first, int least, Material* m, int* given) {
-  if (!list.IsSequence() || list.size() < first + least || list.size() > first + 4) return false;
-  double* fields[4] = {&m->static_friction, &m->kinetic_friction, &m->restitution,
-                       &m->rolling_resistance};
+  constexpr int kMost = MaterialTable::kAllCoefficients;
+  if (!list.IsSequence() || list.size() < first + least || list.size() > first + kMost)
+    return false;
+  double* fields[kMost] = {&m->static_friction,    &m->kinetic_friction,
+                           &m->restitution,        &m->rolling_resistance,
+                           &m->contact_hertz,      &m->contact_damping_ratio};
   *given = int(list.size() - first);
   for (int k = 0; k < *given; ++k)
     if (!number(list[first + k], fields[k])) return false;
   return materialError(*m).empty();
+}
+
+// ": <the coefficient out of range>" when the numbers read break materialError's ranges.
+std::string whichRange(const Material& m) {
+  const std::string e = materialError(m);
+  return e.empty() ? "" : ": " + e;
 }
 
 // A pair's side: one surface name or a non-empty list of them.
@@ -90,8 +106,7 @@ bool readCombine(const YAML::Node& c, const std::string& where, MaterialTable* t
 bool readSurfaces(const YAML::Node& s, const std::string& where, MaterialTable* t, std::string* error) {
   if (absent(s)) return true;
   if (!s.IsMap()) {
-    *error = where + lineOf(s) + " must be a dictionary: name -> [static_friction, "
-                                 "kinetic_friction, restitution(, rolling_resistance)]";
+    *error = where + lineOf(s) + " must be a dictionary: name -> [" + kFields + "]";
     return false;
   }
   std::set<std::string> seen;
@@ -108,9 +123,8 @@ bool readSurfaces(const YAML::Node& s, const std::string& where, MaterialTable* 
     Material m;
     int given = 0;
     if (!coefficients(kv.second, 0, 3, &m, &given)) {
-      *error = where + "/" + name + lineOf(kv.second) +
-               " must be [static_friction, kinetic_friction, restitution(, rolling_resistance)] "
-               "(numbers >= 0, restitution <= 1)";
+      *error = where + "/" + name + lineOf(kv.second) + " must be [" + kFields + "] (" +
+               kRanges + ")" + whichRange(m);
       return false;
     }
     t->add(name, m);
@@ -122,8 +136,7 @@ bool readPairs(const YAML::Node& p, const std::string& where, const std::string&
                MaterialTable* t, std::string* error) {
   if (absent(p)) return true;
   if (!p.IsSequence()) {
-    *error = where + lineOf(p) + " must be a list of [a, b, static_friction, kinetic_friction(, "
-                                 "restitution(, rolling_resistance))]";
+    *error = where + lineOf(p) + " must be a list of [a, b, " + kFields + "]";
     return false;
   }
   std::map<std::pair<int, int>, std::string> listed;  // pair -> the entry that listed it
@@ -135,9 +148,8 @@ bool readPairs(const YAML::Node& p, const std::string& where, const std::string&
     int given = 0;
     if (!e.IsSequence() || e.size() < 2 || !sideNames(e[0], &a) || !sideNames(e[1], &b) ||
         !coefficients(e, 2, 2, &m, &given)) {
-      *error = item + " must be [a, b, static_friction, kinetic_friction(, restitution(, "
-                      "rolling_resistance))]: a and b surface names (or lists of them), numbers "
-                      ">= 0, restitution <= 1";
+      *error = item + " must be [a, b, " + kFields +
+               "]: a and b surface names (or lists of them), " + kRanges + whichRange(m);
       return false;
     }
     for (const std::string& na : a)

@@ -140,7 +140,7 @@ TEST(MaterialFile, BadFilesNameTheEntry) {
       {head + "  pairs:\n    - [ice, rubbr, 0.1, 0.1]\n", {"materials/pairs[0] (line 6) names 'rubbr'", "materials/surfaces"}},
       {head + "  pairs:\n    - [ice, [rubber, wood], 0.1, 0.1]\n", {"pairs[0]", "names 'wood'"}},
       {head + "  pairs:\n    - [ice, [], 0.1, 0.1]\n", {"pairs[0]", "must be"}},
-      {head + "  pairs:\n    - [ice, rubber, 0.1, 0.1, 0.2, 0.1, 9]\n", {"pairs[0]", "must be"}},
+      {head + "  pairs:\n    - [ice, rubber, 0.1, 0.1, 0.2, 0.1, 9, 1, 2]\n", {"pairs[0]", "must be"}},
       {head + "  pairs:\n    - [ice, rubber, 0.1, 0.1]\n    - [rubber, [ice], 0.2, 0.2]\n",
        {"materials/pairs[1] (line 7) lists the pair 'rubber'/'ice' again", "first in", "pairs[0] (line 6)"}},
       {head + "link_materials:\n  foot_l: rubbr\n", {"link_materials/foot_l (line 6) names 'rubbr'"}},
