@@ -336,7 +336,7 @@ TEST(Visualizer, WorldGroundDrawnOnceAndRagdollPlanesLeftOut) {
 
 // Issue 57: the force of each touching pair as an arrow of ~markers/force_scale, from the
 // pair's centre up out of the ground (the force on the dynamic body); 0 turns them off.
-TEST(Visualizer, DISABLED_ContactForceArrowsScaledByForceScale) {
+TEST(Visualizer, ContactForceArrowsScaledByForceScale) {
   test::TwoRagdolls scene(0.1, /*gravity=*/true);  // pelvis boxes resting on the ground
   MarkerSettings s;
   s.contacts = true;
@@ -420,7 +420,7 @@ TEST(Visualizer, ImpactFlashSizedByImpulseFadesThenOneDelete) {
 }
 
 // A Scene step's impact events become flashes (recordStep).
-TEST(Visualizer, DISABLED_RecordStepTurnsSceneImpactsIntoFlashes) {
+TEST(Visualizer, RecordStepTurnsSceneImpactsIntoFlashes) {
   SceneDef d;
   d.impacts.enabled = true;
   Scene scene(d);

@@ -62,7 +62,7 @@ void addOrFail(Scene& s, SpawnDef spawn) {
 
 }  // namespace
 
-TEST(Impacts, DISABLED_BallDropHitsAtFreeFallSpeedOnce) {
+TEST(Impacts, BallDropHitsAtFreeFallSpeedOnce) {
   const double h = 1.0;
   Scene s(impactScene(0.0));
   addOrFail(s, ball("drop", Vec3(0, 0, h + kRadius)));
@@ -84,7 +84,7 @@ TEST(Impacts, DISABLED_BallDropHitsAtFreeFallSpeedOnce) {
   EXPECT_GT(e.peak_force, e.impulse / s.dt());  // the impulse acts within one step
 }
 
-TEST(Impacts, DISABLED_RestitutionSeparatesAtEClosingWithImpulseMV1PlusE) {
+TEST(Impacts, RestitutionSeparatesAtEClosingWithImpulseMV1PlusE) {
   const double h = 1.0, e = 0.5;
   Scene s(impactScene(e));
   addOrFail(s, ball("drop", Vec3(0, 0, h + kRadius)));
@@ -99,7 +99,7 @@ TEST(Impacts, DISABLED_RestitutionSeparatesAtEClosingWithImpulseMV1PlusE) {
   EXPECT_NEAR(events[0].impulse, kMass * v * (1.0 + e), 0.02 * kMass * v * (1.0 + e));
 }
 
-TEST(Impacts, DISABLED_RestingBallMakesNoEvents) {
+TEST(Impacts, RestingBallMakesNoEvents) {
   Scene s(impactScene(0.0));
   addOrFail(s, ball("rest", Vec3(0, 0, kRadius)));
   std::string error;
@@ -115,7 +115,7 @@ TEST(Impacts, DISABLED_RestingBallMakesNoEvents) {
             true);
 }
 
-TEST(Impacts, DISABLED_OffByDefaultAndTrackingFollows) {
+TEST(Impacts, OffByDefaultAndTrackingFollows) {
   Scene s{SceneDef()};
   addOrFail(s, ball("drop", Vec3(0, 0, 0.5)));
   std::string error;
@@ -139,7 +139,7 @@ TEST(Impacts, DISABLED_OffByDefaultAndTrackingFollows) {
   EXPECT_TRUE(s.world().contactImpulseTracking());
 }
 
-TEST(Impacts, DISABLED_RagdollHeadFirstDropHitsAtFreeFallSpeed) {
+TEST(Impacts, RagdollHeadFirstDropHitsAtFreeFallSpeed) {
   const double h = 0.5;
   Scene s(impactScene(0.0));
   SpawnDef doll;
@@ -163,7 +163,7 @@ TEST(Impacts, DISABLED_RagdollHeadFirstDropHitsAtFreeFallSpeed) {
   EXPECT_NEAR(first[0].closing_speed, v, 0.01 * v);
 }
 
-TEST(Impacts, DISABLED_BallOnStaticObjectNamesItsLink) {
+TEST(Impacts, BallOnStaticObjectNamesItsLink) {
   Scene s(impactScene(0.0));
   addOrFail(s, test::boxObject("table", Vec3(0.5, 0.5, 0.1), 1.0, Vec3(0, 0, 0.1), true));
   addOrFail(s, ball("drop", Vec3(0, 0, 0.2 + 0.6 + kRadius)));
