@@ -15,15 +15,6 @@ namespace {
 
 using visualization_msgs::Marker;
 
-std_msgs::ColorRGBA toMsg(const Rgba& c, double alpha_scale = 1.0) {
-  std_msgs::ColorRGBA m;
-  m.r = c.r;
-  m.g = c.g;
-  m.b = c.b;
-  m.a = static_cast<float>(c.a * alpha_scale);
-  return m;
-}
-
 // HSV (h in degrees, s and v in [0, 1]) to RGB.
 Rgba hsv(double h, double s, double v) {
   h = std::fmod(std::fmod(h, 360.0) + 360.0, 360.0) / 60.0;
@@ -361,6 +352,15 @@ const visualization_msgs::MarkerArray& Visualizer::update(const World& world,
   appendFlashes(stamp, sim_time);
   appendInjuryTexts(world, stamp);
   return out_;
+}
+
+std_msgs::ColorRGBA toMsg(const Rgba& c, double alpha_scale) {
+  std_msgs::ColorRGBA m;
+  m.r = c.r;
+  m.g = c.g;
+  m.b = c.b;
+  m.a = static_cast<float>(c.a * alpha_scale);
+  return m;
 }
 
 }  // namespace node

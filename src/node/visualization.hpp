@@ -49,6 +49,7 @@ Rgba impulseArrowColor();
 Rgba forceArrowColor();
 Rgba contactColor();
 Rgba impactColor();
+std_msgs::ColorRGBA toMsg(const Rgba& c, double alpha_scale = 1.0);
 
 // The text over a head once a fall ended: "<ragdoll>: peak <g> g, HIC15 <hic>".
 std::string injuryText(const InjuryReport& r);

@@ -24,15 +24,6 @@ constexpr double kTextAboveHead = 0.35;   // m over the head link's origin (worl
 constexpr double kTextHeight = 0.1;       // m, rviz text size
 constexpr double kMinContactArrow = 1e-3; // m: shorter contact force arrows are left out
 
-std_msgs::ColorRGBA color(const Rgba& c, double alpha_scale = 1.0) {
-  std_msgs::ColorRGBA m;
-  m.r = c.r;
-  m.g = c.g;
-  m.b = c.b;
-  m.a = static_cast<float>(c.a * alpha_scale);
-  return m;
-}
-
 int nextId(int* id) {
   const int out = *id;
   *id = *id == std::numeric_limits<int>::max() ? 0 : *id + 1;
@@ -141,7 +132,7 @@ void Visualizer::appendContactForces(const World& world, const ros::Time& stamp)
       m.scale.x = 0.012;  // shaft diameter
       m.scale.y = 0.03;   // head diameter
       m.scale.z = 0.04;   // head length
-      m.color = color(contactColor());
+      m.color = toMsg(contactColor());
     }
   }
   for (int id = shown; id < force_arrows_shown_; ++id)
@@ -162,7 +153,7 @@ void Visualizer::appendFlashes(const ros::Time& stamp, double sim_time) {
     m.action = Marker::ADD;
     m.pose.position = toPoint(it->point);
     m.scale.x = m.scale.y = m.scale.z = it->diameter;
-    m.color = color(impactColor(), std::min(1.0, alpha));
+    m.color = toMsg(impactColor(), std::min(1.0, alpha));
     ++it;
   }
   for (int id : flashes_deleted_) appendMarker(kImpactNs, id, stamp).action = Marker::DELETE;
@@ -177,7 +168,7 @@ void Visualizer::appendInjuryTexts(const World& world, const ros::Time& stamp) {
     m.action = Marker::ADD;
     m.pose.position = toPoint(world.bodyPose(t.head).p + Vec3(0, 0, kTextAboveHead));
     m.scale.z = kTextHeight;
-    m.color = color(contactColor());
+    m.color = toMsg(contactColor());
     m.text = t.text;
   }
   for (int id : texts_deleted_) appendMarker(kInjuryNs, id, stamp).action = Marker::DELETE;
