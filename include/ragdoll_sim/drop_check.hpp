@@ -5,6 +5,8 @@
 #pragma once
 
 #include <functional>
+#include <string>
+#include <vector>
 
 #include "ragdoll_sim/ragdoll.hpp"
 
@@ -23,8 +25,9 @@ struct DropReport {
   double max_penetration = 0;    // m, deepest contact of the ragdoll (ground, obstacle or self) over the run
   double max_anchor_error = 0;   // m, largest joint anchor separation over the run
   double rest_height = 0;        // m, root link origin z at the end
-  double lowest_point = 0;       // m, lowest shape point at the end
-  double min_lowest_point = 0;   // m, lowest shape point over the run
+  // Lowest shape point (a model without shapes: lowest link centre of mass), m:
+  double lowest_point = 0;       // at the end
+  double min_lowest_point = 0;   // over the run
   double final_speed = 0;        // m/s, fastest body (COM speed + angular speed x 0.1 m) at the end
   // As final_speed, over the bodies that touch something at the end (a contact within 1 mm):
   // a limb left hanging in the air swings on without joint damping, a body lying on the
@@ -34,14 +37,37 @@ struct DropReport {
   // when shorter): a solver that pumps energy into resting contacts makes it positive.
   double late_energy_change = 0;
   double seconds = 0;            // sim time actually run (less when a state went non-finite)
+  double max_speed = 0;          // m/s, fastest body COM speed over the run
+  double final_anchor_error = 0; // m, largest joint anchor separation at the end
 };
+
+// Whether a drop held together, and for each rule it broke one reason naming the rule and the
+// numbers ("joints stretched: anchor error 11.4 mm > 5 mm").
+struct DropVerdict {
+  bool pass = true;
+  std::vector<std::string> reasons;
+};
+
+struct VerdictRules {
+  double max_sink = 0.05;          // m a shape may reach below the ground before it fell through
+  double max_anchor_error = 0.005; // m of joint anchor separation over the run
+  double speed_margin = 1.0;       // m/s a body may exceed the free-fall speed from the spawn height
+  double rest_speed = 0.1;         // m/s of the bodies that touch something at the end
+  bool expect_rest = true;         // false: a run too short to settle is not asked to be still
+  double ground_z = 0.0;           // m, the lowest surface the model may land on
+};
+
+// The verdict on a drop: fell through (min_lowest_point below ground_z - max_sink), joints
+// stretched, exploded (max_speed above sqrt(2 g (spawn_z - ground_z)) + speed_margin), NaN,
+// not at rest (expect_rest and final_contact_speed above rest_speed).
+DropVerdict judgeDrop(const DropReport& d, const VerdictRules& rules = VerdictRules());
 
 // Lowest world z of a shape (planes: +inf) whose body frame is at `body_pose`.
 double lowestPoint(const ShapeDef& shape, const Transform& body_pose);
 // Highest world z of a shape (planes: -inf).
 double highestPoint(const ShapeDef& shape, const Transform& body_pose);
-// Lowest z of the model's shapes in its rest pose with the root link at the origin (0 without
-// shapes).
+// Lowest z of the model's shapes in its rest pose with the root link at the origin (a model
+// without shapes: of its link centres of mass).
 double restLowestPoint(const RagdollDef& def);
 
 DropReport dropTest(const RagdollDef& def, const DropSettings& settings = DropSettings());

@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace ragdoll_sim {
@@ -44,19 +46,36 @@ double highestPoint(const ShapeDef& shape, const Transform& body_pose) {
   return 2 * (body_pose * shape.local).p.z() - lowestPoint(shape, body_pose);
 }
 
+namespace {
+bool hasShapes(const RagdollDef& def) {
+  for (const LinkDef& l : def.links)
+    if (!l.shapes.empty()) return true;
+  return false;
+}
+
+// Lowest shape point of `link` at `pose`; a model without any shapes is measured by its link
+// centres of mass instead, so that its fall through the ground still shows.
+double linkLowest(const LinkDef& link, const Transform& pose, bool shapes) {
+  if (!shapes) return pose.apply(link.com).z();
+  double z = std::numeric_limits<double>::infinity();
+  for (const ShapeDef& s : link.shapes) z = std::min(z, lowestPoint(s, pose));
+  return z;
+}
+}  // namespace
+
 double restLowestPoint(const RagdollDef& def) {
   const Transform root_inv = def.links.at(def.root).rest_pose.inverse();
+  const bool shapes = hasShapes(def);
   double z0 = std::numeric_limits<double>::infinity();
-  for (const LinkDef& l : def.links)
-    for (const ShapeDef& s : l.shapes) z0 = std::min(z0, lowestPoint(s, root_inv * l.rest_pose));
+  for (const LinkDef& l : def.links) z0 = std::min(z0, linkLowest(l, root_inv * l.rest_pose, shapes));
   return std::isfinite(z0) ? z0 : 0.0;
 }
 
 namespace {
-double lowest(const World& world, const Ragdoll& r, const RagdollDef& def) {
+double lowest(const World& world, const Ragdoll& r, const RagdollDef& def, bool shapes) {
   double z = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i < r.bodies.size(); ++i)
-    for (const ShapeDef& s : def.links[i].shapes) z = std::min(z, lowestPoint(s, world.bodyPose(r.bodies[i])));
+    z = std::min(z, linkLowest(def.links[i], world.bodyPose(r.bodies[i]), shapes));
   return z;
 }
 
@@ -112,6 +131,7 @@ DropReport measureDrop(const World& world, const Ragdoll& r, const RagdollDef& d
            (size_t(c.body_b.index) < mine.size() && mine[c.body_b.index]);
   };
   const double t0 = world.time();
+  const bool shapes = hasShapes(def);
   rep.min_lowest_point = std::numeric_limits<double>::infinity();
   const int steps = int(std::lround(settings.seconds / settings.dt));
   const int late = steps - std::min(steps / 2, int(std::lround(2.0 / settings.dt)));  // >= steps / 2
@@ -126,10 +146,14 @@ DropReport measureDrop(const World& world, const Ragdoll& r, const RagdollDef& d
       if (ours(c)) rep.max_penetration = std::max(rep.max_penetration, -c.separation);
     for (JointId j : r.joints)
       rep.max_anchor_error = std::max(rep.max_anchor_error, world.jointAnchorError(j).norm());
-    rep.min_lowest_point = std::min(rep.min_lowest_point, lowest(world, r, def));
+    for (BodyId b : r.bodies)
+      rep.max_speed = std::max(rep.max_speed, world.bodyState(b).linear_velocity.norm());
+    rep.min_lowest_point = std::min(rep.min_lowest_point, lowest(world, r, def, shapes));
   }
   rep.rest_height = world.bodyPose(r.bodies.at(def.root)).p.z();
-  rep.lowest_point = lowest(world, r, def);
+  for (JointId j : r.joints)
+    rep.final_anchor_error = std::max(rep.final_anchor_error, world.jointAnchorError(j).norm());
+  rep.lowest_point = lowest(world, r, def, shapes);
   std::vector<char> touching(world.bodyCount(), 0);
   for (const ContactInfo& c : world.contacts())
     if (c.separation < 1e-3) touching[c.body_a.index] = touching[c.body_b.index] = 1;
@@ -141,6 +165,41 @@ DropReport measureDrop(const World& world, const Ragdoll& r, const RagdollDef& d
   }
   if (rep.finite) rep.late_energy_change = mechanicalEnergy(world, r) - late_energy;
   return rep;
+}
+
+namespace {
+template <typename... Args>
+std::string format(const char* fmt, Args... args) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, fmt, args...);
+  return buf;
+}
+}  // namespace
+
+DropVerdict judgeDrop(const DropReport& d, const VerdictRules& rules) {
+  DropVerdict v;
+  const auto fail = [&](std::string reason) {
+    v.pass = false;
+    v.reasons.push_back(std::move(reason));
+  };
+  if (!d.finite) fail(format("NaN: a body state went non-finite after %.3f s", d.seconds));
+  const double floor = rules.ground_z - rules.max_sink;
+  // Written as !(x <= limit) so that a NaN measurement breaks the rule instead of passing it.
+  if (!(d.min_lowest_point >= floor))
+    fail(format("fell through the ground: lowest point %.1f mm < %.1f mm",
+                1e3 * (d.min_lowest_point - rules.ground_z), -1e3 * rules.max_sink));
+  if (!(d.max_anchor_error <= rules.max_anchor_error))
+    fail(format("joints stretched: anchor error %.1f mm > %.1f mm", 1e3 * d.max_anchor_error,
+                1e3 * rules.max_anchor_error));
+  const double g = 9.81;
+  const double limit = std::sqrt(2 * g * std::max(0.0, d.spawn_z - rules.ground_z)) + rules.speed_margin;
+  if (!(d.max_speed <= limit))
+    fail(format("exploded: body speed %.2f m/s > %.2f m/s (free fall from the spawn height + margin)",
+                d.max_speed, limit));
+  if (rules.expect_rest && d.finite && !(d.final_contact_speed <= rules.rest_speed))
+    fail(format("not at rest: touching bodies at %.3f m/s at the end > %.3f m/s", d.final_contact_speed,
+                rules.rest_speed));
+  return v;
 }
 
 }  // namespace ragdoll_sim
