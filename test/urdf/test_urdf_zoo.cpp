@@ -1,5 +1,5 @@
 // Every robot of ../shared/urdf_zoo loads, spawns and falls plausibly: dropped 5 cm above the
-// ground for 5 s of sim time it stays finite, comes to rest and no shape sinks 5 cm below the
+// ground for 5 s of sim time it passes ragdoll_check's verdict (judgeDrop) and lands on the
 // ground. Skipped where ../shared is absent.
 // "At rest" is asked of the bodies that touch something: the H1 and the NAO have no joint
 // damping in their URDFs and may land with a forearm or hand hanging in the air, which then
@@ -13,6 +13,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <string>
 
 #include "ragdoll_sim/drop_check.hpp"
 #include "ragdoll_sim/urdf_loader.hpp"
@@ -39,18 +40,19 @@ TEST(UrdfZoo, EveryRobotFallsAndComesToRest) {
               << " mm, anchor error " << 1e3 * d.max_anchor_error << " mm, lowest "
               << 1e3 * d.min_lowest_point << " mm, final speed " << d.final_speed
               << " m/s (touching bodies " << d.final_contact_speed
-              << " m/s), energy change of the last 2 s " << d.late_energy_change << " J\n";
-    EXPECT_TRUE(d.finite);
+              << " m/s), fastest body " << d.max_speed << " m/s, energy change of the last 2 s "
+              << d.late_energy_change << " J\n";
+    // ragdoll_check's verdict: not through the ground, joints held, nothing faster than the
+    // fall, finite, what lies on something at rest.
+    const DropVerdict v = judgeDrop(d, dropRules(s));
+    for (const std::string& reason : v.reasons) ADD_FAILURE() << reason;
     EXPECT_NEAR(d.seconds, 5.0, 1e-6);
-    EXPECT_LT(d.final_contact_speed, 0.1);   // what lies on something is at rest
     // A free limb swings, nothing flies: no body is faster than a fall from the root's spawn
     // height makes it (faster would be energy from nowhere). The swing's amplitude is the
     // landing's: the H1's fastest body has been seen from 0 to 1.27 m/s at 5 s.
     EXPECT_LT(d.final_speed, std::sqrt(2.0 * 9.81 * d.spawn_z));
     EXPECT_LT(d.late_energy_change, 1e-3 * 9.81 * r.def.totalMass());  // no energy pumped in
-    EXPECT_GT(d.min_lowest_point, -0.05);    // nothing through the ground
-    EXPECT_LT(d.lowest_point, 0.05);         // on it, not hovering
-    EXPECT_LT(d.max_anchor_error, 0.02);     // joints held
+    EXPECT_LT(d.lowest_point, 0.05);         // on the ground, not hovering
   }
   EXPECT_GT(robots, 0);
 }
