@@ -58,8 +58,12 @@ enum class BallLimitMode : uint8_t {
 // of a chain of three revolute joints with coincident origins: R = R(a0,t0) R(a1,t1) R(a2,t2)),
 // or, with limit_mode SwingTwist, on the swing-twist decomposition R = R_swing R(t, twist):
 // t = axes[0] (joint frame) is the twist axis, swing is the angle between t carried by frame A
-// and t carried by frame B, held within swing_cone_angle (> 0), and twist (about t, in
-// (-pi, pi]) within [twist_lower, twist_upper]. Motors stay on the Euler angles in both modes.
+// and t carried by frame B, held within the cone, and twist (about t, in (-pi, pi]) within
+// [twist_lower, twist_upper]. The cone is circular with half-angle swing_cone_angle (> 0), or,
+// with swing_cone_angle_2 > 0, elliptical: the swing rotation vector's components sw1, sw2
+// about axes[1] and axes[2] (made perpendicular to t) stay within
+// (sw1 / swing_cone_angle)^2 + (sw2 / swing_cone_angle_2)^2 <= 1 (both half-angles <= pi).
+// Motors stay on the Euler angles in both modes.
 struct BallJointDef {
   BodyId body_a, body_b;
   Transform frame_a, frame_b;
@@ -69,6 +73,7 @@ struct BallJointDef {
   std::array<double, 3> lower = {0, 0, 0};  // Euler mode
   std::array<double, 3> upper = {0, 0, 0};
   double swing_cone_angle = 0.0;            // SwingTwist mode, rad (half-angle of the cone)
+  double swing_cone_angle_2 = 0.0;          // rad, about axes[2]; 0 = circular cone
   double twist_lower = 0.0, twist_upper = 0.0;  // SwingTwist mode, rad
   std::array<JointMotor, 3> motors;  // one per Euler axis
   JointSpring spring;

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <array>
+#include <cmath>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -35,9 +37,23 @@ struct LinkDef {
   bool has_color = false;                  // a visual colour (URDF / SDF <material>)
   std::array<double, 4> color = {0.5, 0.5, 0.5, 1.0};  // rgba
   Transform rest_pose;                     // link frame relative to the root link, zero angles
+  // Velocity damping of the body, 1/s (BodyDef: dv/dt = -c v): from URDF <gazebo reference>
+  // <dampingFactor> (urdf_loader.hpp: the mapping) or the Scene's per-link map.
   double linear_damping = 0.0;
   double angular_damping = 0.0;
 };
+
+// Swing-twist limits of a ball joint (BallJointDef, limit_mode SwingTwist): twist about the
+// joint's axes[0] within [twist_lower, twist_upper], swing within the cone of half-angle cone_1
+// about axes[1] and cone_2 about axes[2] (an ellipse; equal: circular). Defaults: free.
+struct SwingTwistLimits {
+  double cone_1 = M_PI, cone_2 = M_PI;  // rad, in (0, pi]
+  double twist_lower = -M_PI, twist_upper = M_PI;  // rad, in [-pi, pi], lower <= upper
+};
+
+// "" when valid, else "<name> must be ..., got <v>" for the first bad field, named by `names`
+// (cone_1, cone_2, twist_lower, twist_upper in the caller's words).
+std::string swingTwistLimitsError(const SwingTwistLimits& l, const std::array<const char*, 4>& names);
 
 // Ball: a URDF revolute chain folded into one joint, or URDF `spherical`. Hinge: revolute /
 // continuous. Prismatic: URDF prismatic (axes[0], limits in m). Fixed: a URDF fixed joint kept
@@ -69,6 +85,9 @@ struct RagdollJointDef {
   std::vector<double> damping, friction;
   // Elasticity and break force of the anchor (not in URDF; default rigid and unbreakable).
   JointSpring spring;
+  // Ball: swing-twist limits in place of the Euler limits lower / upper (URDF spherical
+  // <limit cone_y ...>, the Scene's ~joints cone / twist); unset: the Euler limits.
+  std::optional<SwingTwistLimits> swing_twist;
 };
 
 // A URDF link the loader lumped into a body through fixed joints (a sensor frame, a hand's

@@ -5,6 +5,7 @@
 // ROS adapters on top of it: message -> Scene call -> publishers.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -55,6 +56,16 @@ struct JointSettings {
   std::optional<double> stiffness, damping, break_force, break_torque;
   // Motor gains (the entry's `motor` map).
   std::optional<double> hertz, damping_ratio, max_torque;
+  // Ball joints only: swing-twist limits (RagdollJointDef::swing_twist) replacing the Euler
+  // limits, rad: cone half-angles about the joint's axes[1] and axes[2], twist range about
+  // axes[0] (each over the URDF's <limit cone_y ...>, the other side kept or free).
+  std::optional<std::array<double, 2>> cone, twist;
+};
+
+// Velocity damping of one link, 1/s (LinkDef linear_damping / angular_damping), over the
+// URDF's <gazebo> dampingFactor; a field left out keeps the URDF's value.
+struct LinkDamping {
+  std::optional<double> linear, angular;
 };
 
 // An impulse on one link. frame "" or "world": point and impulse in world coordinates; "link":
@@ -117,6 +128,8 @@ struct SceneDef {
   // Link name -> material table name for ragdoll links that name none themselves (a rubber sole
   // on the feet); "*" matches every link.
   std::vector<std::pair<std::string, std::string>> link_materials;
+  // Link name -> velocity damping of ragdoll links; "*" matches every link (a named entry wins).
+  std::vector<std::pair<std::string, LinkDamping>> link_damping;
   Material object_surface = defaultSurface();  // objects' links that name no material
   // The balance controllers' law (their hold motors use `motor`, then the per-joint gains).
   BalanceDef balance;

@@ -5,6 +5,7 @@
 // for what maps to what.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -28,6 +29,13 @@ struct UrdfLoadResult {
   std::string error;   // one message naming the offending element when !ok
   RagdollDef def;      // def.notes: what was merged; def.warnings: what was approximated / repaired
 };
+
+// <gazebo reference="LINK"><dampingFactor>d</dampingFactor>: Gazebo classic (ODE) multiplies
+// the link's linear and angular velocity by (1 - d) after every physics step, 1 ms by default.
+// The loader sets LinkDef linear_damping = angular_damping = this rate (1/s), the same decay
+// per second as Gazebo at its default step (ODE's small-speed threshold is not modelled).
+constexpr double kGazeboDefaultStep = 0.001;  // s
+inline double dampingFactorRate(double d) { return -std::log1p(-d) / kGazeboDefaultStep; }
 
 UrdfLoadResult loadUrdfString(const std::string& xml, const UrdfLoadOptions& options = {});
 // `text`, when given, receives the file's contents as read (the file is read once).

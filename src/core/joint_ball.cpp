@@ -9,7 +9,14 @@ BallJoint::BallJoint(const BallJointDef& def) : euler(def.axes) {
   axes.limits_enabled = def.enable_limits && !swing_twist_mode;
   swing_twist_limits = def.enable_limits && swing_twist_mode;
   twist_axis = def.axes[0].normalized();
-  swing_cone = def.swing_cone_angle;
+  cone.a = def.swing_cone_angle;
+  cone.b = def.swing_cone_angle_2;
+  cone.elliptic = def.swing_cone_angle_2 > 0.0 && def.swing_cone_angle_2 != def.swing_cone_angle;
+  if (cone.elliptic) {
+    cone.u = def.axes[1] - twist_axis * twist_axis.dot(def.axes[1]);
+    cone.u = cone.u.norm() > 1e-9 ? Vec3(cone.u.normalized()) : anyPerpendicular(twist_axis);
+    cone.v = twist_axis.cross(cone.u);
+  }
   twist_lower = def.twist_lower;
   twist_upper = def.twist_upper;
   axes.lower = def.lower;
@@ -27,7 +34,7 @@ void BallJoint::updateAngles(const JointBase& j, const SolverBody& A, const Solv
   const auto& m = *ctx.motions;
   const Quat fa = j.frameRotationA(A.dq * m[j.a].q);
   const Quat fb = j.frameRotationB(B.dq * m[j.b].q);
-  if (swing_twist_limits) swing_twist.update(fa, fb, twist_axis);
+  if (swing_twist_limits) swing_twist.update(fa, fb, twist_axis, cone);
   if (!euler_rows) return;
   Vec3 t;
   axes.count = euler.angles(fa, fb, t, &axes.rows) ? 3 : 0;
@@ -52,7 +59,7 @@ void BallJoint::solve(JointBase& j, SolverBody& A, SolverBody& B, const StepCont
                       bool use_bias) {
   axes.solve(A, B, ctx, use_bias);
   if (swing_twist_limits)
-    swing_twist.solve(A, B, swing_cone, twist_lower, twist_upper, ctx, use_bias);
+    swing_twist.solve(A, B, twist_lower, twist_upper, ctx, use_bias);
   anchor.solve(j, A, B, ctx, use_bias);
 }
 
@@ -69,7 +76,7 @@ bool BallJoint::limitsClear(double margin) const {
   if (!swing_twist_limits) return true;
   constexpr double kInf = std::numeric_limits<double>::infinity();
   const SwingTwist& st = swing_twist.angles;
-  return rangeExcess(st.swing, -kInf, swing_cone, margin) == 0.0 &&
+  return rangeExcess(st.swing, -kInf, swing_twist.cone_bound, margin) == 0.0 &&
          rangeExcess(st.twist, twist_lower, twist_upper, margin) == 0.0;
 }
 
@@ -80,7 +87,7 @@ bool BallJoint::projectLimits(JointBase& j, SolverBody& A, SolverBody& B,
   updateAngles(j, A, B, ctx);
   bool moved = axes.project(A, B, slop, max_turn);
   if (swing_twist_limits)
-    moved |= swing_twist.project(A, B, swing_cone, twist_lower, twist_upper, slop, max_turn);
+    moved |= swing_twist.project(A, B, twist_lower, twist_upper, slop, max_turn);
   return moved;
 }
 

@@ -24,7 +24,8 @@ struct BallJoint {
   // Swing-twist limits: cone about twist_axis (joint frame) and twist range.
   bool swing_twist_limits = false;
   Vec3 twist_axis = Vec3::UnitX();
-  double swing_cone = 0.0, twist_lower = 0.0, twist_upper = 0.0;
+  SwingCone cone;
+  double twist_lower = 0.0, twist_upper = 0.0;
   SwingTwistPart swing_twist;
 
   void prepare(JointBase& j, const StepContext& ctx);

@@ -2,6 +2,8 @@
 // setJointMotor throw with these messages, so a NaN or a reversed limit never reaches the
 // solver (where it would reset the bodies as faults every step).
 
+#include <cmath>
+
 #include "ragdoll_sim/joint.hpp"
 #include "ragdoll_sim/range_check.hpp"
 
@@ -62,6 +64,10 @@ std::string jointDefError(const BallJointDef& d) {
     } else {
       e = firstError({positiveOrInfError("swing_cone_angle", d.swing_cone_angle),
                       orderError("twist_lower", d.twist_lower, "twist_upper", d.twist_upper)});
+      // An elliptical cone needs two finite half-angles (its boundary is ab / sqrt(...)).
+      if (e.empty() && d.swing_cone_angle_2 != 0.0)
+        e = firstError({rangeError("swing_cone_angle_2", d.swing_cone_angle_2, 0.0, M_PI),
+                        rangeError("swing_cone_angle", d.swing_cone_angle, 0.0, M_PI)});
     }
   }
   for (int k = 0; k < 3 && e.empty(); ++k)

@@ -61,7 +61,7 @@ Vec3 swingTwistTorque(const BallJoint& b, const JointPoses& p) {
   if (!b.swing_twist_limits) return Vec3::Zero();
   const SwingTwistPart& st = b.swing_twist;
   Vec3 t = Vec3::Zero();
-  if (st.angles.swing_valid) t -= st.cone_impulse * st.angles.swing_row;
+  if (st.angles.swing_valid) t += st.cone_impulse * st.cone_row;
   if (st.angles.twist_valid)
     t += (st.twist.lower_impulse - st.twist.upper_impulse) * st.angles.twist_row;
   return t * p.inv_h;

@@ -3,6 +3,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <sstream>
 
 namespace ragdoll_sim {
 
@@ -77,6 +78,28 @@ void singleAxis(const RagdollJointDef& j, const Vec3& default_axis, D* d) {
 
 }  // namespace
 
+std::string swingTwistLimitsError(const SwingTwistLimits& l,
+                                  const std::array<const char*, 4>& names) {
+  const double v[4] = {l.cone_1, l.cone_2, l.twist_lower, l.twist_upper};
+  std::ostringstream os;
+  for (int k = 0; k < 2; ++k)
+    if (!(v[k] > 0.0 && v[k] <= M_PI)) {
+      os << names[k] << " must be an angle in (0, pi] rad, got " << v[k];
+      return os.str();
+    }
+  for (int k = 2; k < 4; ++k)
+    if (!(v[k] >= -M_PI && v[k] <= M_PI)) {
+      os << names[k] << " must be an angle in [-pi, pi] rad, got " << v[k];
+      return os.str();
+    }
+  if (l.twist_lower > l.twist_upper) {
+    os << names[2] << " must be <= " << names[3] << ", got " << l.twist_lower << " > "
+       << l.twist_upper;
+    return os.str();
+  }
+  return "";
+}
+
 Ragdoll spawnRagdoll(World& world, const RagdollDef& def, const Transform& root_pose,
                      const Material* material) {
   Ragdoll r;
@@ -115,6 +138,14 @@ Ragdoll spawnRagdoll(World& world, const RagdollDef& def, const Transform& root_
       for (int k = 0; bj.enable_limits && k < 3; ++k) {
         bj.lower[k] = j.lower[k];
         bj.upper[k] = j.upper[k];
+      }
+      if (j.swing_twist) {
+        bj.enable_limits = true;
+        bj.limit_mode = BallLimitMode::SwingTwist;
+        bj.swing_cone_angle = j.swing_twist->cone_1;
+        bj.swing_cone_angle_2 = j.swing_twist->cone_2;
+        bj.twist_lower = j.swing_twist->twist_lower;
+        bj.twist_upper = j.swing_twist->twist_upper;
       }
       for (int k = 0; k < 3; ++k) bj.motors[k] = passiveMotor(j, k);
       bj.spring = j.spring;

@@ -9,6 +9,7 @@
 #include <ros/node_handle.h>
 #include <xmlrpcpp/XmlRpcException.h>
 
+#include "anatomy_config.hpp"
 #include "material_yaml.hpp"
 #include "ragdoll_sim/range_check.hpp"
 #include "pacing.hpp"
@@ -138,6 +139,7 @@ bool jointSettings(XmlRpc::XmlRpcValue& v, const std::string& where, JointSettin
     else if (key == "damping") ok = field(value, key, &s->damping);
     else if (key == "break_force") ok = field(value, key, &s->break_force);
     else if (key == "break_torque") ok = field(value, key, &s->break_torque);
+    else if (key == "cone" || key == "twist") ok = readSwingTwistKey(key, value, where, s, error);
     else if (key == "motor") {
       if (value.getType() != XmlRpc::XmlRpcValue::TypeStruct) {
         *error = where + "/motor must be a dictionary {hertz, damping_ratio, max_torque}";
@@ -156,7 +158,7 @@ bool jointSettings(XmlRpc::XmlRpcValue& v, const std::string& where, JointSettin
       }
     } else {
       *error = where + " has an unknown key '" + key +
-               "' (known: stiffness, damping, break_force, break_torque, motor)";
+               "' (known: stiffness, damping, break_force, break_torque, motor, cone, twist)";
       return false;
     }
     if (!ok) return false;
@@ -173,6 +175,11 @@ bool loadJointSettings(const ros::NodeHandle& pnh, NodeConfig* c, std::string* e
         !jointSettings(defaults, "parameter " + pnh.resolveName("joint_defaults"),
                        &c->scene.joint_defaults, error))
       return false;
+    if (c->scene.joint_defaults.cone || c->scene.joint_defaults.twist) {
+      *error = "parameter " + pnh.resolveName("joint_defaults") +
+               ": cone and twist are set per ball joint (under ~joints), not for every joint";
+      return false;
+    }
     XmlRpc::XmlRpcValue joints;
     if (!pnh.getParam("joints", joints)) return true;
     const std::string where = "parameter " + pnh.resolveName("joints");
@@ -327,7 +334,8 @@ bool loadNodeConfig(const ros::NodeHandle& node, NodeConfig* c, std::string* err
   const Vec3& g = c->scene.world.gravity;
   std::vector<double> gravity{g.x(), g.y(), g.z()};
   Source pnh{node, &c->differing_from_defaults};
-  for (const char* dict : {"materials", "link_materials", "joint_defaults", "joints", "injury/ragdolls"})
+  for (const char* dict : {"materials", "link_materials", "joint_defaults", "joints", "link_damping",
+                           "injury/ragdolls"})
     if (node.hasParam(dict)) c->differing_from_defaults.push_back(std::string("~") + dict + " (set)");
   bool ok = read(pnh, "physics_rate", "a number (Hz)", &c->physics_rate, error) &&
             read(pnh, "real_time_factor", "a number", &c->real_time_factor, error) &&
@@ -394,6 +402,7 @@ bool loadNodeConfig(const ros::NodeHandle& node, NodeConfig* c, std::string* err
             read(pnh, "sleep/rest_relax_iterations", "an integer",
                  &c->scene.world.sleep.rest_relax_iterations, error) &&
             loadMaterials(node, &c->scene, error) && loadJointSettings(node, c, error) &&
+            loadLinkDamping(node, &c->scene, error) &&
             loadRvizSettings(pnh, c, error) && loadReportSettings(pnh, c, error) &&
             loadInjuryRagdolls(node, c, error);
   if (!ok) return false;

@@ -45,7 +45,27 @@ std::string validateJointSettings(const JointSettings& s, const std::string& whe
     return where + "/motor/damping_ratio must be a finite number >= 0, got " + num(*s.damping_ratio);
   if (s.max_torque && !(std::isfinite(*s.max_torque) && *s.max_torque > 0.0))
     return where + "/motor/max_torque must be a finite number > 0 (N m), got " + num(*s.max_torque);
+  if (s.cone || s.twist) {
+    const std::string names[4] = {where + "/cone[0]", where + "/cone[1]", where + "/twist[0]",
+                                  where + "/twist[1]"};
+    const std::string e = swingTwistLimitsError(
+        swingTwistOver(SwingTwistLimits(), s),
+        {names[0].c_str(), names[1].c_str(), names[2].c_str(), names[3].c_str()});
+    if (!e.empty()) return e;
+  }
   return "";
+}
+
+SwingTwistLimits swingTwistOver(SwingTwistLimits base, const JointSettings& s) {
+  if (s.cone) {
+    base.cone_1 = (*s.cone)[0];
+    base.cone_2 = (*s.cone)[1];
+  }
+  if (s.twist) {
+    base.twist_lower = (*s.twist)[0];
+    base.twist_upper = (*s.twist)[1];
+  }
+  return base;
 }
 
 // ------------------------------------------------------------------------------------------
@@ -108,6 +128,7 @@ JointSettingsResult applyJointSettings(RagdollDef* def, const AxisTable& axes,
 
   // Which entry set which spring field of which joint (for conflicts).
   std::vector<std::array<std::string, 4>> set_by(def->joints.size());
+  std::vector<std::array<std::string, 2>> limit_set_by(def->joints.size());  // cone, twist
   // Motor gains: whole-joint entries first, then per-axis entries on top.
   std::vector<const JointSettings*> joint_level(def->joints.size(), nullptr);
   std::vector<const JointSettings*> axis_level(static_cast<size_t>(axes.size()), nullptr);
@@ -142,6 +163,26 @@ JointSettingsResult applyJointSettings(RagdollDef* def, const AxisTable& axes,
       }
       who = name;
       *targets[f] = **fields[f];
+    }
+    if (s.cone || s.twist) {
+      if (jd.kind != RagdollJointKind::Ball) {
+        r.error = "~joints/" + name + ": cone and twist apply to ball joints only, " +
+                  quoted(jd.name) + " is a " + jointKindName(jd.kind);
+        return r;
+      }
+      const bool sets[2] = {bool(s.cone), bool(s.twist)};
+      const char* limit_names[2] = {"cone", "twist"};
+      for (int f = 0; f < 2; ++f) {
+        if (!sets[f]) continue;
+        std::string& who = limit_set_by[static_cast<size_t>(joint)][static_cast<size_t>(f)];
+        if (!who.empty()) {
+          r.error = "~joints/" + who + " and ~joints/" + name + " both set " + limit_names[f] +
+                    " of joint " + quoted(jd.name);
+          return r;
+        }
+        who = name;
+      }
+      jd.swing_twist = swingTwistOver(jd.swing_twist.value_or(SwingTwistLimits()), s);
     }
     if (axis >= 0) axis_level[static_cast<size_t>(axis)] = &s;
     else joint_level[static_cast<size_t>(joint)] = &s;

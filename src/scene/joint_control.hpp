@@ -28,6 +28,9 @@ std::string validateMotorGains(const MotorGains& g, const std::string& where);
 // Range checks of the fields present; "" when valid, else a message starting with `where`.
 std::string validateJointSettings(const JointSettings& s, const std::string& where);
 
+// `base` with the cone / twist that `s` sets.
+SwingTwistLimits swingTwistOver(SwingTwistLimits base, const JointSettings& s);
+
 struct AxisInfo {
   std::string name;   // as published in joint_states
   int joint = -1;     // RagdollDef::joints index
@@ -64,7 +67,9 @@ struct JointSettingsResult {
 // RagdollDef joint name (a hinge's URDF name or a ball's "<a>+<b>+<c>": the whole joint) or an
 // AxisTable name (one axis; for a ball its spring fields apply to the whole ball joint).
 // Motor gains: `motor` < defaults < whole-joint entry < axis entry. Two entries setting the
-// same spring field of one joint are an error. Values must have passed validateJointSettings.
+// same spring field (or cone, or twist) of one joint are an error. cone / twist set the
+// joint's swing-twist limits (over the URDF's); on a joint that is not a ball, an error.
+// Values must have passed validateJointSettings.
 JointSettingsResult applyJointSettings(RagdollDef* def, const AxisTable& axes,
                                        const JointSettings& defaults,
                                        const std::vector<std::pair<std::string, JointSettings>>& entries,

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "link_damping.hpp"
 #include "scene_impl.hpp"
 #include "static_overlap.hpp"
 
@@ -64,6 +65,11 @@ bool Scene::Impl::makeInstance(SpawnDef spawn, RagdollInstance* out, std::string
     *error = settings.error;
     return false;
   }
+  if (!spawn.object) {
+    const std::vector<std::string> unknown = scene::applyLinkDamping(&def, this->def.link_damping);
+    if (spawn.warn_unknown_joints)
+      for (const std::string& w : unknown) warn("", w);
+  }
   r.def = std::move(def);
   r.gains = std::move(settings.gains);
   r.targets.assign(static_cast<size_t>(r.axes.size()), scene::AxisTarget());
@@ -80,6 +86,17 @@ bool Scene::Impl::makeInstance(SpawnDef spawn, RagdollInstance* out, std::string
                          r.name.c_str(), j.name.c_str(), j.spring.stiffness, j.spring.damping,
                          j.spring.break_force, j.spring.break_torque));
   }
+  // What the files set of the anatomy, so a start-up log shows it reached the simulation.
+  for (const RagdollJointDef& j : r.def.joints)
+    if (j.swing_twist)
+      info(scene::format("%s: joint '%s': swing-twist limits, cone %g / %g rad, twist %g..%g rad",
+                         r.name.c_str(), j.name.c_str(), j.swing_twist->cone_1,
+                         j.swing_twist->cone_2, j.swing_twist->twist_lower,
+                         j.swing_twist->twist_upper));
+  for (const LinkDef& l : r.def.links)
+    if (l.linear_damping > 0.0 || l.angular_damping > 0.0)
+      info(scene::format("%s: link '%s': velocity damping linear %g 1/s, angular %g 1/s",
+                         r.name.c_str(), l.name.c_str(), l.linear_damping, l.angular_damping));
   return true;
 }
 

@@ -100,6 +100,7 @@ void Loader::emitBody(int g, const Transform& rest, int neighbour) {
   link.has_color = grp.has_color;
   if (grp.has_color) link.color = grp.color;
   link.rest_pose = rest;
+  linkDamping(&link);
   grp.def_index = int(def_.links.size());
   def_.links.push_back(std::move(link));
   for (const auto& j : grp.child_joints) emitJoint(g, j, rest);
@@ -160,7 +161,7 @@ void Loader::emitJoint(int parent, const urdf::JointConstSharedPtr& first, const
       jd.damping.assign(3, damping);
       jd.friction.assign(3, friction);
       jd.source_joints = {first->name};
-      def_.notes.push_back("joint " + quote(first->name) + ": spherical, a ball joint without limits");
+      sphericalLimits(first->name, &jd);
     } else {
       jd.source_joints = {first->name};
       def_.notes.push_back("joint " + quote(first->name) + ": fixed, kept as a weld (<preserveFixedJoint>)");

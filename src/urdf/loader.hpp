@@ -6,6 +6,7 @@
 //   link_mass.cpp      <inertial> -> mass properties, inertia repair, boxes for unresolved meshes
 //   joints.cpp         moving joints -> RagdollJointDefs (limits, dynamics) and the body tree
 //   ball_chain.cpp     when a chain of revolute joints folds into one ball joint
+//   anatomy.cpp        swing-twist limits of spherical joints, link damping
 #pragma once
 
 #include <urdf_model/model.h>
@@ -151,6 +152,11 @@ class Loader {
   static void dynamics(const urdf::Joint& j, double& damping, double& friction);
   void emitBody(int g, const Transform& rest, int neighbour);
   void emitJoint(int parent, const urdf::JointConstSharedPtr& first, const Transform& parent_rest);
+
+  // Anatomy extensions (anatomy.cpp): a spherical joint's swing-twist <limit>, a link's
+  // <gazebo> dampingFactor.
+  void sphericalLimits(const std::string& joint, RagdollJointDef* jd);
+  void linkDamping(LinkDef* link);
 
   // Ball chains (ball_chain.cpp).
   bool isChainLink(const Group& g, double parent_mass) const;

@@ -1,6 +1,8 @@
 // See urdf_xml.hpp. The checks run in document order, so the first problem is the one reported.
 #include "urdf_xml.hpp"
 
+#include "anatomy_xml.hpp"
+
 #include <tinyxml2.h>
 
 #include <cctype>
@@ -192,6 +194,8 @@ std::string preprocess(const std::string& xml, Extras* out) {
     if (attr(j, "type") == "spherical") {
       j->SetAttribute("type", "floating");
       out->spherical_joints.insert(name);
+      const std::string limit_error = readSphericalLimit(j, name, out);
+      if (!limit_error.empty()) return limit_error;
     }
     // <dynamics/> without damping or friction: both 0 (URDF's default; urdfdom rejects it).
     if (XMLElement* d = j->FirstChildElement("dynamics")) {
@@ -243,6 +247,7 @@ std::string preprocess(const std::string& xml, Extras* out) {
       out->notes.push_back("<gazebo reference=" + quote(ref) + "> names no link or joint; ignored");
       continue;
     }
+    readDampingFactor(g, ref, out);
     const std::string own = trimmed(g->FirstChildElement("ragdoll_sim:material")
                                         ? g->FirstChildElement("ragdoll_sim:material")->GetText()
                                         : nullptr);

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "ragdoll_sim/ragdoll.hpp"
+
 namespace ragdoll_sim {
 namespace urdf_xml {
 
@@ -19,6 +21,9 @@ struct Extras {
   // among the link's <collision> / <visual> elements.
   std::map<std::string, std::set<int>> capsule_collisions, capsule_visuals;
   std::set<std::string> spherical_joints;  // type="spherical", handed over as "floating"
+  // A spherical joint's <limit cone_y cone_z twist_lower twist_upper/> (anatomy_xml.hpp).
+  std::map<std::string, SwingTwistLimits> spherical_limits;
+  std::map<std::string, double> link_damping_factor;  // <gazebo reference=L><dampingFactor>
   std::set<std::string> preserved_fixed;   // <gazebo reference=J><preserveFixedJoint>true
   std::map<std::string, double> link_friction;  // <gazebo reference=L> mean of mu1 / mu2
   // <gazebo reference=L><ragdoll_sim:material>, else its Gazebo <material> script name as

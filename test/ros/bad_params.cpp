@@ -1,8 +1,10 @@
 // rostest: the node binary started with one invalid parameter (on the command line, `_name:=`)
 // exits with code 1 and a FATAL message naming the parameter; with a valid ~threads it runs
-// (until `timeout` stops it) and its start-up line gives the World's thread count.
+// (until `timeout` stops it) and its start-up line gives the World's thread count; the anatomy
+// parameters show in the ragdoll's start-up lines.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <string>
 #include <utility>
 #include <vector>
@@ -50,6 +52,11 @@ TEST(BadParams, NodeExitsNonZeroNamingTheParameter) {
       {"_contacts/rate:=-1.0", {"~contacts/rate", "got -1"}},
       {"_impacts/min_impulse:=-2.0", {"~impacts/min_impulse", "got -2"}},
       {"_injury/fall_speed:=0.01", {"~injury/fall_speed", "~injury/rest_speed"}},
+      // Anatomy (config/joints.yaml): the joint or link and the field.
+      {"_joints/neck_y/cone:=-0.5", {"joints/neck_y/cone[0]", "(0, pi]", "got -0.5"}},
+      {"_joints/neck_y/cone:=wide", {"joints/neck_y/cone", "a list of 2 numbers"}},
+      {"_joint_defaults/cone:=0.5", {"joint_defaults", "per ball joint"}},
+      {"_link_damping/torso/linear:=-1.0", {"link_damping/torso/linear", ">= 0", "got -1"}},
   };
   int k = 0;
   for (const auto& [args, words] : cases) {
@@ -74,6 +81,30 @@ TEST(BadParams, ThreadsRunTheNode) {
     EXPECT_NE(out.find(words), std::string::npos) << args << ":\n" << out;
     EXPECT_EQ(out.find("FATAL"), std::string::npos) << args << ":\n" << out;
   }
+}
+
+// A ball's cone and twist and a link's damping from the parameters reach the spawned ragdoll
+// (its start-up lines, written as it is spawned).
+TEST(BadParams, AnatomyReachesTheRagdoll) {
+  // Lists through rosparam (YAML): `_name:=[...]` on the command line would give a string.
+  ASSERT_EQ(std::system("rosparam set /anatomy_bad/joints "
+                        "'{neck_y: {cone: [0.6, 0.4], twist: [0.5, 0.1]}}'"), 0);
+  std::string out;
+  EXPECT_EQ(runNode("anatomy_bad", "", 60, &out), 1) << out;
+  EXPECT_NE(out.find("joints/neck_y/twist[0] must be <= "), std::string::npos) << out;
+  EXPECT_NE(out.find("got 0.5 > 0.1"), std::string::npos) << out;
+  ASSERT_EQ(std::system("rosparam set /anatomy_node/joints "
+                        "'{neck_y: {cone: [0.6, 0.4], twist: [-0.8, 0.8]}}'"), 0);
+  const int rc = runNode("anatomy_node", "_link_damping/hand_l/linear:=2.0", 8, &out);
+  EXPECT_EQ(rc, 124) << out;
+  EXPECT_NE(out.find("joint 'neck_y+neck_x+neck_z': swing-twist limits, cone 0.6 / 0.4 rad, "
+                     "twist -0.8..0.8 rad"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("link 'hand_l': velocity damping linear 2 1/s, angular 0 1/s"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(out.find("FATAL"), std::string::npos) << out;
 }
 
 int main(int argc, char** argv) {
