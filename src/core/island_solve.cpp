@@ -185,6 +185,8 @@ class World::Impl::IslandPass {
   // last joint sweep the joint trees' anchors are made exact (joint_tree.hpp); the contact
   // sweeps that follow see them, so the contacts end consistent (no push into the ground).
   void relax(int it) {
+    // an anchor velocity error that moves it less than a tenth of the slop per step is left
+    const double tolerance = 0.1 * w.def.solver.joint_slop / ctx.dt;
     const int last_joint_sweep = w.def.solver.exact_joints
                                      ? std::min(ctx.relax, w.def.solver.joint_relax_iterations) - 1
                                      : -1;
@@ -192,7 +194,7 @@ class World::Impl::IslandPass {
     parts([&](const IslandRange& p) {
       if (it < w.def.solver.joint_relax_iterations)
         joints(p, [&](Joint& j) { solveJoint(j, ctx, false); });
-      if (it == last_joint_sweep) w.joint_tree.projectVelocities(p, w.solver, w.island_bodies, ctx.h);
+      if (it == last_joint_sweep) w.joint_tree.projectVelocities(p, w.solver, w.island_bodies, ctx.h, tolerance);
       w.contact_solver.solve(ctx, false, p.contact_begin, p.contact_end, it == 0);
     });
   }

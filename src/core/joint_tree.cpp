@@ -2,6 +2,7 @@
 #include "joint_tree.hpp"
 
 #include <algorithm>
+#include <limits>
 
 namespace ragdoll_sim {
 
@@ -223,10 +224,12 @@ void JointTree::gatherImpulses(const IslandRange& p) {
 }
 
 void JointTree::projectVelocities(const IslandRange& p, std::vector<SolverBody>& solver,
-                                  const std::vector<int>& island_bodies, double h) {
+                                  const std::vector<int>& island_bodies, double h,
+                                  double tolerance) {
   const int n = edgeCount(p);
   if (n == 0) return;
   Edge* const edges = &edges_[p.joint_begin];
+  double worst = 0.0;
   for (int k = 0; k < n; ++k) {
     Edge& e = edges[k];
     const Joint& j = *e.joint;
@@ -235,22 +238,25 @@ void JointTree::projectVelocities(const IslandRange& p, std::vector<SolverBody>&
     e.r_parent = e.s > 0.0 ? pt.rB : pt.rA;
     e.r_child = e.s > 0.0 ? pt.rA : pt.rB;
     e.b = -(B.v + B.w.cross(pt.rB) - A.v - A.w.cross(pt.rA));
+    worst = std::max(worst, e.b.squaredNorm());
   }
-  factor(p, solver, island_bodies);
-  solve(p);
-  for (int k = 0; k < n; ++k) {
-    Edge& e = edges[k];
-    Joint& j = *e.joint;
-    PointPart& pt = *rigidAnchor(j);
-    // A breakable joint transmits at most its strength: past it, it breaks after the substep.
-    const double cap = j.spring.break_force * h;
-    const Vec3 next = pt.impulse + e.lambda;
-    if (next.squaredNorm() > cap * cap) {
-      e.lambda = next * (cap / next.norm()) - pt.impulse;
-      j.overloaded = true;
+  if (!(worst > tolerance * tolerance)) return;  // the sweeps converged
+  // A breakable anchor transmits at most its strength: one whose exact impulse would pass
+  // break_force h is left out (it breaks after the substep, with what the sweeps gave it) and
+  // the others are solved again without it.
+  for (bool again = true; again;) {
+    factor(p, solver, island_bodies);
+    solve(p);
+    again = false;
+    for (int k = 0; k < n; ++k) {
+      Joint& j = *edges[k].joint;
+      const double cap = j.spring.break_force * h;
+      if (j.overloaded || !(cap < std::numeric_limits<double>::infinity())) continue;
+      if ((rigidAnchor(j)->impulse + edges[k].lambda).squaredNorm() > cap * cap)
+        j.overloaded = again = true;
     }
-    pt.impulse += e.lambda;
   }
+  for (int k = 0; k < n; ++k) rigidAnchor(*edges[k].joint)->impulse += edges[k].lambda;
   gatherImpulses(p);
   for (int k = p.body_begin; k < p.body_end; ++k) {
     SolverBody& b = solver[island_bodies[k]];

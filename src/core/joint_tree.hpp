@@ -58,9 +58,10 @@ class JointTree {
              const std::vector<SolverBody>& solver);
   // The point rows' velocities made exact at the anchors of the last refresh; the impulses
   // are added to the joints' accumulated ones (warm start, reports, breaks).
-  // A breakable joint's impulse is capped at break_force h (it then breaks after the substep).
+  // Nothing is done when no anchor's relative velocity exceeds tolerance (m/s): the sweeps
+  // converged. A breakable anchor that would pass break_force h is left out and breaks.
   void projectVelocities(const IslandRange& p, std::vector<SolverBody>& solver,
-                         const std::vector<int>& island_bodies, double h);
+                         const std::vector<int>& island_bodies, double h, double tolerance);
   // Newton steps on the anchors at the current deltas: the error beyond slop is removed (at
   // most max_correction of it per joint and step).
   void projectPositions(const IslandRange& p, std::vector<SolverBody>& solver,
