@@ -98,7 +98,7 @@ void JointTree::build(const IslandRange& p, const std::vector<int>& island_bodie
     while (uf_[k] != k) k = uf_[k] = uf_[uf_[k]];
     return k;
   };
-  // Candidate edges (parent = the joint's A slot, child = B's for now), in joint order.
+  // Candidate edges in joint order: each side's slot, -1 for a body that does not move.
   int n = 0;
   for (int k = j0; k < p.joint_end; ++k) {
     Joint& j = *js[k];
