@@ -69,8 +69,13 @@ int stepUntil(World& w, int max_steps, const std::function<bool()>& done) {
 }
 }  // namespace
 
+// The anchors by the sweeps alone (SolverSettings::exact_joints off): with exact anchors a box
+// of the chain may come to rest on two of its four corners (the load is statically
+// indeterminate), and a contact that carries nothing cannot show that its impulse was kept.
 TEST(Removal, SleepingIslandKeepsSleepAndWarmStarts) {
-  World w;
+  WorldDef def;
+  def.solver.exact_joints = false;
+  World w(def);
   addGround(w);
   const Group a = addGroup(w, 0, 0), b = addGroup(w, 5, 0);
   const auto asleep = [&](const Group& g) {
