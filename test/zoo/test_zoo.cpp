@@ -169,6 +169,34 @@ TEST(Zoo, StressModelsHoldTogether) {
   }
 }
 
+// The stress models are what their names promise (make_stress.py may be changed and rerun).
+TEST(Zoo, StressModelsAreWhatTheySay) {
+  const auto load = [](const char* name) {
+    const UrdfLoadResult r = loadUrdfFile(std::string(RAGDOLL_SIM_SOURCE_DIR) + "/test/urdf/fixtures/" + name);
+    EXPECT_TRUE(r.ok) << name << ": " << r.error;
+    EXPECT_TRUE(r.def.warnings.empty()) << name << ": " << r.def.warnings.front();
+    return r.def;
+  };
+  const auto masses = [](const RagdollDef& d) {
+    std::vector<double> m;
+    for (const LinkDef& l : d.links) m.push_back(l.mass);
+    std::sort(m.begin(), m.end());
+    return m;
+  };
+  const RagdollDef star = load("stress_star_500.urdf");
+  int hub_children = 0;
+  for (const RagdollJointDef& j : star.joints) hub_children += j.parent == star.root;
+  EXPECT_GE(hub_children, 500);
+  const std::vector<double> ratio = masses(load("stress_ratio_1000.urdf"));
+  EXPECT_GE(ratio.back() / ratio.front(), 1000.0);
+  const RagdollDef humanoid = load("stress_humanoid_60.urdf");
+  EXPECT_EQ(humanoid.links.size(), 60u);
+  const std::vector<double> hm = masses(humanoid);
+  EXPECT_EQ(std::count(hm.begin(), hm.end(), 0.02), 40);  // 2 hands x 5 fingers x 4 links
+  EXPECT_EQ(load("stress_chain_200.urdf").links.size(), 200u);
+  EXPECT_LT(masses(load("stress_light.urdf")).back(), 0.01);
+}
+
 TEST(Zoo, HandHitOf100NsKeepsAnchorsWithin1mm) {
   const UrdfLoadResult u = loadUrdfFile(std::string(RAGDOLL_SIM_SOURCE_DIR) + "/urdf/ragdoll.urdf");
   ASSERT_TRUE(u.ok) << u.error;
