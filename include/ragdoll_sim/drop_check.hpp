@@ -22,10 +22,11 @@ struct DropSettings {
 struct DropReport {
   bool finite = true;            // every body state stayed finite (no NaN / inf)
   double spawn_z = 0;            // m, root link height at spawn (rest pose, upright)
+  double spawn_top_z = 0;        // m, highest body centre of mass at spawn (measureDrop sets it)
   double max_penetration = 0;    // m, deepest contact of the ragdoll (ground, obstacle or self) over the run
   double max_anchor_error = 0;   // m, largest joint anchor separation over the run
   double rest_height = 0;        // m, root link origin z at the end
-  // Lowest shape point (a model without shapes: lowest link centre of mass), m:
+  // Lowest shape point, counting a link without shapes by its centre of mass, m:
   double lowest_point = 0;       // at the end
   double min_lowest_point = 0;   // over the run
   double final_speed = 0;        // m/s, fastest body (COM speed + angular speed x 0.1 m) at the end
@@ -58,9 +59,14 @@ struct VerdictRules {
 };
 
 // The verdict on a drop: fell through (min_lowest_point below ground_z - max_sink), joints
-// stretched, exploded (max_speed above sqrt(2 g (spawn_z - ground_z)) + speed_margin), NaN,
+// stretched, exploded (max_speed above sqrt(2 g h) + speed_margin, h the height of the higher of
+// spawn_z and spawn_top_z above ground_z: no body gets faster falling than from there), NaN,
 // not at rest (expect_rest and final_contact_speed above rest_speed).
 DropVerdict judgeDrop(const DropReport& d, const VerdictRules& rules = VerdictRules());
+
+// The rules for a drop run with `settings` onto a ground at `ground_z`: rest is asked of a run
+// long enough to settle (2 s of sim time), not of a shorter one.
+VerdictRules dropRules(const DropSettings& settings, double ground_z = 0.0);
 
 // Lowest world z of a shape (planes: +inf) whose body frame is at `body_pose`.
 double lowestPoint(const ShapeDef& shape, const Transform& body_pose);

@@ -42,6 +42,8 @@ struct Geometry {
   double offset = 0.0;                       // plane
   std::shared_ptr<const HullData> hull;      // convex hull
 
+  // A sphere of radius 0 is a contact point (Drake's convention): it touches every other
+  // shape where the point enters it, and has no volume.
   static Geometry sphere(double r);
   static Geometry capsule(double r, double half_height);
   static Geometry box(const Vec3& half_extents);
@@ -57,7 +59,7 @@ struct Geometry {
 // "" when the World can collide the geometry, else what is wrong, naming the shape and the
 // field ("cylinder radius must be a finite number > 0 and <= 1048576 (m, kWorldRange), got
 // -0.05"): sizes finite, > 0 and within kWorldRange (a capsule's half_height may be 0: a
-// sphere), a unit plane normal with an offset within kWorldRange, a hull that was built
+// sphere; a sphere's radius may be 0: a point), a unit plane normal with an offset within kWorldRange, a hull that was built
 // (convexHull of degenerate points has none) with finite vertices within kWorldRange.
 std::string geometryError(const Geometry& g);
 

@@ -73,7 +73,7 @@ std::string geometryError(const Geometry& g) {
   const std::string type = shapeTypeName(g.type);
   std::string e;
   switch (g.type) {
-    case ShapeType::Sphere: e = lengthError(type + " radius", g.radius); break;
+    case ShapeType::Sphere: e = lengthError(type + " radius", g.radius, true); break;
     case ShapeType::Capsule:
       if ((e = lengthError(type + " radius", g.radius)).empty())
         e = lengthError(type + " half_height", g.half_height, true);

@@ -9,8 +9,10 @@
 // --injury (with or without --world): the drop through a Scene, then the head's injury reports
 // (injury_check.hpp, docs/injury.md): peak g, HIC15 / HIC36 with their windows, peak angular
 // acceleration, peak neck force and torque.
-// Exit: 0 loaded (and finite), 1 refused (by a loader, or the spawn), 2 bad usage, 3 the drop went
-// non-finite.
+// The drop's verdict (judgeDrop: fell through, joints stretched, exploded, NaN, not at rest) ends
+// the summary line as verdict=pass|fail, after one "reason: ..." line per broken rule.
+// Exit: 0 loaded (and the drop passed), 1 refused (by a loader, or the spawn), 2 bad usage, 3 the
+// drop failed its verdict.
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -30,7 +32,12 @@ std::string shapeText(const ShapeDef& s) {
   const Geometry& g = s.geometry;
   char buf[160];
   switch (g.type) {
-    case ShapeType::Sphere: std::snprintf(buf, sizeof buf, "sphere r=%.3g", g.radius); break;
+    case ShapeType::Sphere:
+      if (g.radius == 0)
+        std::snprintf(buf, sizeof buf, "point");
+      else
+        std::snprintf(buf, sizeof buf, "sphere r=%.3g", g.radius);
+      break;
     case ShapeType::Capsule:
       std::snprintf(buf, sizeof buf, "capsule r=%.3g l=%.3g", g.radius, 2 * g.half_height);
       break;
@@ -120,7 +127,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   const RagdollDef& d = r.def;
-  int shapes = 0, approx = 0;
+  int shapes = 0, approx = 0, points = 0;
   std::printf("ragdoll_check: %s: robot '%s', %zu bodies, %zu joints, %.3f kg, root '%s'\n",
               file.c_str(), d.name.c_str(), d.links.size(), d.joints.size(), d.totalMass(),
               d.links[d.root].name.c_str());
@@ -133,6 +140,7 @@ int main(int argc, char** argv) {
       const bool ap = approximated(src);
       ++shapes;
       approx += ap;
+      points += l.shapes[k].geometry.type == ShapeType::Sphere && l.shapes[k].geometry.radius == 0;
       std::printf("      %-28s %s%s%s\n", shapeText(l.shapes[k]).c_str(), ap ? "APPROXIMATED: " : "",
                   src.c_str(),
                   k < l.shape_friction.size() && l.shape_friction[k] >= 0
@@ -159,9 +167,9 @@ int main(int argc, char** argv) {
 
   char summary[512];
   std::snprintf(summary, sizeof summary,
-                "summary: file=%s status=ok bodies=%zu joints=%zu mass_kg=%.3f shapes=%d "
+                "summary: file=%s status=ok bodies=%zu joints=%zu mass_kg=%.3f shapes=%d points=%d "
                 "approximated=%d warnings=%zu",
-                base.c_str(), d.links.size(), d.joints.size(), d.totalMass(), shapes, approx,
+                base.c_str(), d.links.size(), d.joints.size(), d.totalMass(), shapes, points, approx,
                 d.warnings.size());
   if (!run_drop) {
     std::printf("%s\n", summary);
@@ -170,12 +178,8 @@ int main(int argc, char** argv) {
   const DropReport rep = dropTest(d, drop);
   std::printf("drop: %.2f s of sim time from root z=%.3f m (lowest point %.3f m up)\n", rep.seconds,
               rep.spawn_z, drop.clearance);
-  std::printf(
-      "%s drop_s=%.2f nan=%d max_penetration_mm=%.2f max_anchor_error_mm=%.2f rest_height_m=%.3f "
-      "lowest_mm=%.1f min_lowest_mm=%.1f final_speed=%.3f final_contact_speed=%.3f "
-      "late_energy_change_j=%.3f\n",
-      summary, rep.seconds, rep.finite ? 0 : 1, 1e3 * rep.max_penetration, 1e3 * rep.max_anchor_error,
-      rep.rest_height, 1e3 * rep.lowest_point, 1e3 * rep.min_lowest_point, rep.final_speed,
-      rep.final_contact_speed, rep.late_energy_change);
-  return rep.finite ? 0 : 3;
+  const DropVerdict verdict = judgeDrop(rep, dropRules(drop));
+  for (const std::string& reason : verdict.reasons) std::printf("reason: %s\n", reason.c_str());
+  std::printf("%s %s\n", summary, dropMetrics(rep, verdict).c_str());
+  return verdict.pass ? 0 : 3;
 }

@@ -36,25 +36,31 @@ void printLines(const char* title, const std::vector<std::string>& lines) {
   for (const std::string& l : lines) std::printf("  %s\n", l.c_str());
 }
 
+// Height under the origin of a static plane facing up (-inf for one that does not).
+double planeHeight(const WorldLinkDef& l, const WorldCollisionDef& c) {
+  const Geometry& g = c.shape.geometry;
+  const Transform w = l.pose * c.shape.local;
+  const Vec3 n = w.q * g.normal;
+  return n.z() > 0.5 ? n.dot(w.apply(g.normal * g.offset)) / n.z() : -std::numeric_limits<double>::infinity();
+}
+
 // The highest static point anywhere, not only over the origin, because a falling model spans
 // more than that column (a ground plane counts at its height under the origin; a world without
-// one has the default ground at z = 0).
-double highestStaticPoint(const WorldFileDef& def) {
+// one has the default ground at z = 0). With `planes_only`, the ground a model may fall to
+// without falling through.
+double staticHeight(const WorldFileDef& def, bool planes_only) {
   double top = -std::numeric_limits<double>::infinity();
   bool plane = false;
   for (const WorldModelDef& m : def.models)
     for (const WorldLinkDef& l : m.links) {
       if (!l.is_static) continue;
       for (const WorldCollisionDef& c : l.collisions) {
-        const Geometry& g = c.shape.geometry;
-        if (g.type != ShapeType::Plane) {
-          top = std::max(top, highestPoint(c.shape, l.pose));
+        if (c.shape.geometry.type != ShapeType::Plane) {
+          if (!planes_only) top = std::max(top, highestPoint(c.shape, l.pose));
           continue;
         }
         plane = true;
-        const Transform w = l.pose * c.shape.local;
-        const Vec3 n = w.q * g.normal;
-        if (n.z() > 0.5) top = std::max(top, n.dot(w.apply(g.normal * g.offset)) / n.z());
+        top = std::max(top, planeHeight(l, c));
       }
     }
   if (!plane) top = std::max(top, 0.0);
@@ -141,7 +147,7 @@ int checkWorld(const WorldCheckArgs& args, const char* argv0) {
   if (args.spawn) {
     at = *args.spawn;
   } else {
-    at = Vec3(0, 0, highestStaticPoint(r.def) + args.settings.clearance - restLowestPoint(u.def));
+    at = Vec3(0, 0, staticHeight(r.def, false) + args.settings.clearance - restLowestPoint(u.def));
   }
   SpawnDef spawn;
   spawn.name = "ragdoll";
@@ -162,13 +168,15 @@ int checkWorld(const WorldCheckArgs& args, const char* argv0) {
   const Vec3 p = scene.spawnPose(k).p;
   std::printf("drop: %s into world '%s', %.2f s of sim time from root (%.3f %.3f %.3f)\n",
               fs::path(model).filename().c_str(), r.def.name.c_str(), rep.seconds, p.x(), p.y(), p.z());
-  std::printf(
-      "summary: world=%s model=%s status=ok spawn_z_m=%.3f drop_s=%.2f nan=%d max_penetration_mm=%.2f "
-      "max_anchor_error_mm=%.2f rest_height_m=%.3f lowest_mm=%.1f min_lowest_mm=%.1f final_speed=%.3f "
-      "final_contact_speed=%.3f late_energy_change_j=%.3f\n",
-      r.def.name.c_str(), fs::path(model).filename().c_str(), p.z(), rep.seconds, rep.finite ? 0 : 1,
-      1e3 * rep.max_penetration, 1e3 * rep.max_anchor_error, rep.rest_height, 1e3 * rep.lowest_point,
-      1e3 * rep.min_lowest_point, rep.final_speed, rep.final_contact_speed, rep.late_energy_change);
+  DropReport judged = rep;
+  judged.spawn_z = p.z();
+  // A world's stairs, slopes and moving objects may keep a model going: rest is not asked.
+  VerdictRules rules = dropRules(args.settings, staticHeight(r.def, true));
+  rules.expect_rest = false;
+  const DropVerdict verdict = judgeDrop(judged, rules);
+  for (const std::string& reason : verdict.reasons) std::printf("reason: %s\n", reason.c_str());
+  std::printf("summary: world=%s model=%s status=ok spawn_z_m=%.3f %s\n", r.def.name.c_str(),
+              fs::path(model).filename().c_str(), p.z(), dropMetrics(rep, verdict).c_str());
   if (args.injury) {
     if (scene.headLink(k).empty())
       std::printf("injury: no head link found in %s (name one: a link named like 'head')\n",
@@ -176,7 +184,21 @@ int checkWorld(const WorldCheckArgs& args, const char* argv0) {
     else
       printInjury(falls, scene.injury(k));
   }
-  return rep.finite ? 0 : 3;
+  return verdict.pass ? 0 : 3;
+}
+
+std::string dropMetrics(const DropReport& rep, const DropVerdict& verdict) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "drop_s=%.2f nan=%d max_penetration_mm=%.2f max_anchor_error_mm=%.2f "
+                "final_anchor_error_mm=%.2f rest_height_m=%.3f lowest_mm=%.1f min_lowest_mm=%.1f "
+                "max_speed=%.3f final_speed=%.3f final_contact_speed=%.3f late_energy_change_j=%.3f "
+                "verdict=%s",
+                rep.seconds, rep.finite ? 0 : 1, 1e3 * rep.max_penetration, 1e3 * rep.max_anchor_error,
+                1e3 * rep.final_anchor_error, rep.rest_height, 1e3 * rep.lowest_point,
+                1e3 * rep.min_lowest_point, rep.max_speed, rep.final_speed, rep.final_contact_speed,
+                rep.late_energy_change, verdict.pass ? "pass" : "fail");
+  return buf;
 }
 
 }  // namespace ragdoll_sim

@@ -22,8 +22,12 @@ struct WorldCheckArgs {
 
 // Prints the summary line, notes, warnings and the drop metrics (without a world file: the
 // drop metrics only) and, with `injury`, the injury reports; returns the exit code (0 ok, 1
-// refused: world, model, materials or spawn, 3 the drop went non-finite).
+// refused: world, model, materials or spawn, 3 the drop failed its verdict: judgeDrop against
+// the world's ground plane).
 int checkWorld(const WorldCheckArgs& args, const char* argv0);
+
+// The drop's key=value metrics and its verdict, as the summary lines of both modes end.
+std::string dropMetrics(const DropReport& rep, const DropVerdict& verdict);
 
 // `relative` ("urdf/ragdoll.urdf") in this package: found through $ROS_PACKAGE_PATH, next to
 // an installed ragdoll_check (<prefix>/lib/ragdoll_sim -> <prefix>/share/ragdoll_sim), else in

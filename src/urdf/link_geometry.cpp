@@ -82,6 +82,13 @@ MassAccumulator Loader::addGeometry(int g, const urdf::Link& link, const Transfo
     std::string source;
     if (primitive(*geom, capsule, &s.geometry)) {
       source = shapeTypeName(s.geometry.type);
+      if (s.geometry.type == ShapeType::Sphere && s.geometry.radius >= 0 &&
+          s.geometry.radius < kPointRadius) {
+        // Drake's contact points: a sphere of radius 0 in the core, massless, which touches
+        // what the point does.
+        source = "point (sphere r=" + num(s.geometry.radius) + ")";
+        s.geometry.radius = 0;
+      }
       if (visual) source += " from <visual>";
     } else if (geom->type == urdf::Geometry::MESH) {
       std::string why;
@@ -96,7 +103,7 @@ MassAccumulator Loader::addGeometry(int g, const urdf::Link& link, const Transfo
     }
     const double v = s.geometry.volume();
     if (!std::isfinite(v)) throw LoadError(ln + ": " + what + " geometry has a non-finite size");
-    if (v == 0) {
+    if (v == 0 && !(s.geometry.type == ShapeType::Sphere && s.geometry.radius == 0)) {
       def_.warnings.push_back(ln + ": " + what + " geometry of zero size ignored");
       continue;
     }

@@ -34,6 +34,7 @@ constexpr double kMinDensity = 50.0;   // kg/m^3, plausible range of a box fitte
 constexpr double kMaxDensity = 25000.0;
 constexpr double kTinyMass = 1e-4;      // kg; lighter links are massless (placeholder masses)
 constexpr double kNominalFraction = 0.1;  // a bridging massless link's share of its lighter neighbour
+constexpr double kPointRadius = 1e-3;   // m; smaller collision spheres are contact points (Drake's)
 constexpr int kHullDirections = 64;     // support directions sampled from a mesh for its hull
 
 // Thrown with the message that becomes UrdfLoadResult::error.

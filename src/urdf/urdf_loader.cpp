@@ -78,6 +78,10 @@ RagdollDef Loader::run() {
   def_.root = 0;
   emitBody(0, Transform(), -1);
   excludeRestOverlaps();
+  if (std::all_of(def_.links.begin(), def_.links.end(), [](const LinkDef& l) { return l.shapes.empty(); }))
+    def_.warnings.push_back(
+        "no collision geometry on any link: the model will fall through the ground (give a link a "
+        "<collision>; a <sphere radius=\"0\"/> is a contact point)");
   // Lumped links of bodies become fixed frames (links folded into ball chains have theirs).
   for (const auto& [name, placed] : placement_) {
     const Group& grp = groups_[size_t(placed.first)];

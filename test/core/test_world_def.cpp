@@ -178,6 +178,7 @@ TEST(WorldDefRanges, ShapeWithBadMaterialIsRefusedAndNotAdded) {
 TEST(GeometryRanges, BadGeometryOrPoseIsRefusedAndNotAdded) {
   EXPECT_EQ(geometryError(Geometry()), "");
   EXPECT_EQ(geometryError(Geometry::capsule(0.05, 0.0)), "");  // a sphere
+  EXPECT_EQ(geometryError(Geometry::sphere(0.0)), "");          // a contact point
   EXPECT_EQ(geometryError(Geometry::plane(Vec3(0, 0, 2), 1.0)), "");  // normalised
   // the ends of the World's range (kWorldRange, 2^20 m)
   EXPECT_EQ(geometryError(Geometry::box(Vec3(kWorldRange, 1e-9, kWorldRange))), "");
@@ -186,7 +187,7 @@ TEST(GeometryRanges, BadGeometryOrPoseIsRefusedAndNotAdded) {
   far.p = Vec3(-kWorldRange, 0, kWorldRange);
   EXPECT_EQ(poseError("local", far), "");
   const std::vector<std::pair<Geometry, std::string>> bad = {
-      {Geometry::sphere(0.0), "sphere radius must be a finite number > 0 and <= 1048576"},
+      {Geometry::sphere(-0.01), "sphere radius must be a finite number >= 0 and <= 1048576"},
       {Geometry::sphere(kNaN), "sphere radius"},
       {Geometry::capsule(-0.05, 0.1), "capsule radius"},
       {Geometry::capsule(0.05, -0.1), "capsule half_height must be a finite number >= 0 and"},

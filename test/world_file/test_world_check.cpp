@@ -1,6 +1,6 @@
 // `ragdoll_check --world FILE [MODEL] [--spawn X Y Z]`: the world line, then the model dropped
-// into the world through a Scene with the drop metrics of the URDF mode; refusals exit 1, bad
-// usage 2.
+// into the world through a Scene with the drop metrics and verdict of the URDF mode; refusals
+// exit 1, bad usage 2, a failed drop 3.
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -57,6 +57,8 @@ TEST(WorldCheckTool, ShippedWorldsLineAndDrop) {
     const auto kv = summary(r.out);
     EXPECT_EQ(kv.count("world") ? kv.at("world") : "", name) << r.out;
     EXPECT_EQ(kv.count("status") ? kv.at("status") : "", "ok") << r.out;
+    EXPECT_EQ(kv.count("verdict") ? kv.at("verdict") : "", "pass") << r.out;
+    EXPECT_EQ(r.out.find("reason:"), std::string::npos) << r.out;
     EXPECT_EQ(number(kv, "nan"), 0) << r.out;
     EXPECT_NEAR(number(kv, "drop_s"), 3.0, 1e-9) << r.out;
     EXPECT_LT(number(kv, "max_penetration_mm"), 10.0) << r.out;
@@ -89,6 +91,17 @@ TEST(WorldCheckTool, RefusedSpawnOrModelExitsOne) {
   const ToolRun missing = ragdollCheck("--world " + shipped("ramp") + " /nonexistent/robot.urdf");
   EXPECT_EQ(missing.code, 1) << missing.out;
   EXPECT_NE(missing.out.find("/nonexistent/robot.urdf"), std::string::npos) << missing.out;
+}
+
+// The URDF mode's verdict: a model without collision geometry falls through the world's
+// ground plane, which fails the drop (exit 3) with its reason.
+TEST(WorldCheckTool, FailedDropExitsThree) {
+  const ToolRun r = ragdollCheck("--world " + shipped("ramp") + " " + RAGDOLL_SIM_SOURCE_DIR +
+                                 "/test/urdf/fixtures/no_collision.urdf --spawn 8 0 0.3 --seconds 0.5");
+  EXPECT_EQ(r.code, 3) << r.out;
+  EXPECT_NE(r.out.find("reason: fell through the ground"), std::string::npos) << r.out;
+  const auto kv = summary(r.out);
+  EXPECT_EQ(kv.count("verdict") ? kv.at("verdict") : "", "fail") << r.out;
 }
 
 TEST(WorldCheckTool, BadUsageExitsTwo) {

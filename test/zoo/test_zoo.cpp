@@ -104,7 +104,7 @@ Drop dropAndJudge(const fs::path& file, double extra = 0) {
   if (!r.ok) return {};
   const Drop d = drop(r.def, extra);
   const DropReport& f = d.first;
-  const DropVerdict v = judgeDrop(f);
+  const DropVerdict v = judgeDrop(f, dropRules(DropSettings()));  // as ragdoll_check judges
   std::printf("[ zoo ] %-34s bodies=%-3zu max_anchor_error_mm=%.2f final_anchor_error_mm=%.3f "
               "min_lowest_mm=%.1f max_speed=%.2f final_contact_speed=%.3f verdict=%s%s%s\n",
               name.c_str(), r.def.links.size(), 1e3 * f.max_anchor_error,
