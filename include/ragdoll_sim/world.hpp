@@ -82,6 +82,10 @@ struct SolverSettings {
   // enters the solver), per substep and after it.
   double max_linear_speed = 100.0;      // m/s
   double max_angular_speed = 200.0;     // rad/s
+  // Joint anchors solved exactly per joint tree after the sweeps, velocities every substep and
+  // positions after the step (src/core/joint_tree.hpp): they hold at any mass ratio. Off: the
+  // sweeps alone, which stretch where light links hang on heavy ones.
+  bool exact_joints = true;
 };
 
 // "" when the settings can be used, else what is wrong with the first field that cannot, named

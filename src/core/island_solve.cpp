@@ -89,6 +89,7 @@ void World::Impl::prepareOutsideBodies() {
 void World::Impl::prepareIsland(const IslandRange& p, const StepContext& c) {
   for (int k = p.body_begin; k < p.body_end; ++k) prepareSolverBody(island_bodies[k]);
   for (int k = p.joint_begin; k < p.joint_end; ++k) prepareJoint(*active_joints[k], c);
+  if (def.solver.exact_joints) joint_tree.build(p, island_bodies, active_joints.data(), solver);
   contact_solver.prepare(contacts, c, p.contact_begin, p.contact_end);
 }
 
@@ -180,12 +181,18 @@ class World::Impl::IslandPass {
 
   // Relax sweep `it` without bias: contacts every sweep, joints in the first
   // joint_relax_iterations (Gauss-Seidel over a manifold's points and along a limb needs them
-  // to take back the push-out velocity and to carry a landing's load up the chain).
+  // to take back the push-out velocity and to carry a landing's load up the chain). After the
+  // last joint sweep the joint trees' anchors are made exact (joint_tree.hpp); the contact
+  // sweeps that follow see them, so the contacts end consistent (no push into the ground).
   void relax(int it) {
+    const int last_joint_sweep = w.def.solver.exact_joints
+                                     ? std::min(ctx.relax, w.def.solver.joint_relax_iterations) - 1
+                                     : -1;
     boundary([&](int b, int e) { w.contact_solver.solve(ctx, false, b, e, it == 0); });
     parts([&](const IslandRange& p) {
       if (it < w.def.solver.joint_relax_iterations)
         joints(p, [&](Joint& j) { solveJoint(j, ctx, false); });
+      if (it == last_joint_sweep) w.joint_tree.projectVelocities(p, w.solver, w.island_bodies, ctx.h);
       w.contact_solver.solve(ctx, false, p.contact_begin, p.contact_end, it == 0);
     });
   }
@@ -310,6 +317,12 @@ void World::Impl::IslandPass::projectPositions() {
     parts(anchors);
     moved = mine;
   }
+  // The joint trees' anchors exact (joint_tree.hpp); each half's trees are its own.
+  if (def.exact_joints)
+    parts([&](const IslandRange& p) {
+      w.joint_tree.projectPositions(p, w.solver, w.island_bodies, def.joint_slop,
+                                    def.max_position_correction);
+    });
 }
 
 // One island's substeps, then its position and anchor sweeps.
@@ -374,6 +387,7 @@ void World::Impl::solveSplitIsland(const IslandRange& r, const StepContexts& ctx
 // run of islands first, then what is left of the others' (run_queue.hpp).
 void World::Impl::solveIslands(const StepContexts& ctx) {
   contact_solver.resize();
+  joint_tree.reserve(int(bodies.size()), int(island_bodies.size()), int(active_joints.size()));
   if (track_contacts) contact_tracks.assign(contacts.size(), ContactTrack());
   const int count = int(island_ranges.size());
   for (const IslandRange& r : island_ranges)

@@ -17,6 +17,7 @@
 
 #include "body.hpp"
 #include "contact_solver.hpp"
+#include "joint_tree.hpp"
 #include "solver_context.hpp"
 #include "team_barrier.hpp"
 
@@ -40,6 +41,7 @@ struct SolveData {
   // each contact it solved by contact index (the others' keys are 0); off, nothing is written.
   bool track_contacts = false;
   std::vector<ContactTrack> contact_tracks;
+  JointTree joint_tree;  // exact anchors (SolverSettings::exact_joints)
   TeamBarrier team_barrier;  // the two threads of a split island
   // Whether each thread of a split island moved a body in a position sweep, by the sweep's
   // parity (IslandPass::projectPositions).

@@ -107,7 +107,8 @@ BallJointDef limitedBall(BodyId a, BodyId b, bool euler, double twist_upper) {
 // 1 sweep leaves. A projection that moved a body but said it did not would end the sweeps
 // after the first, and leave the error of 1 sweep. Cases: 0 slider limit, 1 slider line, 2
 // weld (rotation lock), 3 hinge axis, 4 hinge limit, 5 ball Euler limit, 6 swing cone, 7 twist
-// range, 8 ball anchor, 9 sphere in the ground. Soft rows too weak to matter (joint hertz 1).
+// range, 8 ball anchor, 9 sphere in the ground. Soft rows too weak to matter (joint hertz 1),
+// and the exact anchors (joint_tree.hpp) off: they would close case 8 after any sweep.
 TEST(PositionSweeps, EachProjectionThatMovesABodyLetsTheNextSweepRun) {
   constexpr double kLinear = 0.12, kAngular = 0.5;
   for (int kind = 0; kind < 10; ++kind) {
@@ -118,6 +119,7 @@ TEST(PositionSweeps, EachProjectionThatMovesABodyLetsTheNextSweepRun) {
       d.solver.joint_hertz = 1.0;
       d.solver.position_iterations = sweeps;
       d.solver.anchor_iterations = 0;
+      d.solver.exact_joints = false;
       World w(d);
       const BodyId a = kind == 9 ? addGround(w) : addStatic(w);
       const bool linear = kind <= 1 || kind >= 8;

@@ -1,0 +1,301 @@
+// The joint tree's build, factorisation and solves (the derivation: joint_tree.hpp).
+#include "joint_tree.hpp"
+
+#include <algorithm>
+
+namespace ragdoll_sim {
+
+namespace {
+
+// Relative size of the regularisation E against the pair's inverse masses: far below any
+// row's own weight, far above round-off in the Woodbury updates.
+constexpr double kRegularisation = 1e-9;
+// Newton steps of the position projection: the second takes the first's error of second order.
+constexpr int kNewtonSteps = 2;
+
+// The rigid point part of a joint (a spring anchor is meant to stretch; a slider has none).
+PointPart* rigidAnchor(Joint& j) {
+  if (j.spring.stiffness > 0.0) return nullptr;
+  switch (j.kind.index()) {
+    case 0: return &std::get_if<0>(&j.kind)->anchor.point;
+    case 1: return &std::get_if<1>(&j.kind)->anchor.point;
+    case 2: return &std::get_if<2>(&j.kind)->anchor.point;
+    default: return nullptr;
+  }
+}
+
+using Vec6 = Eigen::Matrix<double, 6, 1>;
+using Mat6 = Eigen::Matrix<double, 6, 6>;
+using Mat36 = Eigen::Matrix<double, 3, 6>;
+
+// P(r) X for P(r) = [I  -skew(r)] (columns: x.head - r x x.tail).
+Mat36 leverRows(const Vec3& r, const Mat6& X) {
+  Mat36 out;
+  for (int k = 0; k < 6; ++k)
+    out.col(k) = X.col(k).head<3>() - r.cross(Vec3(X.col(k).tail<3>()));
+  return out;
+}
+// P(r) u
+Vec3 leverRate(const Vec3& r, const Vec6& u) { return u.head<3>() + Vec3(u.tail<3>()).cross(r); }
+// P(r)^T f: the generalised impulse of force f at lever r.
+Vec6 leverImpulse(const Vec3& r, const Vec3& f) {
+  Vec6 out;
+  out << f, r.cross(f);
+  return out;
+}
+// X P(r)^T for a 3 x 6 X (row i: x_i.head + x_i.tail x r).
+Mat3 timesLeverT(const Mat36& X, const Vec3& r) {
+  Mat3 out;
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 head = X.row(i).head<3>().transpose(), tail = X.row(i).tail<3>().transpose();
+    out.row(i) = (head + tail.cross(r)).transpose();
+  }
+  return out;
+}
+Mat6 inverseMass(const SolverBody& b) {
+  Mat6 w = Mat6::Zero();
+  w.topLeftCorner<3, 3>().diagonal().setConstant(b.inv_mass);
+  w.bottomRightCorner<3, 3>() = b.inv_inertia;
+  return w;
+}
+
+}  // namespace
+
+void JointTree::reserve(int world_bodies, int island_bodies, int joints) {
+  if (int(slot_of_body_.size()) < world_bodies) slot_of_body_.resize(world_bodies, -1);
+  if (int(nodes_.size()) < island_bodies) {
+    nodes_.resize(island_bodies);
+    order_.resize(island_bodies);
+    edge_count_.resize(island_bodies);
+    uf_.resize(island_bodies);
+    degree_.resize(island_bodies);
+    adj_start_.resize(island_bodies);
+    parent_edge_.resize(island_bodies);
+  }
+  if (int(edges_.size()) < joints) {
+    edges_.resize(joints);
+    cand_.resize(joints);
+    adj_.resize(2 * size_t(joints));
+  }
+}
+
+void JointTree::build(const IslandRange& p, const std::vector<int>& island_bodies,
+                      Joint* const* js, const std::vector<SolverBody>& solver) {
+  const int b0 = p.body_begin, b1 = p.body_end, j0 = p.joint_begin;
+  edge_count_[b0] = 0;
+  for (int k = b0; k < b1; ++k) {
+    slot_of_body_[island_bodies[k]] = k;
+    uf_[k] = k;
+    degree_[k] = 0;
+  }
+  const auto slotOf = [&](int b) {
+    if (b < 0 || !movable(solver[b])) return -1;
+    const int k = slot_of_body_[b];
+    return k >= b0 && k < b1 && island_bodies[k] == b ? k : -1;
+  };
+  const auto root = [&](int k) {
+    while (uf_[k] != k) k = uf_[k] = uf_[uf_[k]];
+    return k;
+  };
+  // Candidate edges (parent = the joint's A slot, child = B's for now), in joint order.
+  int n = 0;
+  for (int k = j0; k < p.joint_end; ++k) {
+    Joint& j = *js[k];
+    if (j.broken || !rigidAnchor(j)) continue;
+    const int sa = slotOf(j.a), sb = slotOf(j.b);
+    if (sa < 0 && sb < 0) continue;
+    if (sa >= 0 && sb >= 0) {
+      const int ra = root(sa), rb = root(sb);
+      if (ra == rb) continue;  // closes a loop: left to the sweeps
+      uf_[std::max(ra, rb)] = std::min(ra, rb);
+    }
+    cand_[j0 + n++] = {&j, sa, sb};
+    if (sa >= 0) ++degree_[sa];
+    if (sb >= 0) ++degree_[sb];
+  }
+  if (n == 0) return;
+  int start = 2 * j0;
+  for (int k = b0; k < b1; ++k) {
+    adj_start_[k] = start;
+    start += degree_[k];
+    degree_[k] = 0;
+  }
+  for (int e = 0; e < n; ++e)
+    for (const int s : {cand_[j0 + e].a, cand_[j0 + e].b})
+      if (s >= 0) adj_[adj_start_[s] + degree_[s]++] = e;
+  // Breadth first from each component's first body (uf_ now holds the visited marks): the
+  // edges are written grouped by their parent, parents before children.
+  for (int k = b0; k < b1; ++k) uf_[k] = 0, parent_edge_[k] = -1;
+  int head = b0, tail = b0, out = 0;
+  for (int r = b0; r < b1; ++r) {
+    if (uf_[r]) continue;
+    uf_[r] = 1;
+    order_[tail++] = r;
+    while (head < tail) {
+      const int q = order_[head++];
+      nodes_[q].first = j0 + out;
+      for (int a = adj_start_[q]; a < adj_start_[q] + degree_[q]; ++a) {
+        const int c = adj_[a];
+        if (c == parent_edge_[q]) continue;
+        const Candidate& cd = cand_[j0 + c];
+        const int other = cd.a == q ? cd.b : cd.a;
+        Edge& e = edges_[j0 + out++];
+        e.joint = cd.joint;
+        e.parent = q;
+        e.child = other;
+        e.s = cd.b == q ? 1.0 : -1.0;
+        if (other >= 0) {
+          parent_edge_[other] = c;
+          uf_[other] = 1;
+          order_[tail++] = other;
+        }
+      }
+      nodes_[q].end = j0 + out;
+    }
+  }
+  edge_count_[b0] = out;
+}
+
+void JointTree::factor(const IslandRange& p, const std::vector<SolverBody>& solver,
+                       const std::vector<int>& island_bodies) {
+  for (int idx = p.body_end - 1; idx >= p.body_begin; --idx) {
+    const int q = order_[idx];
+    Node& node = nodes_[q];
+    const SolverBody& body = solver[island_bodies[q]];
+    node.w = inverseMass(body);
+    for (int k = node.first; k < node.end; ++k) {
+      Edge& e = edges_[k];
+      if (e.joint->broken || e.joint->overloaded) {  // breaks after this substep: left out
+        e.k_inv.setZero();
+        e.g.setZero();
+        continue;
+      }
+      const Mat36 x = leverRows(e.r_parent, node.w);  // P W, G = s P W
+      Mat3 K = timesLeverT(x, e.r_parent);
+      double inv_masses = body.inv_mass;
+      if (e.child >= 0) {
+        const Node& c = nodes_[e.child];
+        K += timesLeverT(leverRows(e.r_child, c.w), e.r_child);
+        inv_masses += solver[island_bodies[e.child]].inv_mass;
+      }
+      K.diagonal().array() += kRegularisation * inv_masses;
+      K = 0.5 * (K + K.transpose());
+      e.k_inv = K.inverse();
+      e.g = e.s * x;
+      node.w.noalias() -= x.transpose() * (e.k_inv * x);
+    }
+  }
+}
+
+void JointTree::solve(const IslandRange& p) {
+  for (int idx = p.body_end - 1; idx >= p.body_begin; --idx) {
+    Node& node = nodes_[order_[idx]];
+    node.z.setZero();
+    node.e.setZero();
+    for (int k = node.first; k < node.end; ++k) {
+      Edge& e = edges_[k];
+      e.y = e.b - e.s * leverRate(e.r_parent, node.z);
+      if (e.child >= 0) e.y += e.s * leverRate(e.r_child, nodes_[e.child].z);
+      node.z.noalias() += e.g.transpose() * (e.k_inv * e.y);
+    }
+  }
+  for (int idx = p.body_begin; idx < p.body_end; ++idx) {
+    Node& node = nodes_[order_[idx]];
+    Vec6 f = node.e;
+    for (int k = node.end - 1; k >= node.first; --k) {
+      Edge& e = edges_[k];
+      e.lambda = e.k_inv * (e.y - e.g * f);
+      f += e.s * leverImpulse(e.r_parent, e.lambda);
+      if (e.child >= 0) nodes_[e.child].e = -e.s * leverImpulse(e.r_child, e.lambda);
+    }
+  }
+}
+
+// Each body's total generalised impulse from its edges' lambda (node e, reused after solve).
+void JointTree::gatherImpulses(const IslandRange& p) {
+  for (int k = p.body_begin; k < p.body_end; ++k) nodes_[k].e.setZero();
+  const int n = edgeCount(p);
+  for (int k = p.joint_begin; k < p.joint_begin + n; ++k) {
+    const Edge& e = edges_[k];
+    nodes_[e.parent].e += e.s * leverImpulse(e.r_parent, e.lambda);
+    if (e.child >= 0) nodes_[e.child].e -= e.s * leverImpulse(e.r_child, e.lambda);
+  }
+}
+
+void JointTree::projectVelocities(const IslandRange& p, std::vector<SolverBody>& solver,
+                                  const std::vector<int>& island_bodies, double h) {
+  const int n = edgeCount(p);
+  if (n == 0) return;
+  Edge* const edges = &edges_[p.joint_begin];
+  for (int k = 0; k < n; ++k) {
+    Edge& e = edges[k];
+    const Joint& j = *e.joint;
+    const PointPart& pt = *rigidAnchor(*e.joint);
+    const SolverBody &A = solver[j.a], &B = solver[j.b];
+    e.r_parent = e.s > 0.0 ? pt.rB : pt.rA;
+    e.r_child = e.s > 0.0 ? pt.rA : pt.rB;
+    e.b = -(B.v + B.w.cross(pt.rB) - A.v - A.w.cross(pt.rA));
+  }
+  factor(p, solver, island_bodies);
+  solve(p);
+  for (int k = 0; k < n; ++k) {
+    Edge& e = edges[k];
+    Joint& j = *e.joint;
+    PointPart& pt = *rigidAnchor(j);
+    // A breakable joint transmits at most its strength: past it, it breaks after the substep.
+    const double cap = j.spring.break_force * h;
+    const Vec3 next = pt.impulse + e.lambda;
+    if (next.squaredNorm() > cap * cap) {
+      e.lambda = next * (cap / next.norm()) - pt.impulse;
+      j.overloaded = true;
+    }
+    pt.impulse += e.lambda;
+  }
+  gatherImpulses(p);
+  for (int k = p.body_begin; k < p.body_end; ++k) {
+    SolverBody& b = solver[island_bodies[k]];
+    const Vec6& f = nodes_[k].e;
+    b.v += b.inv_mass * f.head<3>();
+    b.w += b.inv_inertia * f.tail<3>();
+  }
+}
+
+// The bodies move by their summed position impulses at once: applied joint by joint, the
+// rotations of a body with many children would compose to second order in their sizes.
+void JointTree::projectPositions(const IslandRange& p, std::vector<SolverBody>& solver,
+                                 const std::vector<int>& island_bodies, double slop,
+                                 double max_correction) {
+  const int n = edgeCount(p);
+  if (n == 0) return;
+  Edge* const edges = &edges_[p.joint_begin];
+  for (int step = 0; step < kNewtonSteps; ++step) {
+    bool any = false;
+    for (int k = 0; k < n; ++k) {
+      Edge& e = edges[k];
+      const Joint& j = *e.joint;
+      const PointPart& pt = *rigidAnchor(*e.joint);
+      const SolverBody &A = solver[j.a], &B = solver[j.b];
+      const Vec3 rA = A.dq * pt.rA0, rB = B.dq * pt.rB0;
+      e.r_parent = e.s > 0.0 ? rB : rA;
+      e.r_child = e.s > 0.0 ? rA : rB;
+      Vec3 C = pt.errorAt(A, B, rA, rB);
+      if (trimToSlop(C, slop, max_correction)) any = true;
+      else C.setZero();
+      e.b = -C;
+    }
+    if (!any) return;
+    factor(p, solver, island_bodies);
+    solve(p);
+    gatherImpulses(p);
+    for (int k = p.body_begin; k < p.body_end; ++k) {
+      SolverBody& b = solver[island_bodies[k]];
+      const Vec6& f = nodes_[k].e;
+      b.dp += b.inv_mass * f.head<3>();
+      const Vec3 turn = b.inv_inertia * f.tail<3>();
+      const double angle = turn.norm();
+      if (angle > 0.0) b.dq = (Quat(Eigen::AngleAxisd(angle, turn / angle)) * b.dq).normalized();
+    }
+  }
+}
+
+}  // namespace ragdoll_sim

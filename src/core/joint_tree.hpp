@@ -1,0 +1,113 @@
+// Exact joint anchors: a direct solve of the point rows of each island's joint tree (Baraff
+// 1996, "Linear-time dynamics using Lagrange multipliers"), after the Gauss-Seidel sweeps.
+//
+// Why: Gauss-Seidel over the joints converges slowly where masses differ a lot along a limb
+// (a heavy torso and gram fingers) or where many links hang on one body (a hub with hundreds of
+// children): the anchors drift apart however many sweeps run. A tree of joints, though, has a
+// sparse factorisation without fill-in, so the rows can be solved exactly in linear time.
+//
+// The rows: a rigid anchor (ball, hinge, fixed; not a spring) between bodies A and B,
+//   C = (xB + rB) - (xA + rA),  J_B = P(rB), J_A = -P(rA),  P(r) = [I  -skew(r)]  (3 x 6)
+// on a body's generalised velocity u = (v, w), W = M^-1 = diag(1/m I, I^-1) (world).
+// Velocity projection: find the impulses lambda with (J W J^T + E) lambda = -(J u), E a tiny
+// regularisation (keeps redundant rows, a body pinned twice, definite), then u += W J^T lambda.
+//
+// The tree: bodies that move are nodes, joints between two of them edges; a spanning forest
+// over them in joint order (a joint that closes a loop stays with the sweeps alone), rooted at
+// each component's first body. A joint to a body that does not move (static, asleep) hangs on
+// its one moving body as a leaf. Each body p, in an order that puts children first, takes its
+// child joints k one at a time (Woodbury form of Baraff's block elimination, so that W is
+// never inverted):
+//   Jp = s P(r_p), Jc = -s P(r_c)  (s = +1 when p is the joint's B, else -1; c the child body)
+//   K_k   = E + Jc W_c Jc^T + Jp W Jp^T              (W: p's so far; W_c, z_c: c's final)
+//   G_k   = Jp W
+//   W    <- W - G_k^T K_k^-1 G_k                      (p's response with child k attached)
+// and with a right-hand side b (solve):
+//   y_k   = b_k - Jc z_c - Jp z,   z <- z + G_k^T K_k^-1 y_k   (z starts at 0)
+// W, z: p's generalised velocity change is W f + z for an impulse f from the joints not yet
+// taken (later children, its own parent joint). Back from the roots, f = e (the parent
+// joint's impulse Jc^T lambda on p, 0 at a root), children in reverse order:
+//   lambda_k = K_k^-1 (y_k - G_k e),   e <- e + Jp^T lambda_k,   the child's e = Jc^T lambda_k.
+// Every K_k is E plus positive semidefinite terms: the elimination is stable in any order.
+// Cost: a few 3x6 and 6x6 products per joint, no allocation (the buffers grow with the world).
+//
+// Position projection: the same factorisation at the current poses with b = -C (beyond a
+// slop), applied as position impulses (a Newton step on the anchors, no velocity added); two
+// steps leave the anchors exact to second order.
+//
+// The tree of an island part lies in its slices of the island's body and joint arrays, so the
+// halves of a split island (whole limbs, island_split.hpp) are solved at once on two threads.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "island_schedule.hpp"
+#include "joint.hpp"
+
+namespace ragdoll_sim {
+
+class JointTree {
+ public:
+  // Before the islands are solved (one thread): the buffers cover every body and joint.
+  void reserve(int world_bodies, int island_bodies, int joints);
+  // The forest of part p (a whole island, or a half of a split one, or an island attached to
+  // one): joints [p.joint_begin, p.joint_end) of js, bodies of island_bodies.
+  void build(const IslandRange& p, const std::vector<int>& island_bodies, Joint* const* js,
+             const std::vector<SolverBody>& solver);
+  // The point rows' velocities made exact at the anchors of the last refresh; the impulses
+  // are added to the joints' accumulated ones (warm start, reports, breaks).
+  // A breakable joint's impulse is capped at break_force h (it then breaks after the substep).
+  void projectVelocities(const IslandRange& p, std::vector<SolverBody>& solver,
+                         const std::vector<int>& island_bodies, double h);
+  // Newton steps on the anchors at the current deltas: the error beyond slop is removed (at
+  // most max_correction of it per joint and step).
+  void projectPositions(const IslandRange& p, std::vector<SolverBody>& solver,
+                        const std::vector<int>& island_bodies, double slop,
+                        double max_correction);
+
+ private:
+  using Vec6 = Eigen::Matrix<double, 6, 1>;
+  using Mat6 = Eigen::Matrix<double, 6, 6>;
+  using Mat36 = Eigen::Matrix<double, 3, 6>;
+
+  struct Edge {
+    Joint* joint = nullptr;
+    int parent = -1, child = -1;  // body slots (island_bodies); child -1: a fixed body
+    double s = 1.0;               // +1: the parent is the joint's B
+    Vec3 r_parent = Vec3::Zero(), r_child = Vec3::Zero();  // levers at the factorised poses
+    Mat3 k_inv = Mat3::Zero();
+    Mat36 g = Mat36::Zero();
+    Vec3 b = Vec3::Zero(), y = Vec3::Zero(), lambda = Vec3::Zero();
+  };
+  struct Node {
+    Mat6 w;
+    Vec6 z, e;
+    int first = 0, end = 0;  // its child edges
+  };
+
+  // Factorises part p's forest at its edges' levers (set by the caller).
+  void factor(const IslandRange& p, const std::vector<SolverBody>& solver,
+              const std::vector<int>& island_bodies);
+  // lambda for the edges' b.
+  void solve(const IslandRange& p);
+  void gatherImpulses(const IslandRange& p);
+  int edgeCount(const IslandRange& p) const { return edge_count_[p.body_begin]; }
+
+  std::vector<int> slot_of_body_;  // world body -> island_bodies slot (valid in its part)
+  std::vector<Node> nodes_;        // by island_bodies slot
+  std::vector<int> order_;         // per part slice: body slots, parents before children
+  std::vector<int> edge_count_;    // at the part's body_begin
+  std::vector<Edge> edges_;        // per part slice of the joint range: grouped by parent
+  // scratch for build: candidate edges (a moving body's slot per side, else -1) per joint
+  // slot, union-find and visited marks, adjacency (per body slot: its start in adj_, count)
+  struct Candidate {
+    Joint* joint;
+    int a, b;
+  };
+  std::vector<Candidate> cand_;
+  std::vector<int> uf_, degree_, adj_start_, adj_, parent_edge_;
+};
+
+}  // namespace ragdoll_sim
