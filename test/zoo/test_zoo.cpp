@@ -27,7 +27,8 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr double kMaxAnchorError = 1e-3;    // m over the run
-constexpr double kFinalAnchorError = 5e-4;  // m at rest
+// m at rest; the position projection leaves anchors at its slop (0.5 mm), give or take round-off
+constexpr double kFinalAnchorError = 5e-4 + 1e-9;
 
 std::vector<fs::path> urdfFiles(const fs::path& dir, const std::string& prefix = "") {
   std::vector<fs::path> out;
@@ -105,7 +106,7 @@ Drop dropAndJudge(const fs::path& file, double extra = 0) {
   const Drop d = drop(r.def, extra);
   const DropReport& f = d.first;
   const DropVerdict v = judgeDrop(f, dropRules(DropSettings()));  // as ragdoll_check judges
-  std::printf("[ zoo ] %-34s bodies=%-3zu max_anchor_error_mm=%.2f final_anchor_error_mm=%.3f "
+  std::printf("[ zoo ] %-34s bodies=%-3zu max_anchor_error_mm=%.2f final_anchor_error_mm=%.4f "
               "min_lowest_mm=%.1f max_speed=%.2f final_contact_speed=%.3f verdict=%s%s%s\n",
               name.c_str(), r.def.links.size(), 1e3 * f.max_anchor_error,
               1e3 * f.final_anchor_error, 1e3 * f.min_lowest_point, f.max_speed,
