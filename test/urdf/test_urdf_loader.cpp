@@ -413,7 +413,7 @@ TEST(UrdfZoo, EveryRobotLoads) {
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     if (entry.path().extension() != ".urdf") continue;
     const UrdfLoadResult r = loadUrdfFile(entry.path().string());
-    EXPECT_TRUE(r.ok) << r.error;  // the drop itself: test_urdf_zoo.cpp
+    EXPECT_TRUE(r.ok) << r.error;  // the drop itself: test/zoo/test_zoo.cpp
   }
 }
 
