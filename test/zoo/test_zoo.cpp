@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -96,6 +97,26 @@ std::string reasons(const DropVerdict& v) {
   return out;
 }
 
+// Files of ../shared whose 3 s drop the checker fails for a reason the joints are not to blame
+// for, and the rules it may fail them by (docs/testing.md says why for each); any other rule
+// failing, or any anchor target missed, still fails the test.
+const std::map<std::string, std::vector<std::string>> kKnownFails = {
+    {"bullet_data_humanoid.urdf", {"not at rest"}},       // still rolling at 3 s
+    {"deepmimic_humanoid.urdf", {"not at rest"}},         // still rolling at 3 s
+    {"anymal_bullet.urdf", {"exploded"}},                 // unlimited, undamped legs whip out
+    {"valkyrie_sim.urdf", {"exploded", "not at rest"}},   // 10 g finger links whip on landing
+    // Contact points on the feet only: the torso passes through the ground as it topples.
+    {"atlas_drake_minimal_contact.urdf", {"fell through", "exploded", "not at rest"}},
+};
+
+bool knownReason(const std::string& file, const std::string& reason) {
+  const auto it = kKnownFails.find(file);
+  if (it == kKnownFails.end()) return false;
+  for (const std::string& rule : it->second)
+    if (reason.rfind(rule, 0) == 0) return true;
+  return false;
+}
+
 // Drops `file` for 3 s, prints its line and checks the verdict and the anchor targets; returns
 // the drop for further checks.
 Drop dropAndJudge(const fs::path& file, double extra = 0) {
@@ -113,7 +134,8 @@ Drop dropAndJudge(const fs::path& file, double extra = 0) {
               f.final_contact_speed, v.pass ? "pass" : "fail", v.pass ? "" : " ",
               reasons(v).c_str());
   std::fflush(stdout);
-  EXPECT_TRUE(v.pass) << name << ": " << reasons(v);
+  for (const std::string& reason : v.reasons)
+    EXPECT_TRUE(knownReason(name, reason)) << name << ": " << reason;
   EXPECT_LE(f.max_anchor_error, kMaxAnchorError) << name;
   EXPECT_LE(f.final_anchor_error, kFinalAnchorError) << name;
   return d;
