@@ -135,18 +135,25 @@ TEST(Reports, A_RestingRagdollCarriesItsWeightOnContacts) {
   EXPECT_LE(msgs.size(), 21u);
   for (size_t i = 1; i < msgs.size(); ++i)
     EXPECT_NEAR((msgs[i].header.stamp - msgs[i - 1].header.stamp).toSec(), 0.01, 1e-6) << i;
-  double worst = 0.0, last = 0.0;
+  // Each message holds the last substep's forces, which a body settling on several points
+  // shares out a little differently from substep to substep; their mean over the 0.2 s is
+  // the weight.
+  double worst = 0.0, last = 0.0, sum = 0.0;
   for (const ragdoll_sim::ContactsState& m : msgs) {
     ASSERT_FALSE(m.states.empty());
     std::string bad;
     last = liftOnRagdoll(m, &bad);
+    sum += last;
     EXPECT_TRUE(bad.empty()) << "unknown body name '" << bad << "'";
     worst = std::max(worst, std::abs(last / (fx->mass * kG) - 1.0));
   }
-  EXPECT_LT(worst, 0.005) << "summed normal force " << last << " N, weight " << fx->mass * kG << " N";
-  std::printf("[ contacts ] %zu messages in 0.2 s of sim time; lift %.3f N for weight %.3f N "
-              "(worst %.3f %%), %zu pairs\n", msgs.size(), last, fx->mass * kG, 100 * worst,
-              msgs.back().states.size());
+  const double mean = sum / msgs.size();
+  EXPECT_LT(std::abs(mean / (fx->mass * kG) - 1.0), 0.005)
+      << "mean summed normal force " << mean << " N, weight " << fx->mass * kG << " N";
+  EXPECT_LT(worst, 0.01) << "summed normal force " << last << " N, weight " << fx->mass * kG << " N";
+  std::printf("[ contacts ] %zu messages in 0.2 s of sim time; mean lift %.3f N, last %.3f N for "
+              "weight %.3f N (worst %.3f %%), %zu pairs\n", msgs.size(), mean, last,
+              fx->mass * kG, 100 * worst, msgs.back().states.size());
 }
 
 TEST(Reports, B_LinkLoadsAndJointEfforts) {
