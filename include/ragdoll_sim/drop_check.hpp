@@ -76,6 +76,15 @@ double highestPoint(const ShapeDef& shape, const Transform& body_pose);
 // without shapes: of its link centres of mass).
 double restLowestPoint(const RagdollDef& def);
 
+// The world dropTest drops in: a ground plane at z = 0 and the model spawned upright with its
+// lowest shape point settings.clearance above it.
+struct DropWorld {
+  explicit DropWorld(const RagdollDef& def, const DropSettings& settings = DropSettings());
+  World world;
+  Ragdoll ragdoll;
+  double spawn_z = 0;  // m, the root link's height at spawn
+};
+
 DropReport dropTest(const RagdollDef& def, const DropSettings& settings = DropSettings());
 
 // The metrics of ragdoll `r` (spawned from `def`) in `world` while `step` advances the world by

@@ -106,24 +106,32 @@ bool isFinite(const BodyState& st) {
 }
 }  // namespace
 
-DropReport dropTest(const RagdollDef& def, const DropSettings& settings) {
-  DropReport rep;
+namespace {
+WorldDef dropWorldDef(const DropSettings& settings) {
   WorldDef wd;
   wd.solver.substeps = settings.substeps;
-  World world(wd);
+  return wd;
+}
+}  // namespace
+
+DropWorld::DropWorld(const RagdollDef& def, const DropSettings& settings)
+    : world(dropWorldDef(settings)) {
   BodyDef gd;
   gd.type = BodyType::Static;
   gd.name = "ground";
   ShapeDef ground;
   ground.geometry = Geometry::plane(Vec3::UnitZ(), 0.0);
   world.addShape(world.createBody(gd), ground);
-
   // Rest pose with the root at the origin: lift it so the lowest point is `clearance` up.
-  rep.spawn_z = settings.clearance - restLowestPoint(def);
-  const Ragdoll r = spawnRagdoll(world, def, Transform(Vec3(0, 0, rep.spawn_z), Quat::Identity()));
+  spawn_z = settings.clearance - restLowestPoint(def);
+  ragdoll = spawnRagdoll(world, def, Transform(Vec3(0, 0, spawn_z), Quat::Identity()));
+}
 
-  DropReport measured = measureDrop(world, r, def, [&] { world.step(settings.dt); }, settings);
-  measured.spawn_z = rep.spawn_z;
+DropReport dropTest(const RagdollDef& def, const DropSettings& settings) {
+  DropWorld d(def, settings);
+  DropReport measured =
+      measureDrop(d.world, d.ragdoll, def, [&] { d.world.step(settings.dt); }, settings);
+  measured.spawn_z = d.spawn_z;
   return measured;
 }
 

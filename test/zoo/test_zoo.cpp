@@ -65,27 +65,19 @@ struct Drop {
 
 Drop drop(const RagdollDef& def, double extra) {
   const DropSettings s;
-  WorldDef wd;
-  wd.solver.substeps = s.substeps;
-  World world(wd);
-  BodyDef gd;
-  gd.type = BodyType::Static;
-  gd.name = "ground";
-  ShapeDef ground;
-  ground.geometry = Geometry::plane(Vec3::UnitZ(), 0.0);
-  world.addShape(world.createBody(gd), ground);
-  const double spawn_z = s.clearance - restLowestPoint(def);
-  const Ragdoll r = spawnRagdoll(world, def, Transform(Vec3(0, 0, spawn_z), Quat::Identity()));
+  DropWorld w(def, s);
+  World& world = w.world;
+  const Ragdoll& r = w.ragdoll;
   Drop d;
   d.mass = def.totalMass();
   d.first = measureDrop(world, r, def, [&] { world.step(s.dt); }, s);
-  d.first.spawn_z = spawn_z;
+  d.first.spawn_z = w.spawn_z;
   if (extra > 0 && d.first.finite) {
     const double e0 = mechanicalEnergy(world, r);
     DropSettings more = s;
     more.seconds = extra;
     d.after = measureDrop(world, r, def, [&] { world.step(s.dt); }, more);
-    d.after.spawn_z = spawn_z;
+    d.after.spawn_z = w.spawn_z;
     d.extra_energy = mechanicalEnergy(world, r) - e0;
   }
   return d;
