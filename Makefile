@@ -8,6 +8,11 @@ export PATH := /usr/bin:$(PATH)
 # `make fuzz` for FUZZ_SECONDS each (the sanitizer build of `make test` uses gcc's runtimes).
 FUZZ_DEBS := clang-14 libclang-rt-14-dev
 
+# The Python module (pybind11), ragdoll_batch and its Dask fan-out, plots and their tests;
+# iproute2 for the test that runs workers in network namespaces.
+PY_DEBS := pybind11-dev python3-dev python3-numpy python3-yaml python3-pandas python3-matplotlib \
+           python3-tqdm python3-distributed python3-pytest python3-rospy iproute2
+
 # Debian packages the package needs to build, run and test (ROS 1 from Debian, no /opt/ros),
 # plus the Python message modules that rostopic / rosservice need for the README's examples.
 DEBS := build-essential cmake googletest libgtest-dev \
@@ -21,7 +26,7 @@ DEBS := build-essential cmake googletest libgtest-dev \
         libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure \
         libros-rosgraph-msgs-dev python3-rosgraph-msgs librosbag-dev python3-rosbag \
         ros-robot-state-publisher libassimp-dev libtinyxml2-dev libsdformat-dev libyaml-cpp-dev rosbash \
-        $(FUZZ_DEBS)
+        $(PY_DEBS) $(FUZZ_DEBS)
 
 
 deps:
