@@ -343,6 +343,7 @@ bool loadNodeConfig(const ros::NodeHandle& node, NodeConfig* c, std::string* err
             read(pnh, "position_iterations", "an integer", &c->scene.world.solver.position_iterations, error) &&
             read(pnh, "ragdoll_name", "a string", &c->ragdoll_name, error) &&
             read(pnh, "tf_prefix", "a string", &c->tf_prefix, error) &&
+            read(pnh, "frame_prefix", "a string", &c->frame_prefix, error) &&
             read(pnh, "publish_rate", "a number (Hz)", &c->publish_rate, error) &&
             read(pnh, "substeps", "an integer", &c->scene.world.solver.substeps, error) &&
             read(pnh, "threads", "an integer", &c->scene.world.threads, error) &&
@@ -441,6 +442,8 @@ std::string validateNodeConfig(const NodeConfig& c) {
     return "parameter ~ragdoll_name: " + scene::ragdollNameError(c.ragdoll_name);
   if (!scene::tfPrefixError(c.tf_prefix).empty())
     return "parameter ~tf_prefix: " + scene::tfPrefixError(c.tf_prefix);
+  if (!scene::tfPrefixError(c.frame_prefix).empty())
+    return "parameter ~frame_prefix: " + scene::tfPrefixError(c.frame_prefix);
   const SpawnPose& s = c.spawn;
   for (double v : {s.x, s.y, s.z, s.roll, s.pitch, s.yaw})
     if (!std::isfinite(v)) return "parameters ~spawn/{x,y,z,roll,pitch,yaw} must be finite";

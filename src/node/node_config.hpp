@@ -46,6 +46,7 @@ struct NodeConfig {
   std::string ragdoll_name;            // launch-time ragdoll; "" = the URDF's robot name
   std::string tf_prefix;               // its TF prefix; "" = bare link names
   std::string world_frame = "world";
+  std::string frame_prefix;            // before every TF frame of the node; "" = none
   std::string ragdoll_material;        // surface names in ~materials; "" = ~static_friction...
   std::string ground_material;
   double max_catchup = 0.1;            // s of physics run at most per loop iteration when late

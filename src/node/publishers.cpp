@@ -85,6 +85,11 @@ void Publishers::rebuild() {
 // ------------------------------------------------------------------------------------------
 // TF
 
+std::string Publishers::frameId(const RagdollTopics& r, const std::string& link) const {
+  const std::string& prefix = ctx_.config.frame_prefix;
+  return prefix.empty() ? r.frame(link) : prefix + "/" + r.frame(link);
+}
+
 void Publishers::buildTf(RagdollTopics& r, int k) {
   const RagdollDef& def = ctx_.scene->def(k);
   const std::string& world_frame = ctx_.config.world_frame;
@@ -92,7 +97,7 @@ void Publishers::buildTf(RagdollTopics& r, int k) {
   for (const LinkDef& l : def.links) {
     geometry_msgs::TransformStamped t;
     t.header.frame_id = world_frame;
-    t.child_frame_id = r.frame(l.name);
+    t.child_frame_id = frameId(r, l.name);
     r.tf_msgs.push_back(t);
   }
   r.ball_joints.clear();
@@ -105,7 +110,7 @@ void Publishers::buildTf(RagdollTopics& r, int k) {
     for (const std::string& c : jd.chain_links) {
       geometry_msgs::TransformStamped t;
       t.header.frame_id = world_frame;
-      t.child_frame_id = r.frame(c);
+      t.child_frame_id = frameId(r, c);
       r.tf_msgs.push_back(t);
     }
   }
@@ -113,7 +118,7 @@ void Publishers::buildTf(RagdollTopics& r, int k) {
   for (const FixedFrameDef& f : def.fixed_frames) {
     geometry_msgs::TransformStamped t;
     t.header.frame_id = world_frame;
-    t.child_frame_id = r.frame(f.name);
+    t.child_frame_id = frameId(r, f.name);
     r.tf_msgs.push_back(t);
   }
 }

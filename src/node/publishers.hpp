@@ -73,6 +73,8 @@ class Publishers {
   void publishBrokenJoints();  // ~joint_broken + INFO for joints that broke in the last step
 
  private:
+  // The TF frame of `link` of `r`: "<~frame_prefix>/<tf_prefix>/<link>", empty parts left out.
+  std::string frameId(const RagdollTopics& r, const std::string& link) const;
   void buildTf(RagdollTopics& r, int k);
   void buildJointState(RagdollTopics& r, int k);
   void buildLinkStates();

@@ -2,7 +2,7 @@
 // once with the rule, in a short answer, and nothing of it appears (no parameter, no topic);
 // other services asked about a huge name answer briefly too. B: bad tf_prefixes are refused with
 // the rule, a valid nested one is taken. C: the node binary with a bad ~ragdoll_name or
-// ~tf_prefix exits 1 with a FATAL message stating the rule.
+// ~tf_prefix or ~frame_prefix exits 1 with a FATAL message stating the rule.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -126,6 +126,7 @@ TEST(Names, C_BadNameParametersStopTheNode) {
       {"_ragdoll_name:=robot-1", {"~ragdoll_name", "'-'", kNameRule}},
       {"_tf_prefix:=/sim", {"~tf_prefix", kPrefixRule}},
       {"_tf_prefix:=" + std::string(300, 't'), {"~tf_prefix", "too long", kPrefixRule}},
+      {"_frame_prefix:=sim_a/", {"~frame_prefix", kPrefixRule}},
   };
   int k = 0;
   for (const auto& [args, words] : cases) {
