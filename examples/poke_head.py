@@ -2,9 +2,11 @@
 """Poke the running ragdoll_sim node's ragdoll on the head and show how the head responds.
 
 Finds the node (its ~step service) and its launch-time ragdoll (~ragdoll_name, else the URDF
-robot name of robot_description in the node's namespace), reads the head's velocity with ~get_link_state, publishes one impulse on
-~apply_impulse and reads the velocity again once the impulse has acted. A paused node applies
-impulses too (they change the link's momentum at once; the joints act at the next step).
+robot name of robot_description in the node's namespace), reads the head's velocity with
+~get_link_state, publishes one impulse at the head's centre of mass on ~apply_impulse and reads
+the velocity again once the impulse has acted. A paused node applies impulses too (they change
+the link's momentum at once; the joints act at the next step), so there the change is exactly
+impulse / head mass; on a running node the joints and contacts act on it as well.
 
 Run, with a node up (e.g. `roslaunch ragdoll_sim sim.launch rviz:=false paused:=true`):
     rosrun ragdoll_sim poke_head.py                      # 5 N s along +x on the head
@@ -57,7 +59,7 @@ def main(argv=None):
     ragdoll, link = ragdoll_name(node), args.link
     if not ragdoll:
         raise RuntimeError("%s has no ~ragdoll_name and no robot_description" % node)
-    get_link = rospy.ServiceProxy(node + "/get_link_state", GetLinkState)
+    get_link = rospy.ServiceProxy(node + "/get_link_state", GetLinkState, persistent=True)
     before, com, t0 = link_state(get_link, ragdoll, link)
 
     pub = rospy.Publisher(node + "/apply_impulse", ApplyImpulse, queue_size=1)
