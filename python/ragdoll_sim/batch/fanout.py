@@ -143,7 +143,8 @@ def run(scenario, indices, on_rows, scheduler=None, workers=None, chunk_size=Non
         rows in index order; over the whole run every index arrives exactly once, also when
         workers die (their chunks are rerun elsewhere).
     scheduler: "tcp://HOST:PORT" of a running dask-scheduler; None starts a LocalCluster.
-    workers: the LocalCluster's worker processes (one thread each), default every core.
+    workers: the LocalCluster's worker processes (one thread each), default every core this
+        process may run on.
     chunk_size: runs per task; default about CHUNKS_PER_THREAD chunks per worker thread.
     progress(n): called after each on_rows with the number of runs just delivered.
     task: the function run on the workers, default ragdoll_sim.batch.runner.run_chunk.
@@ -211,7 +212,7 @@ class _local_cluster:
         import os
         from distributed import Client, LocalCluster
         self.tmp = tempfile.mkdtemp(prefix="ragdoll-dask-")
-        n = self.workers or os.cpu_count() or 1
+        n = self.workers or len(os.sched_getaffinity(0)) or 1
         try:
             self.cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
                                         host="127.0.0.1", dashboard_address=None,
