@@ -37,13 +37,16 @@ FallRecord runOne(const PyModel& model, const py::object& world, const std::stri
                   const py::handle& position, const py::handle& rpy,
                   const py::handle& linear_velocity, const py::handle& angular_velocity,
                   const std::string& push_link, const py::handle& push_impulse, double friction,
-                  double restitution, double dt, long steps, const FallRecordDef& record) {
+                  double restitution, double contact_hertz, double dt, long steps,
+                  const FallRecordDef& record) {
   FallRunDef d;
   if (!(std::isfinite(dt) && dt > 0.0 && dt <= 1.0))
     throw std::invalid_argument("dt must be in (0, 1] s, got " + std::to_string(dt));
   d.scene.dt_ns = std::llround(dt * 1e9);
-  const Material surface{finiteArg(friction, "friction"), friction,
-                         finiteArg(restitution, "restitution"), defaultSurface().rolling_resistance};
+  Material surface = defaultSurface();
+  surface.static_friction = surface.kinetic_friction = finiteArg(friction, "friction");
+  surface.restitution = finiteArg(restitution, "restitution");
+  surface.contact_hertz = finiteArg(contact_hertz, "contact_hertz");
   const std::string bad = materialError(surface);
   if (!bad.empty()) throw std::invalid_argument("material: " + bad);
   d.scene.material = d.scene.ragdoll_surface = d.scene.ground_surface = d.scene.object_surface =
@@ -164,10 +167,11 @@ A world file parsed once (FallWorld.from_file), for any number of run_fall calls
         py::arg("linear_velocity") = py::make_tuple(0.0, 0.0, 0.0),
         py::arg("angular_velocity") = py::make_tuple(0.0, 0.0, 0.0), py::arg("push_link") = "",
         py::arg("push_impulse") = py::make_tuple(0.0, 0.0, 0.0), py::arg("friction") = 0.8,
-        py::arg("restitution") = 0.0, py::arg("dt") = 0.001, py::arg("steps") = 3000,
+        py::arg("restitution") = 0.0, py::arg("contact_hertz") = 0.0, py::arg("dt") = 0.001, py::arg("steps") = 3000,
         py::arg("record") = FallRecordDef(), R"doc(
 One fall in C++ (the GIL released): a Scene of step dt (s) with `world` (a FallWorld, or None:
-the ground plane), every surface of friction (static = kinetic) and restitution, `model` (a
+the ground plane), every surface of friction (static = kinetic), restitution and contact_hertz
+(Hz, the contact's spring-damper at damping ratio 1; 0 = rigid), `model` (a
 Model) spawned as `name` at position (m) and rpy (rad) moving at linear_velocity (m/s) and
 angular_velocity (rad/s), pushed by push_impulse (N s, world axes) at the centre of mass of
 push_link ("" = no push), then `steps` steps. Returns its FallRecord. ValueError naming what

@@ -17,6 +17,10 @@ class UsageError(ValueError):
     """A bad command-line value; str() names the option."""
 
 
+class RunError(RuntimeError):
+    """The runs could not finish (the Dask cluster failed); str() says why."""
+
+
 def parse_runs(text):
     """'A:B' -> range(A, B); 'N' -> range(0, N)."""
     try:
@@ -70,6 +74,11 @@ def run(args):
     indices = parse_runs(args.runs)
     if args.workers is not None and args.workers < 1:
         raise UsageError("--workers: expected a number >= 1, got %d" % args.workers)
+    if args.scheduler is not None and args.workers is not None:
+        raise UsageError("--scheduler and --workers: give one (a scheduler's cluster has its own "
+                         "workers)")
+    if args.chunk_size is not None and args.chunk_size < 1:
+        raise UsageError("--chunk-size: expected a number >= 1, got %d" % args.chunk_size)
     sc = load_checked(args.scenario)
     cols = runner.columns(sc)
     done = csv_rows.done_indices(args.out, cols)
@@ -89,9 +98,13 @@ def run(args):
                 if bar is not None:
                     bar.update(1)
         else:
-            fanout.run(sc, todo, writer.write, scheduler=args.scheduler, workers=args.workers,
-                       chunk_size=args.chunk_size,
-                       progress=(lambda n: bar.update(n)) if bar is not None else None)
+            try:
+                fanout.run(sc, todo, writer.write, scheduler=args.scheduler,
+                           workers=args.workers, chunk_size=args.chunk_size,
+                           progress=(lambda n: bar.update(n)) if bar is not None else None)
+            except fanout.FanoutError as e:
+                raise RunError("ragdoll_batch: %s (the rows written so far are kept: run again "
+                               "to resume)" % e)
     finally:
         writer.close()
         if bar is not None:
@@ -135,7 +148,7 @@ def main(argv=None):
     args = parser().parse_args(argv)
     try:
         return args.func(args)
-    except (scenario_mod.ScenarioError, csv_rows.ResultsError, UsageError) as e:
+    except (scenario_mod.ScenarioError, csv_rows.ResultsError, UsageError, RunError) as e:
         print(str(e), file=sys.stderr)
         return 1
     except OSError as e:

@@ -11,7 +11,7 @@ from . import sampling
 PARAMETER_COLUMNS = (["spawn_" + f for f in ("x", "y", "z", "roll", "pitch", "yaw",
                                              "vx", "vy", "vz", "wx", "wy", "wz")]
                      + ["push_link", "push_size", "push_dx", "push_dy", "push_dz",
-                        "friction", "restitution"])
+                        "friction", "restitution", "contact_hertz"])
 REST_COLUMNS = ["rest_class", "rest_x", "rest_y", "rest_z", "rest_roll", "rest_pitch", "rest_yaw"]
 TAIL_COLUMNS = ["broken_joints", "time_to_rest", "nan"]
 
@@ -117,7 +117,8 @@ def run_one(scenario, index):
         angular_velocity=(p["spawn_wx"], p["spawn_wy"], p["spawn_wz"]),
         push_link=p["push_link"] if size > 0.0 else "",
         push_impulse=(size * p["push_dx"], size * p["push_dy"], size * p["push_dz"]),
-        friction=p["friction"], restitution=p["restitution"], dt=scenario["dt"],
+        friction=p["friction"], restitution=p["restitution"],
+        contact_hertz=p["contact_hertz"], dt=scenario["dt"],
         steps=int(round(scenario["duration"] / scenario["dt"])), record=_record_def(scenario))
     row = {"index": index}
     row.update(p)

@@ -25,7 +25,7 @@ TOP_FIELDS = ["seed", "duration", "dt", "world", "model", "spawn", "push", "mate
 
 def package_dir():
     """The ragdoll_sim package folder (worlds/, urdf/): the source tree, else rospkg's path."""
-    here = os.path.dirname(os.path.abspath(__file__))
+    here = os.path.dirname(os.path.realpath(__file__))
     root = os.path.normpath(os.path.join(here, "..", "..", ".."))
     if os.path.isdir(os.path.join(root, "worlds")) and os.path.isdir(os.path.join(root, "urdf")):
         return root
@@ -190,11 +190,13 @@ def validate(raw, base="."):
             "size": _distribution("push.size", push.get("size", 0.0), 0.0, MAX_PUSH),
         }
 
-    material = _map("material", top.get("material"), ["friction", "restitution"])
+    material = _map("material", top.get("material"), ["friction", "restitution", "contact_hertz"])
     out["material"] = {
         "friction": _distribution("material.friction", material.get("friction", 0.8), 0.0, 100.0),
         "restitution": _distribution("material.restitution", material.get("restitution", 0.0),
                                      0.0, 1.0),
+        "contact_hertz": _distribution("material.contact_hertz",
+                                       material.get("contact_hertz", 0.0), 0.0, 1000.0),
     }
 
     record = _map("record", top.get("record"), list(RECORD_FIELDS) + ["torso_link"])
