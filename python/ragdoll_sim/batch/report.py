@@ -92,7 +92,10 @@ def _plots(df, out):
 
 
 def _fmt(v):
-    return "%.4g" % v if v == v else "-"
+    """A number for the tables: whole numbers from 100 up, else 3 significant digits."""
+    if v != v:
+        return "-"
+    return "%.0f" % v if abs(v) >= 100 else "%.3g" % v
 
 
 def summary(df, source=""):
