@@ -66,9 +66,10 @@ def main():
             s = float(re.search(r"s_per_fall_median=([0-9.]+)", out).group(1))
             results["bench_fall"].append(60.0 / s)
             for m, (cores, cmds) in modes.items():
-                f = lambda tag, k: lambda name: os.path.join(tmp, "%s_%s_%d_%d.csv" % (m, name, k, r))
-                t_short = timed(cmds(short, f("s", short)))
-                t_long = timed(cmds(n, f("l", n)))
+                def f(k):
+                    return lambda name: os.path.join(tmp, "%s_%s_%d_%d.csv" % (m, name, k, r))
+                t_short = timed(cmds(short, f(short)))
+                t_long = timed(cmds(n, f(n)))
                 results[m + "_total"].append(60.0 * n / t_long)
                 results[m + "_marginal"].append(60.0 * (n - short) / (t_long - t_short))
             print("round %d: %s  (load %.1f)" % (r + 1, "  ".join(

@@ -81,7 +81,8 @@ within lying_angle of horizontal.
       .def_readwrite("min_rest", &FallRecordDef::min_rest)
       .def_readwrite("torso_link", &FallRecordDef::torso_link)
       .def_property(
-          "up", [](const FallRecordDef& d) { return std::vector<double>{d.up.x(), d.up.y(), d.up.z()}; },
+          "up",
+          [](const FallRecordDef& d) { return std::vector<double>{d.up.x(), d.up.y(), d.up.z()}; },
           [](FallRecordDef& d, const py::handle& v) { d.up = toVec3(v, "up"); })
       .def_property(
           "forward",
@@ -116,8 +117,9 @@ the rest pose (root position, roll / pitch / yaw, class).
       .def_readonly("roll", &FallRecord::roll)
       .def_readonly("pitch", &FallRecord::pitch)
       .def_readonly("yaw", &FallRecord::yaw)
-      .def_property_readonly("rest_class", [](const FallRecord& r) { return restClassName(r.rest); },
-                             "'upright', 'supine', 'prone', 'side' or 'other'.")
+      .def_property_readonly(
+          "rest_class", [](const FallRecord& r) { return restClassName(r.rest); },
+          "'upright', 'supine', 'prone', 'side' or 'other'.")
       .def_readonly("duration", &FallRecord::duration)
       .def_readonly("samples", &FallRecord::samples);
 
@@ -167,7 +169,8 @@ A world file parsed once (FallWorld.from_file), for any number of run_fall calls
         py::arg("linear_velocity") = py::make_tuple(0.0, 0.0, 0.0),
         py::arg("angular_velocity") = py::make_tuple(0.0, 0.0, 0.0), py::arg("push_link") = "",
         py::arg("push_impulse") = py::make_tuple(0.0, 0.0, 0.0), py::arg("friction") = 0.8,
-        py::arg("restitution") = 0.0, py::arg("contact_hertz") = 0.0, py::arg("dt") = 0.001, py::arg("steps") = 3000,
+        py::arg("restitution") = 0.0, py::arg("contact_hertz") = 0.0, py::arg("dt") = 0.001,
+        py::arg("steps") = 3000,
         py::arg("record") = FallRecordDef(), R"doc(
 One fall in C++ (the GIL released): a Scene of step dt (s) with `world` (a FallWorld, or None:
 the ground plane), every surface of friction (static = kinetic), restitution and contact_hertz

@@ -51,7 +51,8 @@ FallRecord runFall(const FallRunDef& d) {
     const uint64_t rejected = scene.counters().rejected;
     scene.submit(d.name, push, scene.timeNs());
     scene.applyDueCommands();
-    if (scene.counters().rejected != rejected) throw std::invalid_argument("push: " + problems.text);
+    if (scene.counters().rejected != rejected)
+      throw std::invalid_argument("push: " + problems.text);
   }
   FallRecorder recorder(scene, d.name, d.record);
   recorder.run(scene, d.steps);

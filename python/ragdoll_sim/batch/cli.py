@@ -129,7 +129,8 @@ def parser():
     sub = p.add_subparsers(dest="command", required=True)
     r = sub.add_parser("run", help="run the falls of a scenario into a CSV (resumable)")
     r.add_argument("scenario", help="scenario YAML file (docs/batch.md)")
-    r.add_argument("--runs", default="0:100", help="START:END (END excluded) or COUNT; default 0:100")
+    r.add_argument("--runs", default="0:100",
+                   help="START:END (END excluded) or COUNT; default 0:100")
     r.add_argument("--out", required=True, help="results CSV; runs already in it are skipped")
     r.add_argument("--scheduler", help="Dask scheduler address tcp://HOST:PORT")
     r.add_argument("--workers", type=int, help="1: in this process; N: a local Dask cluster of N "

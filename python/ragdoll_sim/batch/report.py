@@ -134,7 +134,8 @@ def summary(df, source=""):
     for text in broken:
         for j in filter(None, text.split(";")):
             per_joint[j] = per_joint.get(j, 0) + 1
-    lines += ["", "## Broken joints", "", "- runs with a broken joint: %d" % int((broken != "").sum())]
+    lines += ["", "## Broken joints", "",
+              "- runs with a broken joint: %d" % int((broken != "").sum())]
     for j, k in sorted(per_joint.items(), key=lambda kv: (-kv[1], kv[0])):
         lines.append("- %s: %d" % (j, k))
     forces = [c for c in df.columns if c.startswith("force_")]
@@ -143,7 +144,8 @@ def summary(df, source=""):
                   "| link | median | max |", "|---|---|---|"]
         for c in forces:
             v = ok[c].to_numpy(dtype=float)
-            lines.append("| %s | %s | %s |" % (c[len("force_"):], _fmt(np.median(v)) if len(v) else "-",
+            lines.append("| %s | %s | %s |" % (c[len("force_"):],
+                                              _fmt(np.median(v)) if len(v) else "-",
                                               _fmt(v.max()) if len(v) else "-"))
     lines += ["", "Plots: hic_histogram.png, push_vs_hic.png, rest_heatmap.png", ""]
     return "\n".join(lines)

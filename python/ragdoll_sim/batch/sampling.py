@@ -40,8 +40,8 @@ def uniform01(seed, index, stream, counter):
 def det_log(x):
     """Natural logarithm of a finite x > 0 with basic IEEE operations only (same bits anywhere).
 
-    x = m 2^e with m in [sqrt(1/2), sqrt(2)); log m = 2 atanh(z), z = (m - 1) / (m + 1), |z| < 0.172,
-    whose series to z^31 is below 1e-17 relative.
+    x = m 2^e with m in [sqrt(1/2), sqrt(2)); log m = 2 atanh(z), z = (m - 1) / (m + 1),
+    |z| < 0.172, whose series to z^31 is below 1e-17 relative.
     """
     m, e = math.frexp(x)
     if m < _SQRT_HALF:
