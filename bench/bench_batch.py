@@ -9,12 +9,16 @@ on disjoint ranges at once (2 cores); `--workers 2` (a local Dask cluster, 2 cor
 mode runs twice, with 2 and with --runs runs per core: "total" is the runs per minute per core of
 the long one, start-up included (Python, the model and world parsed, the Dask cluster started);
 "marginal" is (runs_long - runs_short) / (time_long - time_short) per core, the rate once
-started. Prints the medians over the rounds and the ratios to bench_fall.
+started; "cpu_marginal" the same per CPU minute (user + system time of every process, Dask's
+workers included): on a busy machine the wall rates of 2 processes fall with the load, the CPU
+rates show what the batch itself costs. Prints the medians over the rounds and the ratios to
+bench_fall (its wall rate; bench_fall_cpu is its rate per CPU minute).
 Needs the workspace sourced (ragdoll_sim importable).
 """
 import argparse
 import os
 import re
+import resource
 import statistics
 import subprocess
 import sys
@@ -26,8 +30,16 @@ SCENARIO = os.path.join(ROOT, "bench", "fall_3s.yaml")
 BATCH = [sys.executable, os.path.join(ROOT, "scripts", "ragdoll_batch"), "run", SCENARIO]
 
 
+def cpu_children():
+    """CPU seconds (user + system) of the finished child processes and their descendants."""
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
 def timed(cmds):
-    """Wall seconds of the commands started together, each checked."""
+    """(wall s, CPU s) of the commands started together, each checked; the CPU time includes
+    their descendants (Dask's worker processes)."""
+    c0 = cpu_children()
     t0 = time.perf_counter()
     procs = [subprocess.Popen(c, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
              for c in cmds]
@@ -35,7 +47,7 @@ def timed(cmds):
         _, err = p.communicate()
         if p.returncode != 0:
             sys.exit("failed: %s\n%s" % (" ".join(p.args), err))
-    return time.perf_counter() - t0
+    return time.perf_counter() - t0, cpu_children() - c0
 
 
 def main():
@@ -54,24 +66,27 @@ def main():
         "batch_dask2": (2, lambda k, f: [BATCH + ["--runs", "0:%d" % (2 * k), "--workers", "2",
                                                   "--out", f("dask")]]),
     }
-    results = {"bench_fall": []}
+    results = {"bench_fall": [], "bench_fall_cpu": []}
     for m in modes:
-        results[m + "_total"] = []
-        results[m + "_marginal"] = []
+        for kind in ("total", "marginal", "cpu_marginal"):
+            results[m + "_" + kind] = []
     short = 2
     with tempfile.TemporaryDirectory() as tmp:
         for r in range(a.rounds):
+            c0 = cpu_children()
             out = subprocess.run([a.bench_fall, "--runs", str(n)], capture_output=True, text=True,
                                  check=True).stdout
             s = float(re.search(r"s_per_fall_median=([0-9.]+)", out).group(1))
             results["bench_fall"].append(60.0 / s)
+            results["bench_fall_cpu"].append(60.0 * n / (cpu_children() - c0))
             for m, (cores, cmds) in modes.items():
                 def f(k):
                     return lambda name: os.path.join(tmp, "%s_%s_%d_%d.csv" % (m, name, k, r))
-                t_short = timed(cmds(short, f(short)))
-                t_long = timed(cmds(n, f(n)))
+                t_short, c_short = timed(cmds(short, f(short)))
+                t_long, c_long = timed(cmds(n, f(n)))
                 results[m + "_total"].append(60.0 * n / t_long)
                 results[m + "_marginal"].append(60.0 * (n - short) / (t_long - t_short))
+                results[m + "_cpu_marginal"].append(60.0 * cores * (n - short) / (c_long - c_short))
             print("round %d: %s  (load %.1f)" % (r + 1, "  ".join(
                 "%s %.1f" % (k, v[-1]) for k, v in results.items()), os.getloadavg()[0]),
                 flush=True)
