@@ -21,11 +21,12 @@ def reference(scen):
 
 
 @pytest.fixture(scope="module")
-def cluster():
+def cluster(tmp_path_factory):
     """One LocalCluster of 2 single-thread workers shared by the tests that pass its address."""
     from distributed import LocalCluster
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1",
-                      dashboard_address=None) as c:
+                      dashboard_address=None,
+                      local_directory=str(tmp_path_factory.mktemp("dask"))) as c:
         yield c
 
 
