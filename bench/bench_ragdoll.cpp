@@ -24,6 +24,7 @@
 #include <string>
 
 #include "joint_angles.hpp"
+#include "ragdoll_sim/state_hash.hpp"
 #include "ragdoll_sim/urdf_loader.hpp"
 #include "scaling_grid.hpp"
 #include "static_world.hpp"
@@ -189,21 +190,6 @@ struct Metrics {
   }
 };
 
-// FNV-1a over the bits of every body's pose and velocities, folded into h.
-uint64_t hashStates(const World& world, uint64_t h) {
-  for (int i = 0; i < world.bodyCount(); ++i) {
-    const BodyState st = world.bodyState(BodyId{i});
-    const double v[13] = {st.pose.p.x(), st.pose.p.y(), st.pose.p.z(), st.pose.q.w(),
-                          st.pose.q.x(), st.pose.q.y(), st.pose.q.z(), st.linear_velocity.x(),
-                          st.linear_velocity.y(), st.linear_velocity.z(),
-                          st.angular_velocity.x(), st.angular_velocity.y(),
-                          st.angular_velocity.z()};
-    const auto* bytes = reinterpret_cast<const unsigned char*>(v);
-    for (size_t k = 0; k < sizeof v; ++k) h = (h ^ bytes[k]) * 1099511628211ull;
-  }
-  return h;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -359,7 +345,7 @@ int main(int argc, char** argv) {
   // from one that changes the cost of a step.
   long awake_body_steps = 0;
   long resting_body_steps = 0;  // of those, in islands on the rest substeps (SleepDef::rest_substeps)
-  uint64_t state_hash = 14695981039346656037ull;
+  uint64_t state_hash = kFnvOffsetBasis;
   const int window = std::min(1000, steps);
   const auto loop0 = std::chrono::steady_clock::now();
   for (int step = 1; step <= steps; ++step) {
