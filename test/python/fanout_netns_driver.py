@@ -1,32 +1,41 @@
-"""Driver of test_netns, run inside host 1: waits for both hosts' workers, runs the falls.
+"""Driver of test_netns, run inside host 1: `ragdoll_batch run` against both hosts' workers.
 
-Usage: fanout_netns_driver.py SCHEDULER N OUT.csv
+Usage: fanout_netns_driver.py SCHEDULER SCENARIO RUNS OUT.csv
+Waits for the two workers, runs the CLI with --scheduler, then prints the chunks each worker ran.
 """
 
+import os
+import subprocess
 import sys
 import time
 
-import fanout_support as fs
+ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 
 
 def main():
     from distributed import Client
-    from ragdoll_sim.batch import fanout
-    scheduler, n, out = sys.argv[1], int(sys.argv[2]), sys.argv[3]
+    scheduler, scenario, runs, out = sys.argv[1:5]
     with Client(scheduler, timeout=20, set_as_default=False) as client:
         client.wait_for_workers(2, timeout=30)
         workers = sorted(client.scheduler_info()["workers"])
-    print(f"scheduler {scheduler}: workers {', '.join(workers)}")
-    rows = []
+    print(f"scheduler {scheduler}, workers: {', '.join(workers)}")
+    cmd = ["ragdoll_batch", "run", os.path.relpath(scenario, ROOT), "--runs", runs,
+           "--out", os.path.basename(out), "--scheduler", scheduler]
+    print("$ " + " ".join(cmd))
     t0 = time.time()
-    fanout.run(fs.scenario(), range(n), rows.extend, scheduler=scheduler, task=fs.run_chunk)
+    r = subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "ragdoll_batch"), "run",
+                        scenario, "--runs", runs, "--out", out, "--scheduler", scheduler],
+                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    print(r.stdout.rstrip())
+    if r.returncode != 0:
+        return r.returncode
     elapsed = time.time() - t0
-    fs.write_csv(rows, out)
     with Client(scheduler, timeout=20, set_as_default=False) as client:
         done = client.run(lambda dask_worker: dask_worker.state.executed_count)
-    print(f"{n} falls in {elapsed:.1f} s; chunks per worker: "
+    print(f"{elapsed:.1f} s; chunks run per worker: "
           + ", ".join(f"{w} {done[w]}" for w in sorted(done)))
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

@@ -8,31 +8,22 @@ import sys
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
+SCENARIO = os.path.join(HERE, "data", "fanout_short.yaml")
 #: Environment variable naming the file where logged_run_chunk appends one line per chunk start.
 LOG_ENV = "RAGDOLL_FANOUT_TEST_LOG"
 DASK_SCHEDULER = "/usr/bin/dask-scheduler"
 DASK_WORKER = "/usr/bin/dask-worker"
-STANDIN = os.environ.get("FANOUT_STANDIN") == "1"  # TEMPORARY until runner.py lands
 
 
 def scenario():
     """The validated short-fall scenario the fan-out tests run."""
-    if STANDIN:
-        return {"seed": 7, "sleep": 0.02}
     from ragdoll_sim.batch import scenario as scenario_mod
-    return scenario_mod.load(os.path.join(HERE, "data", "fanout_short.yaml"))
+    return scenario_mod.load(SCENARIO)
 
 
 def run_chunk(scen, indices):
     """The real runner's run_chunk (the reference of every comparison)."""
-    if STANDIN:
-        import hashlib
-        out = []
-        for i in indices:
-            time.sleep(scen["sleep"])
-            h = hashlib.sha256(f"{scen['seed']}-{i}".encode()).hexdigest()
-            out.append({"index": i, "h": h, "x": int(h[:8], 16) / 2**32})
-        return out
     from ragdoll_sim.batch import runner
     return runner.run_chunk(scen, indices)
 
@@ -139,15 +130,9 @@ def tail(path, n=30):
         return ""
 
 
-def write_csv(rows, path):
-    """Rows sorted by index as CSV, floats by repr (exact)."""
-    import csv
-    rows = sorted(rows, key=lambda r: r["index"])
-    with open(path, "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(list(rows[0]))
-        for r in rows:
-            w.writerow([repr(v) if isinstance(v, float) else v for v in r.values()])
+def ragdoll_batch(*args):
+    """The command line of scripts/ragdoll_batch with args, run by this Python."""
+    return [sys.executable, os.path.join(ROOT, "scripts", "ragdoll_batch"), *args]
 
 
 def csv_lines(path):

@@ -89,20 +89,23 @@ def test_two_hosts_give_the_single_process_csv(hosts, tmp_path):
         out = tmp_path / "falls.csv"
         driver = subprocess.run(
             in_ns(h1) + [sys.executable, os.path.join(fs.HERE, "fanout_netns_driver.py"),
-                         scheduler, str(N), str(out)],
+                         scheduler, fs.SCENARIO, f"0:{N}", str(out)],
             capture_output=True, text=True, env=env, timeout=50)
         logs = {name: fs.tail(tmp_path / f"{name}.log") for name in procs}
         assert driver.returncode == 0, f"{driver.stdout}\n{driver.stderr}\n{logs}"
-        print(f"\n$ ip netns exec {h1} <driver> {scheduler} {N} falls.csv\n{driver.stdout}")
+        print(f"\n(in host 1, namespace {h1}; host 2 is {h2})\n{driver.stdout}")
 
         reference = tmp_path / "reference.csv"
-        fs.write_csv(fs.run_chunk(fs.scenario(), list(range(N))), reference)
+        single = subprocess.run(fs.ragdoll_batch("run", fs.SCENARIO, "--runs", f"0:{N}",
+                                                 "--out", str(reference), "--workers", "1"),
+                                capture_output=True, text=True, env=env, timeout=50)
+        assert single.returncode == 0, single.stderr
         got, want = fs.csv_lines(out), fs.csv_lines(reference)
         assert got[0] == want[0], "the header differs"
+        assert len(got) == N + 1, f"{len(got) - 1} rows, expected {N}"
         assert sorted(got[1:]) == sorted(want[1:]), "the rows differ from the single-process run"
-        assert len(got) == N + 1
-        print(f"falls.csv equals the single-process run: {N} rows "
-              f"({time.time() - t0:.1f} s in all)")
+        print(f"falls.csv has the {N} rows of the single-process run (--workers 1), "
+              f"{time.time() - t0:.1f} s in all")
     finally:
         for proc in procs.values():
             fs.kill_group(proc)

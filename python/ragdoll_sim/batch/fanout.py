@@ -272,8 +272,9 @@ def _result(future, part, where):
         raise FanoutError(f"run {exc.index} failed on a worker of {where}: {exc.message}") \
             from None
     except KilledWorker as exc:
-        raise FanoutError(f"runs {part[0]}..{part[-1]} were on {exc.allowed_failures + 1} "
-                          f"workers of {where} that died (allowed-failures "
+        n = exc.allowed_failures + 1
+        raise FanoutError(f"runs {part[0]}..{part[-1]} were lost with {n} dying worker"
+                          f"{'s' if n > 1 else ''} of {where} (allowed-failures "
                           f"{exc.allowed_failures}): a crash of the simulation is likely; run "
                           "them in one process (ragdoll_batch run --workers 1) to see it") from None
     except (ImportError, AttributeError) as exc:
