@@ -12,7 +12,7 @@ the long one, start-up included (Python, the model and world parsed, the Dask cl
 started; "cpu_marginal" the same per CPU minute (user + system time of every process, Dask's
 workers included): on a busy machine the wall rates of 2 processes fall with the load, the CPU
 rates show what the batch itself costs. Prints the medians over the rounds and the ratios to
-bench_fall (its wall rate; bench_fall_cpu is its rate per CPU minute).
+bench_fall's (wall rates to its wall rate, CPU rates to its rate per CPU minute).
 Needs the workspace sourced (ragdoll_sim importable).
 """
 import argparse
@@ -91,10 +91,13 @@ def main():
                 "%s %.1f" % (k, v[-1]) for k, v in results.items()), os.getloadavg()[0]),
                 flush=True)
     ref = statistics.median(results["bench_fall"])
-    print("median runs/min per core:")
+    ref_cpu = statistics.median(results["bench_fall_cpu"])
+    print("median runs/min per core (wall), per CPU minute (cpu):")
     for k, v in results.items():
         m = statistics.median(v)
-        print("  %-22s %7.1f  (%.2fx bench_fall)" % (k, m, m / ref))
+        cpu = "cpu" in k
+        print("  %-26s %7.1f  (%.2fx bench_fall%s)" % (k, m, m / (ref_cpu if cpu else ref),
+                                                     "_cpu" if cpu else ""))
 
 
 if __name__ == "__main__":

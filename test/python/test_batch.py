@@ -211,3 +211,22 @@ def test_report_writes_pngs_and_counts(short, tmp_path):
     assert "| HIC15 | " in md and "| 800 |" in md
     df = report.read_results(path)
     assert list(df["index"]) == list(range(8))
+
+
+def test_fall_recorder_on_a_scene():
+    import ragdoll_sim
+    scene = ragdoll_sim.Scene()
+    model = runner.model(os.path.join(ROOT, "urdf", "ragdoll.urdf"))
+    scene.spawn("r", model, position=(0, 0, 0.3), rpy=(0, -math.pi / 2, 0))  # on its back
+    rec = ragdoll_sim.FallRecorder(scene, "r")
+    rec.run(scene, 800)
+    f = rec.record(scene)
+    assert f.rest_class == "supine"
+    assert f.links == model.link_names and len(f.peak_contact_force) == len(f.links)
+    assert 0 < f.time_to_rest < 0.8 and not f.nan and f.broken_joints == []
+    with pytest.raises(ValueError, match="no ragdoll 'nobody'"):
+        ragdoll_sim.FallRecorder(scene, "nobody")
+    d = ragdoll_sim.FallRecordDef()
+    d.torso_link = "chest"
+    with pytest.raises(ValueError, match="'chest' \\(torso_link\\)"):
+        ragdoll_sim.FallRecorder(scene, "r", d)

@@ -56,7 +56,7 @@ def det_log(x):
 
 
 class Draws:
-    """The draws of one run: draw(kind, spec, name) for each parameter, by name."""
+    """The draws of one run (seed, index): uniform, normal and choice values by parameter name."""
 
     def __init__(self, seed, index):
         self.seed = seed

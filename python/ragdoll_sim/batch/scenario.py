@@ -17,7 +17,7 @@ class ScenarioError(ValueError):
 # Spawn pose and velocity of the root link: field -> default (m, rad, m/s, rad/s).
 SPAWN_FIELDS = [("x", 0.0), ("y", 0.0), ("z", 1.1), ("roll", 0.0), ("pitch", 0.0), ("yaw", 0.0),
                 ("vx", 0.0), ("vy", 0.0), ("vz", 0.0), ("wx", 0.0), ("wy", 0.0), ("wz", 0.0)]
-# FallRecordDef fields a scenario may set (constants): name -> (default, lower bound).
+# FallRecordDef fields a scenario may set (constants, >= 0): name -> default.
 RECORD_FIELDS = {"rest_speed": 0.05, "rest_angular_speed": 0.5, "min_rest": 0.2}
 MAX_PUSH = 1000.0  # N s: the scene's max_impulse
 TOP_FIELDS = ["seed", "duration", "dt", "world", "model", "spawn", "push", "material", "record"]
