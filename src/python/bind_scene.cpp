@@ -180,10 +180,23 @@ then hold what happened in these n steps.
       [](const PyScene& s, const std::string& name) { return s.scene().isObject(s.index(name)); },
       py::arg("name"), "True for a dynamic object, False for a ragdoll.");
   cls.def(
-      "state_hash", [](const PyScene& s) { return hashStates(s.scene().world()); },
-      pydoc(R"doc(
-The determinism hash: FNV-1a over the bits of every body's pose and velocities (the same
-function as bench_ragdoll's state_hash). Equal hashes: the same state bit for bit.
+      "state_hash",
+      [](const PyScene& s, const py::object& seed) {
+        uint64_t h = kFnvOffsetBasis;
+        if (!seed.is_none()) {
+          if (!py::isinstance<py::int_>(seed) || seed < py::int_(0) ||
+              seed.attr("bit_length")().cast<int>() > 64)
+            throw std::invalid_argument("seed must be an int in [0, 2**64), got " +
+                                        std::string(py::str(py::repr(seed))));
+          h = seed.cast<uint64_t>();
+        }
+        return hashStates(s.scene().world(), h);
+      },
+      py::arg("seed") = py::none(), pydoc(R"doc(
+The determinism hash: FNV-1a over the bits of every body's pose (x y z, qw qx qy qz) and
+linear and angular velocity, in body order, folded into seed (None: the FNV offset basis). The
+same function as bench_ragdoll's state_hash, which folds it after every step (h =
+scene.state_hash(h)). Equal hashes: the same state bit for bit.
 )doc"));
   cls.def(
       "messages",
