@@ -3,6 +3,7 @@
 #include <pybind11/stl.h>
 
 #include "convert.hpp"
+#include "bindings.hpp"
 #include "py_scene.hpp"
 
 namespace py = pybind11;
@@ -36,13 +37,13 @@ void bindSceneCommands(py::class_<PyScene>& cls) {
         s.command(name, c);
       },
       py::arg("name"), py::arg("link"), py::arg("impulse"),
-      py::arg("point") = py::none(), py::arg("frame") = "world", R"doc(
+      py::arg("point") = py::none(), py::arg("frame") = "world", pydoc(R"doc(
 An impulse (N s) on `link` of ragdoll `name`, now: the link's velocity changes by impulse / mass
-(and its spin by the moment about its centre of mass). frame 'world': point and impulse in
-world coordinates; 'link': point relative to the link origin, impulse in link axes. point None:
-the link's centre of mass (no spin). Capped as the node's are
-(1000 N s, lever arm 10 m): ValueError naming the limit, the link or the ragdoll.
-)doc");
+(and its spin by the moment about its centre of mass). frame 'world': point and impulse in world
+coordinates; 'link': point relative to the link origin, impulse in link axes. point None: the
+link's centre of mass (no spin). Capped as the node's are (1000 N s, lever arm 10 m): ValueError
+naming the limit, the link or the ragdoll.
+)doc"));
   cls.def(
       "apply_force",
       [](PyScene& s, const std::string& name, const std::string& link, const py::object& force,
@@ -62,11 +63,12 @@ the link's centre of mass (no spin). Capped as the node's are
       py::arg("name"), py::arg("link"), py::arg("force"),
       py::arg("torque") = py::make_tuple(0.0, 0.0, 0.0),
       py::arg("point") = py::none(), py::arg("frame") = "world",
-      py::arg("duration") = 0.0, R"doc(
-A force (N) and torque (N m) on `link` of ragdoll `name`, applied every step for `duration` s
-of sim time (0: one step; < 0: until clear_forces()). Frames as apply_impulse (point None: the
-centre of mass); the point stays fixed in the link, the vectors in world axes. ValueError when refused.
-)doc");
+      py::arg("duration") = 0.0, pydoc(R"doc(
+A force (N) and torque (N m) on `link` of ragdoll `name`, applied every step for `duration` s of
+sim time (0: one step; < 0: until clear_forces()). Frames as apply_impulse (point None: the
+centre of mass); the point stays fixed in the link, the vectors in world axes. ValueError when
+refused.
+)doc"));
   cls.def(
       "apply_joint_efforts",
       [](PyScene& s, const std::string& name, const py::object& efforts, double duration) {
@@ -78,11 +80,11 @@ centre of mass); the point stays fixed in the link, the vectors in world axes. V
         c.duration = duration;
         s.command(name, c);
       },
-      py::arg("name"), py::arg("efforts"), py::arg("duration") = -1.0, R"doc(
+      py::arg("name"), py::arg("efforts"), py::arg("duration") = -1.0, pydoc(R"doc(
 Torques (N m; N for a prismatic axis) about joint axes, {joint_states name: effort}, equal and
-opposite on the joint's two links, every step for `duration` s (< 0: until replaced or
-cleared). Names as joint_names(name). ValueError naming an unknown joint.
-)doc");
+opposite on the joint's two links, every step for `duration` s (< 0: until replaced or cleared).
+Names as joint_names(name). ValueError naming an unknown joint.
+)doc"));
   cls.def(
       "set_joint_targets",
       [](PyScene& s, const std::string& name, const py::object& positions) {
@@ -93,10 +95,10 @@ cleared). Names as joint_names(name). ValueError naming an unknown joint.
         }
         s.command(name, c);
       },
-      py::arg("name"), py::arg("positions"), R"doc(
+      py::arg("name"), py::arg("positions"), pydoc(R"doc(
 Position targets (rad; m for a prismatic axis), {joint_states name: position}, for the joint
 motors of ragdoll `name`. ValueError naming an unknown joint.
-)doc");
+)doc"));
   cls.def(
       "clear_forces", [](PyScene& s) { return s.scene().clearForces(); },
       "Ends every active force and joint effort; returns how many ended.");

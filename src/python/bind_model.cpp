@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include "py_model.hpp"
+#include "bindings.hpp"
 #include "py_scene.hpp"
 #include "ragdoll_sim/urdf_loader.hpp"
 
@@ -24,12 +25,12 @@ PyModel loaded(UrdfLoadResult result, const std::string& what) {
 }  // namespace
 
 void bindModel(py::module_& m) {
-  py::class_<PyModel>(m, "Model", R"doc(
+  py::class_<PyModel>(m, "Model", pydoc(R"doc(
 A model (robot or ragdoll) read from URDF: links, joints, shapes, masses. Immutable; spawn it
 into a Scene as many times as you like under different names (Scene.spawn).
 
     model = ragdoll_sim.Model.from_file("urdf/ragdoll.urdf")
-)doc")
+)doc"))
       .def_static(
           "from_file",
           [](const std::string& path, bool load_meshes) {

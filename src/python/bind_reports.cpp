@@ -3,6 +3,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include "bindings.hpp"
 #include "py_scene.hpp"
 
 namespace py = pybind11;
@@ -22,7 +23,8 @@ Array rows(size_t n, size_t columns) {
 
 void put(py::detail::unchecked_mutable_reference<double, 2>& a, size_t row, size_t col,
          const Vec3& v) {
-  for (int i = 0; i < 3; ++i) a(static_cast<py::ssize_t>(row), static_cast<py::ssize_t>(col) + i) = v[i];
+  const auto r = static_cast<py::ssize_t>(row), c = static_cast<py::ssize_t>(col);
+  for (int i = 0; i < 3; ++i) a(r, c + i) = v[i];
 }
 
 py::object strings(const std::vector<std::string>& v) {
@@ -32,11 +34,11 @@ py::object strings(const std::vector<std::string>& v) {
 }  // namespace
 
 void bindInjury(py::module_& m) {
-  py::class_<InjuryReport>(m, "InjuryReport", R"doc(
+  py::class_<InjuryReport>(m, "InjuryReport", pydoc(R"doc(
 One fall's head injury metrics (docs/injury.md): peak proper acceleration of the head (g), HIC
 over 15 and 36 ms windows, peak angular acceleration, the neck's peak force and torque. Times
 are s of sim time. to_dict() gives every field.
-)doc")
+)doc"))
       .def_readonly("ragdoll", &InjuryReport::ragdoll)
       .def_readonly("head_link", &InjuryReport::head_link)
       .def_readonly("neck_joint", &InjuryReport::neck_joint)
@@ -116,10 +118,10 @@ void bindSceneReports(py::class_<PyScene>& cls) {
         }
         return out;
       },
-      py::arg("name"), R"doc(
+      py::arg("name"), pydoc(R"doc(
 Link velocities of ragdoll `name`, world axes: float64 array (links, 6) of vx vy vz (of the link
 origin, m/s) wx wy wz (rad/s).
-)doc");
+)doc"));
   cls.def(
       "link_coms",
       [](const PyScene& s, const std::string& name) {
@@ -127,7 +129,8 @@ origin, m/s) wx wy wz (rad/s).
         const size_t n = s.scene().def(k).links.size();
         Array out = rows(n, 3);
         auto a = out.mutable_unchecked<2>();
-        for (size_t i = 0; i < n; ++i) put(a, i, 0, s.scene().linkState(k, static_cast<int>(i)).com);
+        for (size_t i = 0; i < n; ++i)
+          put(a, i, 0, s.scene().linkState(k, static_cast<int>(i)).com);
         return out;
       },
       py::arg("name"), "Link centres of mass of ragdoll `name` in the world: array (links, 3), m.");
@@ -142,10 +145,10 @@ origin, m/s) wx wy wz (rad/s).
         s.scene().jointEfforts(s.index(name), e);
         return Array(static_cast<py::ssize_t>(e.size()), e.data());
       },
-      py::arg("name"), R"doc(
-Axis efforts of ragdoll `name` in the last step (motor + limit + commanded effort), N m or N,
-in joint_names order: float64 array.
-)doc");
+      py::arg("name"), pydoc(R"doc(
+Axis efforts of ragdoll `name` in the last step (motor + limit + commanded effort), N m or N, in
+joint_names order: float64 array.
+)doc"));
   cls.def(
       "contacts",
       [](const PyScene& s) {
@@ -178,12 +181,12 @@ in joint_names order: float64 array.
                         "point"_a = point, "normal"_a = normal, "force"_a = force,
                         "normal_force"_a = normal_force, "depth"_a = depth);
       },
-      R"doc(
+      pydoc(R"doc(
 Contact points after the last step, one row each, as a dict of NumPy arrays: body_a, body_b
-(names "ragdoll/link", "object/link", "ground"), point (n, 3) m, normal (n, 3) unit from A to
-B, force (n, 3) N on B (normal + friction; A takes the opposite), normal_force (n,) N,
-depth (n,) m (> 0: overlapping).
-)doc");
+(names "ragdoll/link", "object/link", "ground"), point (n, 3) m, normal (n, 3) unit from A to B,
+force (n, 3) N on B (normal + friction; A takes the opposite), normal_force (n,) N, depth (n,) m
+(> 0: overlapping).
+)doc"));
   cls.def(
       "impacts",
       [](const PyScene& s) {
@@ -212,11 +215,11 @@ depth (n,) m (> 0: overlapping).
                         "separating_speed"_a = separating, "impulse"_a = impulse,
                         "peak_force"_a = peak);
       },
-      R"doc(
+      pydoc(R"doc(
 Impact events of the last step(n) call (Scene(impacts=True)), as a dict of NumPy arrays:
-ragdoll, link (the link hit), other (the body it hit), time s, point (n, 3), normal (n, 3)
-into the link, closing_speed and separating_speed m/s, impulse N s, peak_force N.
-)doc");
+ragdoll, link (the link hit), other (the body it hit), time s, point (n, 3), normal (n, 3) into
+the link, closing_speed and separating_speed m/s, impulse N s, peak_force N.
+)doc"));
   cls.def(
       "injury",
       [](const PyScene& s, const std::string& name) {
@@ -226,11 +229,11 @@ into the link, closing_speed and separating_speed m/s, impulse N s, peak_force N
                                       "' has no head link: it keeps no injury record");
         return s.scene().injury(k);
       },
-      py::arg("name"), R"doc(
-The injury record of ragdoll `name` so far (reason ''): an InjuryReport. A record starts when
-a link moves faster than 0.5 m/s and ends at rest (then listed by ended_falls()). ValueError
-when the ragdoll has no head link (injury=False, or an object).
-)doc");
+      py::arg("name"), pydoc(R"doc(
+The injury record of ragdoll `name` so far (reason ''): an InjuryReport. A record starts when a
+link moves faster than 0.5 m/s and ends at rest (then listed by ended_falls()). ValueError when
+the ragdoll has no head link (injury=False, or an object).
+)doc"));
   cls.def(
       "reset_injury",
       [](PyScene& s, const std::string& name) {
@@ -254,7 +257,8 @@ when the ragdoll has no head link (injury=False, or an object).
                               "force"_a = b.force, "torque"_a = b.torque));
         return out;
       },
-      "Joints that broke during the last step(n) call: dicts ragdoll, joint, links, force N, torque N m.");
+      "Joints that broke during the last step(n) call: dicts ragdoll, joint, parent_link, "
+      "child_link, force N, torque N m.");
   cls.def(
       "counters",
       [](const PyScene& s) {

@@ -54,7 +54,8 @@ void spawn(PyScene& s, const std::string& name, const PyModel& model, const py::
   spawn.fixed_base = fixed_base;
   spawn.balance = balance;
   const bool moving = !linear_velocity.is_none() || !angular_velocity.is_none();
-  const Vec3 v = linear_velocity.is_none() ? Vec3::Zero() : toVec3(linear_velocity, "linear_velocity");
+  const Vec3 v =
+      linear_velocity.is_none() ? Vec3::Zero() : toVec3(linear_velocity, "linear_velocity");
   const Vec3 w =
       angular_velocity.is_none() ? Vec3::Zero() : toVec3(angular_velocity, "angular_velocity");
   if (moving && (is_static || fixed_base))
@@ -78,12 +79,12 @@ void spawn(PyScene& s, const std::string& name, const PyModel& model, const py::
 void bindScene(py::module_& m) {
   bindModel(m);
   bindInjury(m);
-  py::class_<PyScene> cls(m, "Scene", R"doc(
+  py::class_<PyScene> cls(m, "Scene", pydoc(R"doc(
 The ROS-free simulation: ragdolls and objects by name, pushes, a fixed-step clock, contact,
 impact and injury reports. The same engine and rules as ragdoll_sim_node, without ROS.
 
-Deterministic: the same calls in the same order give the same states bit for bit
-(state_hash()), on any number of threads. Not thread-safe: use one Scene per thread.
+Deterministic: the same calls in the same order give the same states bit for bit (state_hash()),
+on any number of threads. Not thread-safe: use one Scene per thread.
 
     scene = ragdoll_sim.Scene(dt=0.001)
     scene.spawn("ragdoll", ragdoll_sim.Model.from_file("urdf/ragdoll.urdf"), position=(0, 0, 1.2))
@@ -93,7 +94,7 @@ Deterministic: the same calls in the same order give the same states bit for bit
 
 Errors: ValueError for bad arguments (unknown ragdoll, link or joint, a bad pose, a name in
 use), RuntimeError for files that do not load; the message names what is wrong.
-)doc");
+)doc"));
   cls.def(py::init([](double dt, const py::object& gravity, bool ground, bool sleep, int threads,
                       bool impacts, bool injury, const std::string& spawn_overlap) {
             return std::make_unique<PyScene>(sceneDef(dt, gravity, ground, sleep, threads, impacts,
@@ -102,13 +103,13 @@ use), RuntimeError for files that do not load; the message names what is wrong.
           py::arg("dt") = 0.001, py::arg("gravity") = py::make_tuple(0.0, 0.0, -9.81),
           py::arg("ground") = true, py::arg("sleep") = true, py::arg("threads") = 1,
           py::arg("impacts") = false, py::arg("injury") = true,
-          py::arg("spawn_overlap") = "lift", R"doc(
-dt: the fixed step, s. gravity: (x, y, z), m/s^2. ground: a static plane z = 0.
-sleep: resting islands sleep (cheaper; off: every body is solved every step).
-threads: islands solved in parallel (0: all cores); the result does not depend on it.
-impacts: record impact events (impacts()). injury: keep each ragdoll's head injury record.
-spawn_overlap: 'lift' a model spawned into static geometry out of it, or 'refuse' it.
-)doc");
+          py::arg("spawn_overlap") = "lift", pydoc(R"doc(
+dt: the fixed step, s. gravity: (x, y, z), m/s^2. ground: a static plane z = 0. sleep: resting
+islands sleep (cheaper; off: every body is solved every step). threads: islands solved in
+parallel (0: all cores); the result does not depend on it. impacts: record impact events
+(impacts()). injury: keep each ragdoll's head injury record. spawn_overlap: 'lift' a model
+spawned into static geometry out of it, or 'refuse' it.
+)doc"));
   cls.def(
       "load_world",
       [](PyScene& s, const std::string& path, bool strict) {
@@ -121,25 +122,25 @@ spawn_overlap: 'lift' a model spawned into static geometry out of it, or 'refuse
           throw std::runtime_error(path + ": " + error);
         return worldSummaryLine(loaded.def);
       },
-      py::arg("path"), py::arg("strict") = false, R"doc(
+      py::arg("path"), py::arg("strict") = false, pydoc(R"doc(
 Loads a Gazebo SDF world file (worlds/stairs.world): static models become static objects,
 dynamic ones objects, its gravity the scene's, a plane in it replaces the ground. strict: an
 unresolved <include> is an error. Returns the loader's summary line. RuntimeError naming the
 file and the element when it does not load.
-)doc");
+)doc"));
   cls.def("spawn", &spawn, py::arg("name"), py::arg("model"),
           py::arg("position") = py::make_tuple(0.0, 0.0, 0.0), py::arg("orientation") = py::none(),
           py::arg("rpy") = py::none(), py::arg("linear_velocity") = py::none(),
           py::arg("angular_velocity") = py::none(), py::arg("object") = false,
           py::arg("static") = false, py::arg("fixed_base") = false, py::arg("balance") = false,
-          R"doc(
-Places `model` (a Model) as `name` with its root link at `position` (m) turned by
-`orientation` (quaternion x, y, z, w) or `rpy` (roll, pitch, yaw, rad), moving at
-linear_velocity (m/s, of the root link origin) and angular_velocity (rad/s). object: a crate or
-a door rather than a ragdoll (no injury record, no balance); static: an object that never moves;
-fixed_base: the root link pinned; balance: the balance controller on. ValueError naming the
-problem (a name in use, a bad pose, a pose the engine cannot simulate).
-)doc");
+          pydoc(R"doc(
+Places `model` (a Model) as `name` with its root link at `position` (m) turned by `orientation`
+(quaternion x, y, z, w) or `rpy` (roll, pitch, yaw, rad), moving at linear_velocity (m/s, of the
+root link origin) and angular_velocity (rad/s). object: a crate or a door rather than a ragdoll
+(no injury record, no balance); static: an object that never moves; fixed_base: the root link
+pinned; balance: the balance controller on. ValueError naming the problem (a name in use, a bad
+pose, a pose the engine cannot simulate).
+)doc"));
   cls.def(
       "remove",
       [](PyScene& s, const std::string& name) {
@@ -155,10 +156,10 @@ problem (a name in use, a bad pose, a pose the engine cannot simulate).
         if (!s.scene().reset(&error)) throw std::runtime_error("reset: " + error);
       },
       "Every ragdoll back at its spawn pose with its joints whole; forces and efforts end.");
-  cls.def("step", &PyScene::step, py::arg("n") = 1, R"doc(
+  cls.def("step", &PyScene::step, py::arg("n") = 1, pydoc(R"doc(
 Advances n fixed steps in C++ (the GIL released). impacts(), ended_falls() and broken_joints()
 then hold what happened in these n steps.
-)doc");
+)doc"));
   cls.def_property_readonly("time", [](const PyScene& s) { return s.scene().time(); },
                             "Sim time, s.");
   cls.def_property_readonly("steps", [](const PyScene& s) { return s.scene().steps(); },
@@ -179,11 +180,24 @@ then hold what happened in these n steps.
       [](const PyScene& s, const std::string& name) { return s.scene().isObject(s.index(name)); },
       py::arg("name"), "True for a dynamic object, False for a ragdoll.");
   cls.def(
-      "state_hash", [](const PyScene& s) { return hashStates(s.scene().world()); },
-      R"doc(
-The determinism hash: FNV-1a over the bits of every body's pose and velocities (the same
-function as bench_ragdoll's state_hash). Equal hashes: the same state bit for bit.
-)doc");
+      "state_hash",
+      [](const PyScene& s, const py::object& seed) {
+        uint64_t h = kFnvOffsetBasis;
+        if (!seed.is_none()) {
+          if (!py::isinstance<py::int_>(seed) || seed < py::int_(0) ||
+              seed.attr("bit_length")().cast<int>() > 64)
+            throw std::invalid_argument("seed must be an int in [0, 2**64), got " +
+                                        std::string(py::str(py::repr(seed))));
+          h = seed.cast<uint64_t>();
+        }
+        return hashStates(s.scene().world(), h);
+      },
+      py::arg("seed") = py::none(), pydoc(R"doc(
+The determinism hash: FNV-1a over the bits of every body's pose (x y z, qw qx qy qz) and
+linear and angular velocity, in body order, folded into seed (None: the FNV offset basis). The
+same function as bench_ragdoll's state_hash, which folds it after every step (h =
+scene.state_hash(h)). Equal hashes: the same state bit for bit.
+)doc"));
   cls.def(
       "messages",
       [](PyScene& s, bool clear) {
@@ -196,6 +210,13 @@ function as bench_ragdoll's state_hash). Equal hashes: the same state bit for bi
       },
       py::arg("clear") = true,
       "The scene's log (level, text), oldest first, the last 1000 at most; clear empties it.");
+  cls.def("__repr__", [](const PyScene& s) {
+    std::string names;
+    for (size_t k = 0; k < s.scene().ragdollCount(); ++k)
+      names += (k ? ", '" : "'") + s.scene().name(static_cast<int>(k)) + "'";
+    return "<ragdoll_sim.Scene time=" + std::to_string(s.scene().time()) +
+           " steps=" + std::to_string(s.scene().steps()) + " [" + names + "]>";
+  });
   bindSceneCommands(cls);
   bindSceneReports(cls);
 }

@@ -25,7 +25,8 @@ struct MessageLog : SceneListener {
 
 class PyScene {
  public:
-  explicit PyScene(SceneDef def);  // builds and starts the Scene; std::invalid_argument when refused
+  // Builds and starts the Scene; std::invalid_argument when the settings are refused.
+  explicit PyScene(SceneDef def);
   Scene& scene() { return *scene_; }
   const Scene& scene() const { return *scene_; }
   MessageLog& log() { return log_; }

@@ -120,6 +120,9 @@ def test_world_file_loads_and_models_spawn_on_it(ragdoll, box):
     scene.step(200)
     scene.remove("crate")
     assert scene.names == ["r"]
+    h = scene.state_hash()  # the removed bodies' slots are skipped
+    scene.step(10)
+    assert scene.state_hash() != h
 
 
 def test_spawn_velocity_and_efforts(ragdoll, box):
@@ -135,8 +138,8 @@ def test_spawn_velocity_and_efforts(ragdoll, box):
     assert scene.clear_forces() >= 1
 
 
-def _hash_after(model, push):
-    scene = ragdoll_sim.Scene()
+def _hash_after(model, push, threads=1):
+    scene = ragdoll_sim.Scene(threads=threads)
     scene.spawn("r", model, position=(0, 0, 1.2))
     scene.apply_impulse("r", "head", push)
     scene.step(300)
@@ -147,6 +150,7 @@ def test_identical_scenes_hash_equal_and_a_different_push_differs(ragdoll):
     h = _hash_after(ragdoll, (20.0, 0, 0))
     assert isinstance(h, int) and 0 <= h < 2**64
     assert _hash_after(ragdoll, (20.0, 0, 0)) == h
+    assert _hash_after(ragdoll, (20.0, 0, 0), threads=2) == h
     assert _hash_after(ragdoll, (20.0, 1e-9, 0)) != h
 
 
@@ -211,3 +215,29 @@ def test_help_describes_every_method():
     for name in dir(ragdoll_sim.Scene):
         if not name.startswith("_"):
             assert getattr(ragdoll_sim.Scene, name).__doc__, name
+
+
+def _fnv1a(h, data):
+    for byte in data:
+        h = ((h ^ byte) * 1099511628211) % 2**64
+    return h
+
+
+def test_state_hash_is_fnv1a_of_every_body_state(box):
+    """The documented definition, recomputed here: the ground body first, then the box (its
+    centre of mass at the link origin, so link and body velocities agree)."""
+    import struct
+    scene = ragdoll_sim.Scene(gravity=(0, 0, -9.81))
+    scene.spawn("box", box, position=(0.1, -0.2, 2.0), rpy=(0.1, 0.2, 0.3),
+                linear_velocity=(0.5, 0, 0), angular_velocity=(0, 0, 1.0))
+    scene.step(50)
+    x, y, z, qx, qy, qz, qw = scene.link_poses("box")[0]
+    v = scene.link_velocities("box")[0]
+    offset = 14695981039346656037
+    h = _fnv1a(offset, struct.pack("<13d", 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0))  # ground
+    h = _fnv1a(h, struct.pack("<13d", x, y, z, qw, qx, qy, qz, *v))
+    assert scene.state_hash() == h
+    assert scene.state_hash(seed=offset) == h
+    assert scene.state_hash(seed=5) != h
+    with pytest.raises(ValueError, match="seed"):
+        scene.state_hash(seed=-1)
