@@ -2,7 +2,7 @@
 """bench_scene: the Python Scene's stepping cost on bench_ragdoll's scene a (one ragdoll
 standing, pelvis at 1.5 m, dt 1 ms, ground friction as the Scene's default surface).
 
-usage: bench_scene.py [--steps N] [--repeat R] [--no-injury]
+usage: bench_scene.py [--steps N] [--repeat R] [--no-injury] [--urdf FILE]
 Prints one line: steps, us_per_step (best of R), the Scene's build and spawn time, the hash.
 Run after `source .ws/devel/setup.bash` with /usr/bin/python3.
 """
@@ -21,8 +21,9 @@ def main():
     ap.add_argument("--steps", type=int, default=10000)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--no-injury", action="store_true", help="Scene(injury=False)")
+    ap.add_argument("--urdf", default=str(URDF), help="the model (bench_ragdoll --urdf)")
     args = ap.parse_args()
-    model = ragdoll_sim.Model.from_file(str(URDF))
+    model = ragdoll_sim.Model.from_file(args.urdf)
     best, setup, h = float("inf"), float("inf"), 0
     for _ in range(args.repeat):
         t0 = time.perf_counter()
