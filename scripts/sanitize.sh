@@ -2,7 +2,8 @@
 # The ROS-free gtests (test_core, test_urdf, test_world_file, test_scene; ragdoll_check too, which
 # test_urdf and test_world_file run)
 # built with AddressSanitizer + UndefinedBehaviorSanitizer (gcc's runtimes, OpenMP on) in
-# .ws/sanitize, and run. Usage: sanitize.sh RESULTS_DIR. Each binary writes its gtest JUnit
+# .ws/sanitize, and run: each binary in gtest shards (2 per core), SANITIZE_JOBS (default: the
+# cores) shards at a time. Usage: sanitize.sh RESULTS_DIR. Each shard writes its gtest JUnit
 # report there; a run that a sanitizer ends (no report, or one without the failure) gets a
 # failing case <binary>.sanitizer with the report's tail, so that scripts/test.sh counts it.
 # Exits non-zero when a build fails or any run fails.
@@ -11,11 +12,13 @@ source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
 RESULTS="${1:?usage: sanitize.sh RESULTS_DIR}"
 BUILD="$WS/sanitize"
 SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all"
+JOBS="${SANITIZE_JOBS:-$(nproc)}"
 mkdir -p "$RESULTS"
 
-# -O2 -g: the solver (Eigen) at near-Release speed under ASan; -g for the reports.
+# -O2: the solver (Eigen) at near-Release speed under ASan; -g1: the reports' backtraces keep
+# their files and lines, without the full debug info that is a large share of the compile time.
 if ! cmake -S "$ROOT" -B "$BUILD" -DRAGDOLL_SIM_CORE_ONLY=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-      -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g" -DCMAKE_CXX_FLAGS="$SAN" \
+      -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1" -DCMAKE_CXX_FLAGS="$SAN" \
       -DCMAKE_EXE_LINKER_FLAGS="$SAN" -DCMAKE_SHARED_LINKER_FLAGS="$SAN" >"$BUILD.cmake.log" 2>&1 ||
    ! cmake --build "$BUILD" -j2 --target test_core test_urdf test_world_file test_scene ragdoll_check \
       >"$BUILD.build.log" 2>&1; then
@@ -45,24 +48,58 @@ ET.ElementTree(suite).write(out, encoding="utf-8", xml_declaration=True)
 PY
 }
 
-rc=0
-for t in test_core test_urdf test_world_file test_scene; do
-  xml="$RESULTS/sanitize-$t.xml"
-  log="$BUILD/$t.log"
-  rm -f "$xml"
-  "$BUILD/$t" --gtest_output="xml:$xml" >"$log" 2>&1
+# run_shard BINARY INDEX COUNT: one gtest shard, its output in BUILD/BINARY-INDEX.log; its
+# verdict ("ok" or "failed") goes to BUILD/BINARY-INDEX.status and the lines that say why to
+# BUILD/BINARY-INDEX.report, printed once every shard has run.
+run_shard() {
+  local t="$1" i="$2" n="$3"
+  local xml="$RESULTS/sanitize-$t-$i.xml" log="$BUILD/$t-$i.log" code summary verdict=ok
+  rm -f "$xml" "$RESULTS/sanitize-$t-$i-sanitizer.xml"
+  GTEST_TOTAL_SHARDS="$n" GTEST_SHARD_INDEX="$i" "$BUILD/$t" --gtest_output="xml:$xml" >"$log" 2>&1
   code=$?
   summary="$(grep -E '^\[  (PASSED|FAILED)  \]' "$log" | tr '\n' ' ')"
   if grep -qE '^(==[0-9]+==ERROR: |SUMMARY: (Address|Undefined|Leak)Sanitizer)|runtime error: ' "$log" ||
      [[ $code -ne 0 ]]; then
-    rc=1
-    echo "sanitize: $t FAILED (exit $code) $summary; log: $log"
-    grep -E 'runtime error: |==ERROR: |SUMMARY: |^\[  FAILED  \]' "$log" | head -n 20
+    verdict=failed
+    {
+      echo "sanitize: $t shard $i/$n FAILED (exit $code) $summary; log: $log"
+      grep -E 'runtime error: |==ERROR: |SUMMARY: |^\[  FAILED  \]' "$log" | head -n 20
+    } >"$BUILD/$t-$i.report"
     if [[ ! -f "$xml" ]] || ! grep -q '<failure' "$xml"; then
-      failure_xml "$t.sanitizer" "$log" "$RESULTS/sanitize-$t-sanitizer.xml"
+      failure_xml "$t.sanitizer" "$log" "$RESULTS/sanitize-$t-$i-sanitizer.xml"
     fi
+  fi
+  echo "$verdict" >"$BUILD/$t-$i.status"
+}
+
+# The longest binary first, so that the last shards to start are short ones.
+TESTS=(test_urdf test_world_file test_core test_scene)
+SHARDS=$((2 * JOBS))
+rm -f "$RESULTS"/sanitize-*.xml "$BUILD"/*.status "$BUILD"/*.report
+running=0
+for t in "${TESTS[@]}"; do
+  for ((i = 0; i < SHARDS; i++)); do
+    if ((running >= JOBS)); then wait -n; running=$((running - 1)); fi
+    run_shard "$t" "$i" "$SHARDS" &
+    running=$((running + 1))
+  done
+done
+wait
+
+rc=0
+for t in test_core test_urdf test_world_file test_scene; do
+  passed=0 ok=1
+  for ((i = 0; i < SHARDS; i++)); do
+    [[ "$(cat "$BUILD/$t-$i.status" 2>/dev/null)" == ok ]] || ok=0
+    [[ -f "$BUILD/$t-$i.report" ]] && cat "$BUILD/$t-$i.report"
+    n="$(grep -oE '^\[  PASSED  \] [0-9]+' "$BUILD/$t-$i.log" 2>/dev/null | grep -oE '[0-9]+$')"
+    passed=$((passed + ${n:-0}))
+  done
+  if ((ok)); then
+    echo "sanitize: $t clean (ASan + UBSan) [  PASSED  ] $passed tests in $SHARDS shards"
   else
-    echo "sanitize: $t clean (ASan + UBSan) $summary"
+    rc=1
+    echo "sanitize: $t FAILED ($passed tests passed in $SHARDS shards)"
   fi
 done
 exit $rc

@@ -1,6 +1,6 @@
 // Length of the longest test simulations: RAGDOLL_SIM_TEST_SCALE (0 < s <= 1, default 1)
-// shrinks their step counts. scripts/sanitize.sh sets it, since ASan + UBSan run the solver
-// about ten times slower; the checks stay the same, over fewer steps.
+// shrinks their step counts or the number of drops they run. scripts/sanitize.sh sets it, since
+// ASan + UBSan run the solver about ten times slower; the checks stay the same, over less.
 #pragma once
 
 #include <algorithm>

@@ -141,12 +141,15 @@ TEST(RagdollHits, LimbsRestingOnLimitsDoNotJitter) {
 // lands hanging free swings as an undamped pendulum (a foot at 1.7 rad/s, period 1.1 s, in
 // one drop) and drags its resting neighbour along by up to 0.9 mm/s, and a drop that lands
 // balanced can tip over seconds later; which drop does either is chaotic.
+// (RAGDOLL_SIM_TEST_SCALE runs the first drops only, an even number, 2 at least.)
 TEST(RagdollHits, LyingRagdollDoesNotCreep) {
   const RagdollDef def = bundled();
   const double drops[][4] = {{1.5, 0, 0, 0},      {1.5, 0, 0, 0.5},   {1.2, 0.4, 0.3, 0},
                              {0.5, 0, M_PI / 2, 0}, {1.0, -0.3, 0.2, 1.0}, {1.3, 0.2, -0.4, 2.0}};
+  const int n_drops = test_scale::count(3, 1) * 2;
   std::vector<double> travel;
-  for (const auto& d : drops) {
+  for (int k = 0; k < n_drops; ++k) {
+    const double* d = drops[k];
     WorldDef wd;
     wd.sleep.enabled = false;  // a sleeping body would pass trivially
     World w(wd);
@@ -271,12 +274,15 @@ TEST(RagdollHits, PileKeepsAnchorsWithinTheSlop) {
     }
     return worst;
   };
+  // (RAGDOLL_SIM_TEST_SCALE runs the first yaws only, 1 at least.)
+  const double yaws[] = {6.85e-5, 3.288e-4, 6.576e-4};
+  const int n_yaws = test_scale::count(3, 1);
   double with = 0.0, without = 0.0;
-  for (double yaw : {6.85e-5, 3.288e-4, 6.576e-4}) {
-    with = std::max(with, pile(yaw, 1));
-    without = std::max(without, pile(yaw, 0));
+  for (int k = 0; k < n_yaws; ++k) {
+    with = std::max(with, pile(yaws[k], 1));
+    without = std::max(without, pile(yaws[k], 0));
   }
-  std::printf("[ hits     ] scene c pile, 3 yaws, 1.5 s: max anchor error %.3f mm (%.3f mm without the "
-              "anchor sweep)\n", 1e3 * with, 1e3 * without);
+  std::printf("[ hits     ] scene c pile, %d yaws, 1.5 s: max anchor error %.3f mm (%.3f mm without "
+              "the anchor sweep)\n", n_yaws, 1e3 * with, 1e3 * without);
   EXPECT_LT(with, 0.6e-3);
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "ragdoll_sim/urdf_loader.hpp"
+#include "../test_scale.hpp"
 
 using namespace ragdoll_sim;
 
@@ -53,21 +54,23 @@ struct Drop {
 
 }  // namespace
 
+// (RAGDOLL_SIM_TEST_SCALE drops fewer ragdolls, 8 at least, under the same bound.)
 TEST(RagdollSleep, SixtyFourDroppedRagdollsAllSleep) {
   constexpr double kDt = 1e-3;
   constexpr int kBound = 15000;  // steps: every ragdoll asleep within 15 s of sim time
-  Drop d(WorldDef(), 64);
+  const int n = test_scale::count(64, 8);
+  Drop d(WorldDef(), n);
   int steps = 0;
   while (d.world.awakeBodyCount() > 0 && steps < kBound) {
     d.world.step(kDt);
     ++steps;
   }
   EXPECT_EQ(d.awakeRagdolls(), 0) << "after " << steps << " steps";
-  // Settled: what a step of 64 sleeping ragdolls costs (at 1 kHz, the share of a core).
+  // Settled: what a step of n sleeping ragdolls costs (at 1 kHz, the share of a core).
   const auto t0 = std::chrono::steady_clock::now();
   for (int i = 0; i < 1000; ++i) d.world.step(kDt);
   const double us = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() * 1e3;
-  std::printf("[ sleep    ] 64 ragdolls asleep after %.1f s of sim time; then %.1f us per step "
-              "(%.2f %% of a core at 1 kHz)\n", steps * kDt, us, us / 10.0);
+  std::printf("[ sleep    ] %d ragdolls asleep after %.1f s of sim time; then %.1f us per step "
+              "(%.2f %% of a core at 1 kHz)\n", n, steps * kDt, us, us / 10.0);
   EXPECT_EQ(d.world.awakeBodyCount(), 0) << "a settled ragdoll woke";
 }
