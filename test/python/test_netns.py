@@ -50,8 +50,11 @@ def hosts():
                     "CAP_SYS_ADMIN (a container without it cannot create network namespaces)")
     try:
         must("netns", "add", names[1])
-        must("link", "add", links[0], "netns", names[0], "type", "veth",
-             "peer", "name", links[1], "netns", names[1])
+        r = ip("link", "add", links[0], "netns", names[0], "type", "veth",
+               "peer", "name", links[1], "netns", names[1])
+        if r.returncode != 0:
+            pytest.skip(f"a veth pair was refused ({r.stderr.strip()}): this needs the kernel's "
+                        "veth driver")
         addresses = []
         for k, (ns, link) in enumerate(zip(names, links)):
             must("-n", ns, "link", "set", "lo", "up")
