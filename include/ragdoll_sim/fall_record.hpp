@@ -101,7 +101,6 @@ class FallRecorder {
   double rest_since_ = -1.0;  // sim time from which it has been at rest; < 0: moving
   bool head_on_ = false;
   std::vector<LinkLoad> link_scratch_;
-  std::vector<JointLoad> joint_scratch_;
 };
 
 }  // namespace ragdoll_sim

@@ -305,6 +305,8 @@ class Scene {
   // Ragdoll k's loads after the last step: one LinkLoad per RagdollDef link, one JointLoad per
   // RagdollDef joint (into the vectors, cleared, capacity reused).
   void loads(int k, std::vector<LinkLoad>& links, std::vector<JointLoad>& joints) const;
+  // The link half of loads(): what a per-step sampler needs without the joints' wrenches.
+  void linkLoads(int k, std::vector<LinkLoad>& links) const;
   // Ragdoll k's axis efforts in axisNames(k) order (motor + limit + commanded effort).
   void jointEfforts(int k, std::vector<double>& out) const;
   size_t activeEffortCount() const;  // axes with a commanded effort acting now

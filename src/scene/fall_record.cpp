@@ -112,7 +112,7 @@ void FallRecorder::sample(const Scene& scene) {
   const double now = scene.time();
   rec_.duration = now - start_time_;
 
-  scene.loads(k, link_scratch_, joint_scratch_);
+  scene.linkLoads(k, link_scratch_);
   for (size_t l = 0; l < link_scratch_.size() && l < rec_.peak_contact_force.size(); ++l) {
     const double f = link_scratch_[l].contact_force.norm();
     // A non-finite force is the NaN flag's business, not a peak.

@@ -188,10 +188,9 @@ void Scene::jointEfforts(int k, std::vector<double>& out) const {
   }
 }
 
-void Scene::loads(int k, std::vector<LinkLoad>& links, std::vector<JointLoad>& joints) const {
+void Scene::linkLoads(int k, std::vector<LinkLoad>& links) const {
   const RagdollInstance& r = impl_->ragdolls.at(static_cast<size_t>(k));
   links.assign(r.def.links.size(), LinkLoad());
-  joints.assign(r.def.joints.size(), JointLoad());
   const World* world = impl_->world.get();
   if (!spawned(world, r)) return;
   std::vector<ContactReport>& reports = impl_->contact_scratch;
@@ -212,6 +211,14 @@ void Scene::loads(int k, std::vector<LinkLoad>& links, std::vector<JointLoad>& j
       links[static_cast<size_t>(lb)].contact_torque += c.torque_b;
     }
   }
+}
+
+void Scene::loads(int k, std::vector<LinkLoad>& links, std::vector<JointLoad>& joints) const {
+  linkLoads(k, links);
+  const RagdollInstance& r = impl_->ragdolls.at(static_cast<size_t>(k));
+  joints.assign(r.def.joints.size(), JointLoad());
+  const World* world = impl_->world.get();
+  if (!spawned(world, r)) return;
   for (size_t j = 0; j < r.def.joints.size(); ++j) {
     JointLoad& load = joints[j];
     load.wrench = world->jointWrench(r.ragdoll.joints[j]);
