@@ -1,5 +1,5 @@
 // The fall recorder's binding (ragdoll_sim.batch): FallRecordDef, FallRecord, FallRecorder on a
-// Scene, a world file parsed once (FallWorld) and run_fall, one whole run in C++.
+// Scene, and run_fall, one whole run in C++.
 #include <cmath>
 #include <memory>
 #include <stdexcept>
@@ -12,7 +12,6 @@
 #include "py_scene.hpp"
 #include "ragdoll_sim/fall_record.hpp"
 #include "ragdoll_sim/fall_run.hpp"
-#include "ragdoll_sim/world_file.hpp"
 
 namespace py = pybind11;
 
@@ -20,11 +19,6 @@ namespace ragdoll_sim {
 namespace python {
 
 namespace {
-
-// A world file read once and shared by every run that names it.
-struct FallWorld {
-  std::shared_ptr<const WorldFileDef> def;
-};
 
 double finiteArg(double v, const char* name) {
   if (!std::isfinite(v))
@@ -51,7 +45,7 @@ FallRecord runOne(const PyModel& model, const py::object& world, const std::stri
   if (!bad.empty()) throw std::invalid_argument("material: " + bad);
   d.scene.material = d.scene.ragdoll_surface = d.scene.ground_surface = d.scene.object_surface =
       surface;
-  if (!world.is_none()) d.world = world.cast<const FallWorld&>().def;
+  if (!world.is_none()) d.world = world.cast<const PyWorldFile&>().def;
   d.model = model.def;
   d.name = name;
   d.pose = toPose(position, py::none(), rpy);
@@ -150,19 +144,6 @@ C++). ValueError naming an unknown ragdoll or torso link.
           "record", [](const FallRecorder& r, const PyScene& s) { return r.record(s.scene()); },
           py::arg("scene"), "The fall so far (FallRecord).");
 
-  py::class_<FallWorld>(m, "FallWorld", R"doc(
-A world file parsed once (FallWorld.from_file), for any number of run_fall calls.
-)doc")
-      .def_static(
-          "from_file",
-          [](const std::string& path) {
-            const WorldLoadResult r = loadWorldFile(path);
-            if (!r.ok) throw std::runtime_error(path + ": " + r.error);
-            return FallWorld{std::make_shared<const WorldFileDef>(r.def)};
-          },
-          py::arg("path"), "RuntimeError naming the file and the element when it does not load.")
-      .def_property_readonly("name", [](const FallWorld& w) { return w.def->name; });
-
   m.def("run_fall", &runOne, py::arg("model"), py::arg("world") = py::none(),
         py::arg("name") = "ragdoll", py::arg("position") = py::make_tuple(0.0, 0.0, 1.1),
         py::arg("rpy") = py::make_tuple(0.0, 0.0, 0.0),
@@ -172,7 +153,7 @@ A world file parsed once (FallWorld.from_file), for any number of run_fall calls
         py::arg("restitution") = 0.0, py::arg("contact_hertz") = 0.0, py::arg("dt") = 0.001,
         py::arg("steps") = 3000,
         py::arg("record") = FallRecordDef(), R"doc(
-One fall in C++ (the GIL released): a Scene of step dt (s) with `world` (a FallWorld, or None:
+One fall in C++ (the GIL released): a Scene of step dt (s) with `world` (a WorldFile, or None:
 the ground plane), every surface of friction (static = kinetic), restitution and contact_hertz
 (Hz, the contact's spring-damper at damping ratio 1; 0 = rigid), `model` (a
 Model) spawned as `name` at position (m) and rpy (rad) moving at linear_velocity (m/s) and

@@ -1,5 +1,6 @@
 // ragdoll_sim.Model: a model read by the URDF loader (RagdollDef), spawned by Scene.spawn any
-// number of times under different names.
+// number of times under different names; ragdoll_sim.WorldFile: an SDF world read once, loaded
+// into any number of scenes (Scene.load_world, run_fall).
 #include <memory>
 #include <stdexcept>
 
@@ -9,6 +10,7 @@
 #include "bindings.hpp"
 #include "py_scene.hpp"
 #include "ragdoll_sim/urdf_loader.hpp"
+#include "ragdoll_sim/world_file.hpp"
 
 namespace py = pybind11;
 
@@ -24,7 +26,29 @@ PyModel loaded(UrdfLoadResult result, const std::string& what) {
 
 }  // namespace
 
+PyWorldFile loadWorldFileOrThrow(const std::string& path, bool strict) {
+  WorldLoadOptions options;
+  options.strict = strict;
+  WorldLoadResult r = loadWorldFile(path, options);
+  if (!r.ok) throw std::runtime_error(path + ": " + r.error);
+  return PyWorldFile{std::make_shared<const WorldFileDef>(std::move(r.def))};
+}
+
 void bindModel(py::module_& m) {
+  py::class_<PyWorldFile>(m, "WorldFile", pydoc(R"doc(
+A Gazebo SDF world file read once (its models, their shapes and joints, gravity); load it into
+any number of scenes (Scene.load_world, run_fall) without parsing it again.
+
+    stairs = ragdoll_sim.WorldFile.from_file("worlds/stairs.world")
+)doc"))
+      .def_static("from_file", &loadWorldFileOrThrow, py::arg("path"), py::arg("strict") = false,
+                  "Reads an SDF world file; strict: an unresolved <include> is an error. "
+                  "RuntimeError naming the file and the element when it does not load.")
+      .def_property_readonly("name", [](const PyWorldFile& w) { return w.def->name; })
+      .def_property_readonly(
+          "summary", [](const PyWorldFile& w) { return worldSummaryLine(*w.def); },
+          "The loader's summary line (models, links, what was skipped).");
+
   py::class_<PyModel>(m, "Model", pydoc(R"doc(
 A model (robot or ragdoll) read from URDF: links, joints, shapes, masses. Immutable; spawn it
 into a Scene as many times as you like under different names (Scene.spawn).

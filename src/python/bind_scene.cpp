@@ -112,21 +112,20 @@ spawned into static geometry out of it, or 'refuse' it.
 )doc"));
   cls.def(
       "load_world",
-      [](PyScene& s, const std::string& path, bool strict) {
-        WorldLoadOptions options;
-        options.strict = strict;
-        const WorldLoadResult loaded = loadWorldFile(path, options);
-        if (!loaded.ok) throw std::runtime_error(path + ": " + loaded.error);
+      [](PyScene& s, const py::object& world, bool strict) {
+        const PyWorldFile loaded = py::isinstance<PyWorldFile>(world)
+                                       ? world.cast<PyWorldFile>()
+                                       : loadWorldFileOrThrow(world.cast<std::string>(), strict);
         std::string error;
-        if (!s.scene().loadWorld(loaded.def, &error))
-          throw std::runtime_error(path + ": " + error);
-        return worldSummaryLine(loaded.def);
+        if (!s.scene().loadWorld(*loaded.def, &error))
+          throw std::runtime_error(loaded.def->name + ": " + error);
+        return worldSummaryLine(*loaded.def);
       },
-      py::arg("path"), py::arg("strict") = false, pydoc(R"doc(
-Loads a Gazebo SDF world file (worlds/stairs.world): static models become static objects,
-dynamic ones objects, its gravity the scene's, a plane in it replaces the ground. strict: an
-unresolved <include> is an error. Returns the loader's summary line. RuntimeError naming the
-file and the element when it does not load.
+      py::arg("world"), py::arg("strict") = false, pydoc(R"doc(
+Loads a Gazebo SDF world: a path (worlds/stairs.world) or a WorldFile read once. Static models
+become static objects, dynamic ones objects, its gravity the scene's, a plane in it replaces the
+ground. strict (a path only): an unresolved <include> is an error. Returns the loader's summary
+line. RuntimeError naming the file and the element when it does not load.
 )doc"));
   cls.def("spawn", &spawn, py::arg("name"), py::arg("model"),
           py::arg("position") = py::make_tuple(0.0, 0.0, 0.0), py::arg("orientation") = py::none(),

@@ -32,11 +32,11 @@ def model(path):
 
 
 def world(path):
-    """The FallWorld of world file `path` (None: no world), read once per process."""
+    """The WorldFile of world file `path` (None: no world), read once per process."""
     if path is None:
         return None
     if path not in _worlds:
-        _worlds[path] = _core().FallWorld.from_file(path)
+        _worlds[path] = _core().WorldFile.from_file(path)
     return _worlds[path]
 
 
