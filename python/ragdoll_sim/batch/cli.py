@@ -10,7 +10,7 @@ See docs/batch.md.
 import argparse
 import sys
 
-from . import csv_rows, runner, scenario as scenario_mod
+from . import csv_rows, fanout, runner, scenario as scenario_mod
 
 
 class UsageError(ValueError):
@@ -47,14 +47,6 @@ def _progress(total):
     return tqdm(total=total, unit="run", file=sys.stderr)
 
 
-def _fanout():
-    try:
-        from . import fanout
-    except ImportError:
-        return None
-    return fanout
-
-
 def load_checked(path):
     """The validated scenario with its model and world loaded; ScenarioError naming the field."""
     sc = scenario_mod.load(path)
@@ -86,18 +78,12 @@ def run(args):
     writer = csv_rows.Writer(args.out, cols)
     bar = _progress(len(todo))
     try:
-        fanout = None
-        if args.scheduler is not None or args.workers != 1:
-            fanout = _fanout()
-            if fanout is None and (args.scheduler is not None or args.workers is not None):
-                raise UsageError("--scheduler / --workers: the Dask fan-out "
-                                 "(ragdoll_sim.batch.fanout) is not available")
-        if fanout is None or not todo:
+        if args.scheduler is None and args.workers == 1:
             for i in todo:
                 writer.write(runner.run_chunk(sc, [i]))
                 if bar is not None:
                     bar.update(1)
-        else:
+        elif todo:
             try:
                 fanout.run(sc, todo, writer.write, scheduler=args.scheduler,
                            workers=args.workers, chunk_size=args.chunk_size,
