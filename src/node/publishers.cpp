@@ -86,8 +86,7 @@ void Publishers::rebuild() {
 // TF
 
 std::string Publishers::frameId(const RagdollTopics& r, const std::string& link) const {
-  const std::string& prefix = ctx_.config.frame_prefix;
-  return prefix.empty() ? r.frame(link) : prefix + "/" + r.frame(link);
+  return joinFrames(ctx_.config.frame_prefix, r.frame(link));
 }
 
 void Publishers::buildTf(RagdollTopics& r, int k) {

@@ -22,6 +22,11 @@ namespace node {
 
 struct NodeContext;
 
+// TF frame names joined by "/": "a/b", or the one that is not empty.
+inline std::string joinFrames(const std::string& a, const std::string& b) {
+  return a.empty() ? b : b.empty() ? a : a + "/" + b;
+}
+
 // One ragdoll's topics and buffers.
 struct RagdollTopics {
   std::string name;
@@ -46,9 +51,7 @@ struct RagdollTopics {
   std::vector<int> ball_tf_offset;  // first tf_msgs slot of each one's chain links
   size_t fixed_tf_offset = 0;       // tf_msgs slot of fixed_frames[0]
 
-  std::string frame(const std::string& link) const {
-    return tf_prefix.empty() ? link : tf_prefix + "/" + link;
-  }
+  std::string frame(const std::string& link) const { return joinFrames(tf_prefix, link); }
 };
 
 class Publishers {

@@ -122,9 +122,7 @@ bool SimNode::init(std::string* error) {
   const int first_k = scene.find(first_name);
   const RagdollDef& def = scene.def(first_k);
   const std::string& own = ctx_.publishers->ragdolls().at(static_cast<size_t>(first_k)).tf_prefix;
-  const std::string prefix = config.frame_prefix.empty() ? own
-                             : own.empty()               ? config.frame_prefix
-                                                         : config.frame_prefix + "/" + own;
+  const std::string prefix = joinFrames(config.frame_prefix, own);
   const Vec3 at = config.spawnTransform().p;
   const Vec3& g = scene.def().world.gravity;
   const auto threadsText = [](int n) {
