@@ -15,7 +15,10 @@
 // The result depends only on the constraints and their order: not on the body numbering, the
 // thread count or the lane width (the packing reads the colours, the colouring never reads the
 // width). A permuted input is coloured again in its own order, so colours and their count may
-// differ, and are valid either way.
+// differ, and are valid either way. Under FirstFit a constraint's colour depends only on the
+// constraints before it that share its bodies: islands merged into one graph (a thread's run)
+// keep the colours each takes alone, so the grouping of islands changes no colour. Balanced
+// compares colour sizes over the whole input and has no such guarantee.
 //
 // Each kind of constraint (contacts, joint point parts, joint limits and motors) is coloured on
 // its own graph: the sweep solves the kinds one after another and a wide record holds one kind,

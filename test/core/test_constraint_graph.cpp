@@ -211,6 +211,37 @@ TEST(ConstraintGraph, DependsOnlyOnTheInputOrder) {
   EXPECT_EQ(sizes2, (std::vector<int>{6, 5, 2, 1}));
 }
 
+// Islands share no dynamic body, so first fit gives each island's constraints the colours
+// they take alone, however the islands are merged into one graph (a thread's run of islands):
+// the colours do not depend on how the islands are spread over the threads.
+TEST(ConstraintGraph, FirstFitColoursIslandsAsAlone) {
+  std::mt19937 rng(11);
+  const Edges a = randomGraph(rng, 30, 90), b = ragdollJoints();
+  ConstraintGraph ga, gb, g;
+  ga.colour(a, 30);
+  gb.colour(b, kLinks);
+  for (int round = 0; round < 20; ++round) {
+    // b's bodies after a's; the two lists interleaved at random, each in its own order
+    Edges merged;
+    std::vector<int> from;  // per merged constraint: index in a, or -1 - index in b
+    size_t ia = 0, ib = 0;
+    while (ia < a.size() || ib < b.size()) {
+      if (ib == b.size() || (ia < a.size() && rng() % 2)) {
+        from.push_back(int(ia));
+        merged.push_back(a[ia++]);
+      } else {
+        GraphEdge e = b[ib];
+        e.body_a += 30, e.body_b += 30;
+        from.push_back(-1 - int(ib++));
+        merged.push_back(e);
+      }
+    }
+    g.colour(merged, 30 + kLinks);
+    for (size_t i = 0; i < merged.size(); ++i)
+      EXPECT_EQ(g.colourOf(int(i)), from[i] >= 0 ? ga.colourOf(from[i]) : gb.colourOf(-1 - from[i]));
+  }
+}
+
 TEST(ConstraintGraph, ReusesItsStorage) {
   std::mt19937 rng(3);
   const Edges big = randomGraph(rng, 50, 150), small = randomGraph(rng, 50, 100);
