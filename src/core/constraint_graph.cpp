@@ -31,16 +31,6 @@ void ConstraintGraph::colour(const GraphEdge* edges, int n, int body_count, int 
   if (max_colours < 1 || max_colours > kMaxColours)
     throw std::invalid_argument("ConstraintGraph: max_colours " + std::to_string(max_colours) +
                                 " is outside [1, " + std::to_string(kMaxColours) + "]");
-  for (int i = 0; i < n; ++i) {
-    const GraphEdge& e = edges[i];
-    const bool bad_a = e.dynamic_a && (e.body_a < 0 || e.body_a >= body_count);
-    const bool bad_b = e.dynamic_b && (e.body_b < 0 || e.body_b >= body_count);
-    if (bad_a || bad_b)
-      throw std::invalid_argument("ConstraintGraph: constraint " + std::to_string(i) +
-                                  " has dynamic body " +
-                                  std::to_string(bad_a ? e.body_a : e.body_b) +
-                                  " outside [0, " + std::to_string(body_count) + ")");
-  }
   if (int(body_colours_.size()) < body_count) body_colours_.resize(body_count, 0);
   colour_of_.resize(n);
   std::fill(counts_, counts_ + kMaxColours + 1, 0);
@@ -48,6 +38,15 @@ void ConstraintGraph::colour(const GraphEdge* edges, int n, int body_count, int 
   int used = 0;
   for (int i = 0; i < n; ++i) {
     const GraphEdge& e = edges[i];
+    const bool bad_a = e.dynamic_a && unsigned(e.body_a) >= unsigned(body_count);
+    const bool bad_b = e.dynamic_b && unsigned(e.body_b) >= unsigned(body_count);
+    if (bad_a || bad_b) {
+      clearBits(edges, i);
+      throw std::invalid_argument("ConstraintGraph: constraint " + std::to_string(i) +
+                                  " has dynamic body " +
+                                  std::to_string(bad_a ? e.body_a : e.body_b) +
+                                  " outside [0, " + std::to_string(body_count) + ")");
+    }
     const uint32_t taken = (e.dynamic_a ? body_colours_[e.body_a] : 0u) |
                            (e.dynamic_b ? body_colours_[e.body_b] : 0u);
     const uint32_t free = ~taken & allowed;
@@ -64,11 +63,7 @@ void ConstraintGraph::colour(const GraphEdge* edges, int n, int body_count, int 
     ++counts_[c];
     used = std::max(used, c + 1);
   }
-  // Only the bodies of these constraints took bits.
-  for (int i = 0; i < n; ++i) {
-    if (edges[i].dynamic_a) body_colours_[edges[i].body_a] = 0;
-    if (edges[i].dynamic_b) body_colours_[edges[i].body_b] = 0;
-  }
+  clearBits(edges, n);
   colour_count_ = used;
   // Counting sort by colour, stable: the colours in order, then the overflow set.
   begin_.resize(used + 2);
@@ -81,6 +76,14 @@ void ConstraintGraph::colour(const GraphEdge* edges, int n, int body_count, int 
   for (int i = 0; i < n; ++i) {
     const int c = colour_of_[i] == kOverflow ? used : colour_of_[i];
     order_[cursor[c]++] = i;
+  }
+}
+
+// Only the bodies of these constraints took bits.
+void ConstraintGraph::clearBits(const GraphEdge* edges, int n) {
+  for (int i = 0; i < n; ++i) {
+    if (edges[i].dynamic_a) body_colours_[edges[i].body_a] = 0;
+    if (edges[i].dynamic_b) body_colours_[edges[i].body_b] = 0;
   }
 }
 
@@ -99,12 +102,15 @@ void LanePacking::pack(const ConstraintGraph& graph, int width) {
   masks_.assign(records, 0);
   used_ = 0;
   const std::vector<int>& order = graph.order();
+  const int shift = width == 8 ? 3 : 2;
   for (int c = 0; c < colours; ++c) {
     const int first = graph.colourBegin(c), size = graph.colourSize(c);
-    for (int k = 0; k < size; ++k) {
-      const int r = record_begin_[c] + k / width, lane = k % width;
-      lanes_[size_t(r) * width + lane] = order[first + k];
-      masks_[r] |= uint8_t(1u << lane);
+    // a colour's lanes are contiguous: its records follow each other
+    std::copy(order.begin() + first, order.begin() + first + size,
+              lanes_.begin() + (size_t(record_begin_[c]) << shift));
+    for (int r = record_begin_[c]; r < record_begin_[c + 1]; ++r) {
+      const int left = size - ((r - record_begin_[c]) << shift);
+      masks_[r] = uint8_t(left >= width ? (1u << width) - 1 : (1u << left) - 1);
     }
     used_ += size;
   }

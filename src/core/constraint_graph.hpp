@@ -71,6 +71,8 @@ class ConstraintGraph {
   int overflowSize() const { return size() - begin_[colour_count_]; }
 
  private:
+  void clearBits(const GraphEdge* edges, int n);
+
   std::vector<uint32_t> body_colours_;  // per body: bit c set while colour c holds it
   std::vector<int> colour_of_, order_;
   std::vector<int> begin_;  // colour_count_ + 2 offsets into order_ (colours, then overflow)

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <numeric>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "constraint_graph.hpp"
@@ -135,6 +136,24 @@ TEST(ConstraintGraph, StaticBodiesDoNotCount) {
   EXPECT_EQ(g.colourCount(), 1);
   EXPECT_THROW(g.colour({dyn(0, 6)}, 6), std::invalid_argument);
   EXPECT_THROW(g.colour({dyn(0, 1)}, 6, 0), std::invalid_argument);
+}
+
+// A refusal names the constraint and the body, and leaves no bits behind.
+TEST(ConstraintGraph, RefusesABodyOutOfRangeAndStaysClean) {
+  Edges e = ragdollJoints();
+  e.push_back(dyn(0, kLinks));
+  ConstraintGraph g;
+  try {
+    g.colour(e, kLinks);
+    FAIL() << "no refusal";
+  } catch (const std::invalid_argument& x) {
+    EXPECT_NE(std::string(x.what()).find("constraint 14 has dynamic body 15"), std::string::npos) << x.what();
+  }
+  e.pop_back();
+  g.colour(e, kLinks);
+  ConstraintGraph fresh;
+  fresh.colour(e, kLinks);
+  EXPECT_EQ(coloursOf(g), coloursOf(fresh));
 }
 
 TEST(ConstraintGraph, RagdollJointTreeTakesFourColours) {
