@@ -88,6 +88,12 @@ struct FloatArrayW {
     for (int i = 0; i < W; ++i) p[i] = v[i];
   }
   float lane(int i) const { return v[i]; }
+  // field[index[i]] in lane i, 0 where index[i] < 0.
+  static FloatArrayW gather(const float* field, const int32_t* index) {
+    FloatArrayW r;
+    for (int i = 0; i < W; ++i) r.v[i] = index[i] >= 0 ? field[index[i]] : 0.0f;
+    return r;
+  }
 
 #define RAGDOLL_SIM_ARRAY_OP(NAME, EXPR)                       \
   friend FloatArrayW NAME(FloatArrayW a, FloatArrayW b) {      \
@@ -151,6 +157,14 @@ struct Float4 {
     store(t);
     return t[i];
   }
+  // Lanes built from scalar loads in registers (a buffer written lane by lane and read back
+  // whole stalls store forwarding); a static lane reads field[0] and is masked to 0.
+  static Float4 gather(const float* field, const int32_t* index) {
+    const __m128i idx = _mm_loadu_si128(reinterpret_cast<const __m128i*>(index));
+    const __m128 live = _mm_castsi128_ps(_mm_cmpgt_epi32(idx, _mm_set1_epi32(-1)));
+    auto at = [&](int i) { return field[index[i] < 0 ? 0 : index[i]]; };
+    return {_mm_and_ps(_mm_setr_ps(at(0), at(1), at(2), at(3)), live)};
+  }
 
   friend Float4 operator+(Float4 a, Float4 b) { return {_mm_add_ps(a.v, b.v)}; }
   friend Float4 operator-(Float4 a, Float4 b) { return {_mm_sub_ps(a.v, b.v)}; }
@@ -196,6 +210,14 @@ struct Float8 {
     alignas(32) float t[8];
     store(t);
     return t[i];
+  }
+  // As Float4::gather (no gather instruction: it is no faster here and AVX lacks it).
+  static Float8 gather(const float* field, const int32_t* index) {
+    const __m256i idx = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(index));
+    const __m256 live = _mm256_castsi256_ps(_mm256_cmpgt_epi32(idx, _mm256_set1_epi32(-1)));
+    auto at = [&](int i) { return field[index[i] < 0 ? 0 : index[i]]; };
+    return {_mm256_and_ps(
+        _mm256_setr_ps(at(0), at(1), at(2), at(3), at(4), at(5), at(6), at(7)), live)};
   }
 
   friend Float8 operator+(Float8 a, Float8 b) { return {_mm256_add_ps(a.v, b.v)}; }
@@ -245,13 +267,11 @@ F loadLanes(const float* p) {
 }
 
 // Per-lane body fields read through an index (a body shared by several records): lane i takes
-// field[index[i]], or 0 where index[i] < 0 (a static body). Scalar loads into an aligned
-// buffer, then one vector load: no gather instruction, which SSE2 lacks.
+// field[index[i]], or 0 where index[i] < 0 (a static body; field holds at least one element).
+// Scalar loads, no gather instruction, which SSE2 lacks.
 template <class F>
 F gatherLanes(const float* field, const int32_t* index) {
-  alignas(32) float t[F::kWidth];
-  for (int i = 0; i < F::kWidth; ++i) t[i] = index[i] >= 0 ? field[index[i]] : 0.0f;
-  return F::load(t);
+  return F::gather(field, index);
 }
 // The inverse: lanes with index >= 0 are written back (the rows of one block share no body).
 template <class F>
