@@ -13,5 +13,9 @@ void kernel_w8::solveNormalRows(NormalRowBlock* blocks, int count, const BodyVel
                                 const NormalRowParams& params) {
   kernel_w4::solveNormalRows(blocks, count, bodies, params);
 }
+void kernel_w8::solveNormalRowsAos(NormalRowBlock* blocks, int count, BodyVelocityF* bodies,
+                                   const NormalRowParams& params) {
+  kernel_w4::solveNormalRowsAos(blocks, count, bodies, params);
+}
 }  // namespace ragdoll_sim
 #endif

@@ -34,6 +34,13 @@ struct BodyVelocitiesF {
   float* w[3];
 };
 
+// The same velocities as one record of 8 floats per body (Box2D v3's layout): a lane reads
+// its body with one 32-byte load (two 16-byte ones at 4 lanes) and a transpose turns W records
+// into fields. pad is written as 0.
+struct alignas(32) BodyVelocityF {
+  float v[3], w[3], pad[2];
+};
+
 // The step's constants of the rigid (non-compliant) contact row (softness.hpp).
 struct NormalRowParams {
   float inv_h = 0.0f;              // 1 / substep
@@ -47,13 +54,18 @@ struct NormalRowParams {
 
 // One sweep over blocks [0, count) in order, at 4 lanes (SSE2) or 8 lanes (AVX2: call it only
 // when cpuHasAvx2()). Both give the same bits.
+// solveNormalRowsAos: the same with the bodies as records; the same bits.
 namespace kernel_w4 {
 void solveNormalRows(NormalRowBlock* blocks, int count, const BodyVelocitiesF& bodies,
                      const NormalRowParams& params);
+void solveNormalRowsAos(NormalRowBlock* blocks, int count, BodyVelocityF* bodies,
+                        const NormalRowParams& params);
 }
 namespace kernel_w8 {
 void solveNormalRows(NormalRowBlock* blocks, int count, const BodyVelocitiesF& bodies,
                      const NormalRowParams& params);
+void solveNormalRowsAos(NormalRowBlock* blocks, int count, BodyVelocityF* bodies,
+                        const NormalRowParams& params);
 }
 
 // The kernel of lane width `width` (chooseLaneWidth's answer: 4 or 8).

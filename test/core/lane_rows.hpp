@@ -31,6 +31,19 @@ struct BodyArraysF {
   }
 };
 
+// The same as 8-float records.
+inline std::vector<BodyVelocityF> bodyRecordsF(const std::vector<SolverBody>& bodies) {
+  std::vector<BodyVelocityF> r(bodies.size());
+  for (size_t i = 0; i < bodies.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      r[i].v[k] = float(bodies[i].v[k]);
+      r[i].w[k] = float(bodies[i].w[k]);
+    }
+    r[i].pad[0] = r[i].pad[1] = 0.0f;
+  }
+  return r;
+}
+
 struct RowSet {
   std::vector<SolverBody> bodies;
   std::vector<NormalRowD> rows;          // row order: block by block, lane by lane

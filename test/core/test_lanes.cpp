@@ -193,6 +193,25 @@ Solved sweepTwice(const RowSet& set, Solve solve) {
   return r;
 }
 
+// sweepTwice with the bodies as 8-float records, converted back to fields for comparing.
+Solved aosSweepTwice(const RowSet& set,
+                     void (*solve)(NormalRowBlock*, int, BodyVelocityF*, const NormalRowParams&)) {
+  Solved r{set.blocks, BodyArraysF(set.bodies)};
+  std::vector<BodyVelocityF> records = bodyRecordsF(set.bodies);
+  NormalRowParams p = set.params;
+  solve(r.blocks.data(), int(r.blocks.size()), records.data(), p);
+  p.use_bias = false;
+  solve(r.blocks.data(), int(r.blocks.size()), records.data(), p);
+  for (size_t i = 0; i < records.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      r.bodies.v[k][i] = records[i].v[k];
+      r.bodies.w[k][i] = records[i].w[k];
+    }
+    EXPECT_EQ(records[i].pad[0], 0.0f);
+  }
+  return r;
+}
+
 void expectSameBits(const Solved& x, const Solved& y, const char* what) {
   for (int k = 0; k < 3; ++k) {
     for (size_t i = 0; i < x.bodies.v[k].size(); ++i) {
@@ -225,7 +244,9 @@ TEST(Lanes, NormalRowKernelWidthsGiveTheSameBits) {
     for (int l = 0; l < kRowBlock; ++l) applied += k.impulse[l] > 0.0f, clamped += k.impulse[l] == 0.0f;
   EXPECT_GT(applied, 200);
   EXPECT_GT(clamped, 200);
+  expectSameBits(w4, aosSweepTwice(set, kernel_w4::solveNormalRowsAos), "4 lanes, records");
   if (!cpuHasAvx2()) GTEST_SKIP() << "no AVX2 on this CPU or in this build";
+  expectSameBits(w4, aosSweepTwice(set, kernel_w8::solveNormalRowsAos), "8 lanes, records");
   const Solved w8 = sweepTwice(set, [](auto& b, BodyVelocitiesF v, const NormalRowParams& p) {
     kernel_w8::solveNormalRows(b.data(), int(b.size()), v, p);
   });
