@@ -11,4 +11,10 @@ void solveNormalRows(int width, NormalRowBlock* blocks, int count, const BodyVel
   else kernel_w4::solveNormalRows(blocks, count, bodies, params);
 }
 
+void solveNormalRowsAos(int width, NormalRowBlock* blocks, int count, BodyVelocityF* bodies,
+                        const NormalRowParams& params) {
+  if (width == 8 && cpuHasAvx2()) kernel_w8::solveNormalRowsAos(blocks, count, bodies, params);
+  else kernel_w4::solveNormalRowsAos(blocks, count, bodies, params);
+}
+
 }  // namespace ragdoll_sim

@@ -71,5 +71,7 @@ void solveNormalRowsAos(NormalRowBlock* blocks, int count, BodyVelocityF* bodies
 // The kernel of lane width `width` (chooseLaneWidth's answer: 4 or 8).
 void solveNormalRows(int width, NormalRowBlock* blocks, int count, const BodyVelocitiesF& bodies,
                      const NormalRowParams& params);
+void solveNormalRowsAos(int width, NormalRowBlock* blocks, int count, BodyVelocityF* bodies,
+                        const NormalRowParams& params);
 
 }  // namespace ragdoll_sim

@@ -255,6 +255,11 @@ TEST(Lanes, NormalRowKernelWidthsGiveTheSameBits) {
     solveNormalRows(8, b.data(), int(b.size()), v, p);
   });
   expectSameBits(w4, chosen, "the dispatcher at 8");
+  expectSameBits(w4, aosSweepTwice(set, [](NormalRowBlock* b, int n, BodyVelocityF* v,
+                                            const NormalRowParams& p) {
+                   solveNormalRowsAos(8, b, n, v, p);
+                 }),
+                 "the dispatcher at 8, records");
 }
 
 // Each body in one row: the float kernel against the double row of contact_solver.cpp, within
