@@ -1,0 +1,20 @@
+// The lane width of the wide solver, chosen at run time: 8 (AVX2) where the CPU has it, else 4
+// (SSE2, the x86-64 baseline); the package itself is built for the baseline.
+#pragma once
+
+namespace ragdoll_sim {
+
+// True when the 8-lane kernels were built (an x86-64 compiler that takes -mavx2) and this CPU
+// runs AVX2.
+bool cpuHasAvx2();
+
+// The width to use: `requested` (4 or 8, a WorldDef-style switch) when not 0, else the
+// environment variable RAGDOLL_SIM_LANES (4 or 8) when set and not empty, else the widest the
+// CPU runs. 8 falls back to 4 where AVX2 is missing, so a forced width is always safe to run.
+// Throws std::invalid_argument naming the value for anything but 0, 4, 8 (or 4, 8 in the
+// variable).
+int chooseLaneWidth(int requested);
+// The same with the variable's value (nullptr: unset) and the CPU's answer given, for tests.
+int chooseLaneWidth(int requested, const char* env, bool has_avx2);
+
+}  // namespace ragdoll_sim
