@@ -242,6 +242,7 @@ int main(int argc, char** argv) {
         else if (k == "position_iterations") wd.solver.position_iterations = int(v);
         else if (k == "anchor_iterations") wd.solver.anchor_iterations = int(v);
         else if (k == "exact_joints") wd.solver.exact_joints = v != 0.0;
+        else if (k == "lanes") wd.solver.lanes = int(v);
         else if (k == "relax") wd.solver.contact_relax_iterations = int(v);
         else if (k == "joint_relax") wd.solver.joint_relax_iterations = int(v);
         else if (k == "sleep_speed") wd.sleep.speed = v;

@@ -86,6 +86,11 @@ struct SolverSettings {
   // positions after the step (src/core/joint_tree.hpp): they hold at any mass ratio. Off: the
   // sweeps alone, which stretch where light links hang on heavy ones.
   bool exact_joints = true;
+  // Contact rows (and, as they move over, the joint parts) solved in float lanes, many
+  // constraints at once (docs/physics.md, the wide solver): 1 solves every row alone in double
+  // (the reference); 0 takes the widest the CPU runs (8 with AVX2, else 4; the environment
+  // variable RAGDOLL_SIM_LANES=4|8 forces one), 4 or 8 force a width. 4 and 8 give the same bits.
+  int lanes = 1;
 };
 
 // "" when the settings can be used, else what is wrong with the first field that cannot, named

@@ -18,6 +18,7 @@ struct StepContext {
   int substeps = 1;       // h = dt / substeps
   int relax = 0;          // contact relax sweeps per substep (the first joint_relax_iterations also relax the joints)
   bool track_impulses = false;  // World::setContactImpulseTracking
+  int lanes = 1;          // SolverSettings::lanes resolved: 1 (double rows), 4 or 8
   Softness contact_softness;
   Softness joint_softness;
   const SolverSettings* settings = nullptr;

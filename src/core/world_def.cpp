@@ -42,6 +42,9 @@ std::string solverSettingsError(const SolverSettings& d) {
       nonNegativeError("linear_slop", d.linear_slop),
       positiveError("max_linear_speed", d.max_linear_speed),
       positiveError("max_angular_speed", d.max_angular_speed),
+      d.lanes == 0 || d.lanes == 1 || d.lanes == 4 || d.lanes == 8
+          ? std::string()
+          : "lanes must be 0 (the widest), 1 (double rows), 4 or 8, got " + std::to_string(d.lanes),
   });
 }
 
