@@ -10,7 +10,8 @@
 #     into .ws/bench/peers. Nothing is written to $PEERS_DIR.
 #  3. Runs ROUNDS rounds. In each round every scene is run by every engine back to back
 #     (round-robin, the engine order rotating from round to round), so all engines see the same
-#     machine load: scenes a, b, c; the scaling scene g with N = $SCALING_NS ragdolls; then our
+#     machine load: scenes a, b, c (ours twice: sleeping off, the headline figure since the
+#     peers' benches do not sleep, and sleeping on, engine ragdoll_sim_sleep, right after it); the scaling scene g with N = $SCALING_NS ragdolls; then our
 #     own scenes p and s (no peer has them); then the scale of worlds: scenes f, w, v back to
 #     back (the bundled ragdoll on the plane, among 10 000 static boxes as bodies, as shapes of
 #     one body) and the load of generated worlds of dynamic primitives (scene l,
@@ -34,6 +35,8 @@
 #                            same result for any count); the peers are single-threaded.
 #   BENCH_THREADS=1          OMP_NUM_THREADS for every run (only matters for threads=0).
 #   BENCH_OUT=bench          folder for results_raw.txt, RESULTS.md, scaling.png
+#   SLEEP_ON=1               also run ours with sleeping on in scenes a, b, c (0 skips it);
+#                            ours runs a, b, c, g and p with sleeping off (--opt sleep=0)
 #   SCALING_1THREAD=1        also run our scene g on one thread (engine ragdoll_sim_1thread):
 #                            the cost per body-step of the algorithm alone, the same thread
 #                            count at every N (N = 1 is one island, which runs on one core)
@@ -129,8 +132,13 @@ run_one() {
   else bin="$PEER_BUILD/bench_$e"; fi
   args=("$s" --urdf "$URDF")
   if [[ "$s" == [fwv] ]]; then args=("$s" --urdf "$ROOT/urdf/ragdoll.urdf"); fi
-  if [[ "$e" == ragdoll_sim ]]; then args+=(--opt "threads=$OWN_THREADS"); fi
+  if [[ "$e" == ragdoll_sim || "$e" == ragdoll_sim_sleep ]]; then args+=(--opt "threads=$OWN_THREADS"); fi
   if [[ "$e" == ragdoll_sim_1thread ]]; then args+=(--opt "threads=1"); fi
+  # sleeping off where the peers run (they do not sleep) and in p; s is the sleep check
+  if [[ "$e" == ragdoll_sim || "$e" == ragdoll_sim_1thread ]] && [[ "$s" == [abcgp] ]]; then
+    args+=(--opt sleep=0)
+  fi
+  if [[ "$e" == ragdoll_sim_sleep ]]; then args+=(--opt sleep=1); fi
   # scene l: the load of a generated world (bench_world_load), N primitives, LOAD_SIZE sizes
   if [[ "$s" == l ]]; then bin="$BUILD/bench_world_load"; args=(l --objects "$n" --sizes "$LOAD_SIZE"); n=""; fi
   if [[ "$s" == g ]]; then
@@ -143,7 +151,9 @@ run_one() {
   { echo "### round=$r engine=$e scene=$s ${n:+ragdolls=$n }rc=$rc"; cat "$errf"; } >>"$LOG"
   local line
   line="$(grep -m1 '^engine=' <<<"$out" || true)"
-  if [[ "$e" == ragdoll_sim_1thread ]]; then line="${line/#engine=ragdoll_sim /engine=$e }"; fi
+  if [[ "$e" == ragdoll_sim_1thread || "$e" == ragdoll_sim_sleep ]]; then
+    line="${line/#engine=ragdoll_sim /engine=$e }"
+  fi
   if [[ "$rc" -eq 0 && -n "$line" ]]; then
     echo "$line round=$r" | tee -a "$RAW_TMP"
   else
@@ -165,7 +175,10 @@ for r in $(seq "$ROUNDS"); do
   echo "bench: round $r of $ROUNDS ($((SECONDS - t0)) s so far)"
   mapfile -t order < <(rotated "$r")
   for s in $SCENES; do
-    for e in "${order[@]}"; do run_one "$r" "$e" "$s"; done
+    for e in "${order[@]}"; do
+      run_one "$r" "$e" "$s"
+      if [[ "$e" == ragdoll_sim && "${SLEEP_ON:-1}" != 0 ]]; then run_one "$r" ragdoll_sim_sleep "$s"; fi
+    done
   done
   for n in $SCALING_NS; do
     for e in "${order[@]}"; do run_one "$r" "$e" g "$n"; done

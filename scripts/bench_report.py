@@ -12,11 +12,12 @@ import statistics
 import sys
 from collections import OrderedDict, defaultdict
 
+import bench_flops_report  # flops per body-step and the peak
+import bench_ratios  # ours / peers, sleep off and on; the bars
 import bench_scale_report  # scenes f, w, v, l
+from bench_ratios import OURS, OURS_1T, OURS_SLEEP
 
-OURS = "ragdoll_sim"
-OURS_1T = "ragdoll_sim_1thread"  # ours on one thread, scene g only (not a peer)
-ENGINE_ORDER = [OURS, OURS_1T, "mujoco", "bullet", "ode"]
+ENGINE_ORDER = [OURS, OURS_SLEEP, OURS_1T, "mujoco", "bullet", "ode"]
 SCENE_ORDER = ["a", "b", "c", "g", "p", "s", "f", "w", "v"]
 SCENE_DESC = {
     "a": "1 ragdoll standing, pelvis at 1.5 m, 10 000 steps",
@@ -65,7 +66,12 @@ def parse(path):
             elif line.startswith("# ensemble "):
                 meta.setdefault("ensembles", []).append(parse_kv(line[len("# ensemble "):]))
             elif line.startswith("engine="):
-                runs.append(parse_kv(line))
+                d = parse_kv(line)
+                # ours with sleeping on in the scenes that also run with it off
+                if (d["engine"] == OURS and d.get("sleep") == "1" and
+                        d.get("scenario") in bench_ratios.SLEEP_SCENES):
+                    d["engine"] = OURS_SLEEP
+                runs.append(d)
     return meta, runs, failures
 
 
@@ -175,7 +181,7 @@ def report(meta, runs, failures, png_name):
     groups = build_groups(runs)
     engines = [e for e in ENGINE_ORDER if any(k[0] == e for k in groups)]
     engines += sorted({k[0] for k in groups} - set(engines))
-    peers = [e for e in engines if e not in (OURS, OURS_1T)]
+    peers = [e for e in engines if e not in (OURS, OURS_1T, OURS_SLEEP)]
     names = {k[0]: g.engine_name for k, g in groups.items()}
     L = []
     L.append("# Benchmark results: ragdoll_sim vs MuJoCo, Bullet, ODE")
@@ -234,31 +240,9 @@ def report(meta, runs, failures, png_name):
     L.append(md_table(header, rows))
     L.append("")
 
-    # ---- ratios
-    if OURS in engines and peers:
-        L.append("## Speed of ours relative to each peer")
-        L.append("")
-        L.append("ragdoll_sim steps/s ÷ peer steps/s (> 1: ours is faster; µs/body-step ratio is "
-                 "the inverse). First the ratio of the medians, then in brackets the min–max of the "
-                 "per-round ratios.")
-        L.append("")
-        scenes = [(s, n) for (e, s, n) in groups if e == OURS and
-                  any((p, s, n) in groups for p in peers)]
-        scenes = sorted(set(scenes), key=lambda t: (SCENE_ORDER.index(t[0]) if t[0] in SCENE_ORDER
-                                                    else 99, t[1] or 0))
-        rows = []
-        for s, n in scenes:
-            row = [scene_label(s, n)]
-            for p in peers:
-                med, lo, hi = ratio(groups, s, n, p)
-                if med != med:
-                    f = failure_for(failures, p, s, n)
-                    row.append("%s failed" % names.get(p, p) if f else "-")
-                else:
-                    row.append("%s (%s–%s)" % (fmt_ratio(med), fmt_ratio(lo), fmt_ratio(hi)))
-            rows.append(row)
-        L.append(md_table(["scene"] + ["ours ÷ %s" % names.get(p, p) for p in peers], rows))
-        L.append("")
+    # ---- ratios (sleep off and on) and the bars
+    L += bench_ratios.section(groups, engines, names, SCENE_ORDER, md_table, scene_label,
+                              lambda e, s, n: failure_for(failures, e, s, n) is not None)
 
     # ---- scaling
     ns = sorted({n for (e, s, n) in groups if s == "g"} |
@@ -270,7 +254,8 @@ def report(meta, runs, failures, png_name):
                  "linear cost in the number of bodies. Plot: `%s`." % png_name)
         L.append("")
         header = ["ragdolls", "bodies"]
-        for e in engines:
+        g_engines = [e for e in engines if any(k[0] == e and k[1] == "g" for k in groups)]
+        for e in g_engines:
             header += ["%s µs/body-step" % names[e], "%s steps/s" % names[e]]
         header += ["ours ÷ %s (steps/s)" % names[p] for p in peers if OURS in engines]
         rows = []
@@ -278,7 +263,7 @@ def report(meta, runs, failures, png_name):
             bodies = next((g.field("bodies") for (e, s, m), g in groups.items()
                            if s == "g" and m == n), "-")
             row = [n, bodies]
-            for e in engines:
+            for e in g_engines:
                 g = groups.get((e, "g", n))
                 if g:
                     row += ["%.2f (%.2f–%.2f)" % (g.us_med, min(g.us), max(g.us)),
@@ -293,7 +278,7 @@ def report(meta, runs, failures, png_name):
                         fmt_ratio(med), fmt_ratio(lo), fmt_ratio(hi)))
             rows.append(row)
         spread = ["spread about the mean over N", ""]
-        for e in engines:
+        for e in g_engines:
             us = [groups[(e, "g", n)].us_med for n in ns if (e, "g", n) in groups]
             mean = sum(us) / len(us) if us else 0.0
             spread += ["%+.0f %% to %+.0f %%" % (100 * (min(us) / mean - 1), 100 * (max(us) / mean - 1))
@@ -313,10 +298,12 @@ def report(meta, runs, failures, png_name):
                  "of ragdoll_common.hpp wrapped to add scene g; the grid is "
                  "`bench/scaling_grid.hpp`, the same one bench_ragdoll uses.")
         L.append("")
+    L += bench_ratios.bars_section(groups, engines, names, meta)
 
     # ---- our extras
     ours_groups = [(k, g) for k, g in groups.items() if k[0] == OURS]
-    if ours_groups:
+    extra_groups = [(k, g) for k, g in groups.items() if k[0] in (OURS, OURS_SLEEP)]
+    if extra_groups:
         L.append("## ragdoll_sim: extra fields")
         L.append("")
         L.append("Cost per step in the first and the last simulated second (µs, median; "
@@ -327,45 +314,15 @@ def report(meta, runs, failures, png_name):
                  "outside the pit, and the highest pelvis at the end (m).")
         L.append("")
         rows = []
-        for (e, s, n), g in ours_groups:
-            rows.append([scene_label(s, n)] + [
+        for (e, s, n), g in extra_groups:
+            rows.append([scene_label(s, n) + (" (sleep on)" if e == OURS_SLEEP else "")] + [
                 "%.1f" % statistics.median(fnum(r.get(k)) for r in g.runs)
                 if k in OURS_EXTRA_MEDIAN else g.field(k) for k in OURS_EXTRA])
         L.append(md_table(["scene"] + OURS_EXTRA, rows))
         L.append("")
 
     L += bench_scale_report.section(runs, load_runs, meta)
-    # ---- flop count and the machine's peak (scripts/flops.sh)
-
-    if "flops_per_body_step" in meta and ours_groups:
-        flops = float(meta["flops_per_body_step"])
-        peak = float(meta.get("peak_gflops", "nan"))
-        L.append("## Flops per body-step and the machine's peak")
-        L.append("")
-        L.append("Counted by `scripts/flops.sh`: bench_ragdoll built with x87 arithmetic and "
-                 "Eigen's vectorisation off, so that valgrind's lackey counts every double "
-                 "operation (an upper bound: conversions and negations count too), scene a, "
-                 "steps %s, commit %s. Peak: %s = %.1f GFLOP/s." % (
-                     meta.get("flops_window", "?").replace("a:", ""),
-                     meta.get("flops_commit", meta.get("commit", "?")),
-                     meta.get("peak_basis", "?").replace("_", " "), peak))
-        L.append("")
-        rows = []
-        for (e, s, n), g in ours_groups:
-            if s in ("a", "s"):
-                continue  # asleep for most of their steps: the rate is not the solver's
-            bsps = statistics.median(fnum(r.get("body_steps_per_s")) for r in g.runs)
-            gf = flops * bsps / 1e9
-            rows.append([scene_label(s, n), "%.0f" % flops, "%.0f" % bsps, "%.2f" % gf,
-                         "%.2f %%" % (100.0 * gf / peak)])
-        L.append(md_table(["scene", "flops/body-step", "body-steps/s", "GFLOP/s",
-                           "fraction of peak"], rows))
-        L.append("")
-        L.append("The flops per body-step are those of scene a while its ragdoll is awake and "
-                 "on the ground; scenes with more contacts per body cost more. Scenes a and s "
-                 "are left out: they sleep for most of their steps, and sleeping bodies cost no "
-                 "flops.")
-        L.append("")
+    L += bench_flops_report.section(meta, ours_groups, md_table, scene_label)
 
     # ---- chaotic scenes as perturbed copies (scripts/bench_ensemble.sh)
     if meta.get("ensembles"):

@@ -1,0 +1,155 @@
+"""The ratio table and the issue's bars in bench/RESULTS.md (bench_report.py imports it).
+
+Ours runs twice in every round of `make bench`: sleeping off (engine ragdoll_sim, the headline:
+the peers' benches do not sleep) and sleeping on (ragdoll_sim_sleep), so the table gives both
+ratios against each peer and against the faster of Bullet and ODE. The bars are printed as lines
+with the measured value beside each, so a reader sees at once which hold.
+"""
+import statistics
+
+OURS = "ragdoll_sim"
+OURS_SLEEP = "ragdoll_sim_sleep"  # ours with sleeping on, scenes a, b, c
+OURS_1T = "ragdoll_sim_1thread"  # ours on one thread, scene g
+FASTER_OF = ("bullet", "ode")  # "the faster of Bullet and ODE", per round
+SLEEP_SCENES = ("a", "b", "c", "g")  # a line of ours with sleep=1 in these is OURS_SLEEP
+# Speed bars of the wide solver's issue: (scene, peer or FASTER_OF, least ratio of steps/s).
+SPEED_BARS = [("b", "mujoco", 8.0), ("b", FASTER_OF, 6.0), ("c", "mujoco", 7.0)]
+SCALING_SPREAD_BAR = 0.30  # one-thread cost per body-step within +-30 % of its mean
+SCALING_SPREAD_NS = (4, 256)  # over N = 4..256
+THREADS_BAR = 1.7  # two threads >= 1.7x one thread
+THREADS_MIN_N = 16  # for N >= 16
+
+
+def fmt(x):
+    return "-" if x != x else "{:.2f}".format(x)
+
+
+def per_round(groups, key):
+    g = groups.get(key)
+    return dict(g.by_round) if g else {}
+
+
+def faster_of(groups, scene, n, peers):
+    """Steps/s per round of the faster of the peers that ran (the larger steps/s in each round)."""
+    rounds = {}
+    for p in peers:
+        for r, sps in per_round(groups, (p, scene, n)).items():
+            rounds[r] = max(rounds.get(r, 0.0), sps)
+    return rounds
+
+
+def ratio_rounds(num, den):
+    """Ratio of the medians and min-max of the per-round ratios of two {round: steps/s}."""
+    common = [r for r in num if r in den and den[r] > 0]
+    if not common:
+        return float("nan"), float("nan"), float("nan")
+    med = statistics.median(num[r] for r in common) / statistics.median(den[r] for r in common)
+    per = [num[r] / den[r] for r in common]
+    return med, min(per), max(per)
+
+
+def cell(groups, ours, scene, n, peer, peers):
+    num = per_round(groups, (ours, scene, n))
+    den = faster_of(groups, scene, n, peers) if peer == FASTER_OF else per_round(
+        groups, (peer, scene, n))
+    med, lo, hi = ratio_rounds(num, den)
+    return (med, lo, hi), ("-" if med != med else "%s (%s–%s)" % (fmt(med), fmt(lo), fmt(hi)))
+
+
+def table(groups, peers, names, scene_order, label, failed):
+    """The ratio table: one row per scene ours and a peer both ran, for every peer a column
+    sleep off and one sleep on, then the faster of Bullet and ODE."""
+    scenes = sorted({(s, n) for (e, s, n) in groups if e in (OURS, OURS_SLEEP) and
+                     any((p, s, n) in groups for p in peers)},
+                    key=lambda t: (scene_order.index(t[0]) if t[0] in scene_order else 99, t[1] or 0))
+    fast = [p for p in peers if p in FASTER_OF]
+    columns = [(p, names.get(p, p)) for p in peers]
+    if len(fast) == len(FASTER_OF):
+        columns.append((FASTER_OF, "the faster of %s" % " and ".join(names.get(p, p) for p in fast)))
+    header = ["scene"]
+    for _, name in columns:
+        header += ["ours ÷ %s, sleep off" % name, "sleep on"]
+    rows = []
+    for s, n in scenes:
+        row = [label(s, n)]
+        for peer, _ in columns:
+            for ours in (OURS, OURS_SLEEP):
+                text = cell(groups, ours, s, n, peer, fast)[1]
+                if text == "-" and peer != FASTER_OF and (ours, s, n) in groups and failed(peer, s, n):
+                    text = "%s failed" % names.get(peer, peer)
+                row.append(text)
+        rows.append(row)
+    return header, rows
+
+
+def speed_bar_lines(groups, peers, names):
+    fast = [p for p in peers if p in FASTER_OF]
+    out = []
+    for scene, peer, bar in SPEED_BARS:
+        if peer == FASTER_OF and len(fast) < len(FASTER_OF) or peer != FASTER_OF and peer not in peers:
+            continue
+        pname = ("the faster of %s" % " and ".join(names.get(p, p) for p in fast)
+                 if peer == FASTER_OF else names.get(peer, peer))
+        (med, lo, hi), text = cell(groups, OURS, scene, None, peer, fast)
+        if med != med:
+            continue
+        on = cell(groups, OURS_SLEEP, scene, None, peer, fast)[1]
+        out.append("- %s: ours ÷ %s ≥ %.0fx: sleep off %s, %s; sleep on %s" % (
+            scene, pname, bar, text, "met" if med >= bar else "not met", on))
+    return out
+
+
+def scaling_bar_lines(groups, own_threads):
+    """One-thread cost per body-step over N = 4..256 (mean, largest deviation) and the speed of
+    ours on OWN_THREADS threads over one thread for N >= 16, both from scene g."""
+    out = []
+    lo_n, hi_n = SCALING_SPREAD_NS
+    pts = sorted((n, g.us_med) for (e, s, n), g in groups.items()
+                 if e == OURS_1T and s == "g" and lo_n <= n <= hi_n)
+    if len(pts) > 1:
+        mean = sum(u for _, u in pts) / len(pts)
+        worst_n, worst = max(pts, key=lambda t: abs(t[1] / mean - 1))
+        dev = worst / mean - 1
+        out.append("- one thread, cost per body-step for N = %s: mean %.3f µs, largest deviation "
+                   "%+.0f %% (N = %d); bar ±%.0f %%: %s" % (
+                       ", ".join(str(n) for n, _ in pts), mean, 100 * dev, worst_n,
+                       100 * SCALING_SPREAD_BAR,
+                       "met" if abs(dev) <= SCALING_SPREAD_BAR else "not met"))
+    ns = sorted(n for (e, s, n) in groups if e == OURS and s == "g" and n >= THREADS_MIN_N and
+                (OURS_1T, "g", n) in groups)
+    for n in ns:
+        med, lo, hi = ratio_rounds(per_round(groups, (OURS, "g", n)),
+                                   per_round(groups, (OURS_1T, "g", n)))
+        out.append("- %s threads ÷ one thread, N = %d: %s (%s–%s); bar ≥ %.1fx: %s" % (
+            own_threads, n, fmt(med), fmt(lo), fmt(hi), THREADS_BAR,
+            "met" if med >= THREADS_BAR else "not met"))
+    return out
+
+
+def section(groups, engines, names, scene_order, md_table, label, failed):
+    peers = [e for e in engines if e not in (OURS, OURS_1T, OURS_SLEEP)]
+    L = []
+    if (OURS in engines or OURS_SLEEP in engines) and peers:
+        L += ["## Speed of ours relative to each peer", "",
+              "ragdoll_sim steps/s ÷ peer steps/s (> 1: ours is faster), ours with sleeping off "
+              "(the peers' benches do not sleep) and, beside it, with sleeping on (the "
+              "engine's default), both run in the same alternating rounds. First the ratio of "
+              "the medians, then in brackets the min–max of the per-round ratios; the faster of "
+              "Bullet and ODE is the one with more steps/s in each round.", ""]
+        header, rows = table(groups, peers, names, scene_order, label, failed)
+        L += [md_table(header, rows), ""]
+    return L
+
+
+def bars_section(groups, engines, names, meta):
+    peers = [e for e in engines if e not in (OURS, OURS_1T, OURS_SLEEP)]
+    L = []
+    bars = speed_bar_lines(groups, peers, names) if OURS in engines else []
+    scaling = scaling_bar_lines(groups, meta.get("own_threads", "?"))
+    if bars or scaling:
+        L += ["## Bars of the wide solver's issue", ""]
+        L += ["Speed against the peers (scene, ratio of the medians with the per-round min–max):",
+              ""] + bars + [""] if bars else []
+        L += ["Scaling, scene g, sleeping off (ragdoll_sim_1thread: ours with threads=1):",
+              ""] + scaling + [""] if scaling else []
+    return L
