@@ -2,7 +2,7 @@
 SHELL := /bin/bash
 export PATH := /usr/bin:$(PATH)
 .NOTPARALLEL:
-.PHONY: deps build run test bench fuzz clean
+.PHONY: deps build run test bench bench_compare fuzz clean
 
 # clang and its libFuzzer / sanitizer runtimes: `make test` runs the fuzz targets briefly, and
 # `make fuzz` for FUZZ_SECONDS each (the sanitizer build of `make test` uses gcc's runtimes).
@@ -53,6 +53,12 @@ BENCH_DEBS := libmujoco-dev libbullet-dev libode-dev libtinyxml2-dev liburdfdom-
 bench: deps
 	@scripts/deps.sh $(BENCH_DEBS)
 	@scripts/bench.sh
+
+# Two bench_ragdoll binaries interleaved, old and new back to back in each of ROUNDS (default 5)
+# rounds, scenes b, c, p and one awake ragdoll, sleeping off: a Markdown table of the steps/s and
+# new / old (scripts/bench_compare.sh; OLD_OPTS, NEW_OPTS, THREADS, STEPS, OUT_MD there).
+bench_compare:
+	@scripts/bench_compare.sh "$(OLD)" "$(NEW)" $(ROUNDS)
 
 # libFuzzer targets (test/fuzz) built with clang + ASan + UBSan, FUZZ_SECONDS (default 60) each;
 # prints the executions and any crash, exits non-zero on a crash (scripts/fuzz.sh).

@@ -1,0 +1,174 @@
+"""The benchmark's scripts on made-up inputs: bench_report.py's ratio table (sleeping off and on,
+the faster of Bullet and ODE), the issue's bars and the flop section; bench_compare_report.py's
+table; bench_compare.sh with two fake binaries (alternation, options, thread counts). No timing,
+no engine: each test runs in well under a second.
+"""
+import os
+import stat
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.normpath(os.path.join(HERE, "..", ".."))
+SCRIPTS = os.path.join(ROOT, "scripts")
+sys.path.insert(0, SCRIPTS)
+
+import bench_compare_report  # noqa: E402
+import bench_report  # noqa: E402
+
+
+def line(engine, scene, sps, rnd, bodies=480, sleep=0, n=None, **extra):
+    fields = {"engine": engine, "scenario": scene, "ragdolls": n or 32, "bodies": bodies,
+              "steps": 3000, "wall_s": 1, "steps_per_s": sps, "body_steps_per_s": sps * bodies,
+              "us_per_body_step": 1e6 / (sps * bodies), "max_anchor_err_m": 0.0005,
+              "max_ground_pen_m": 0.003, "max_limit_viol_rad": 0.01, "sleep": sleep,
+              "round": rnd}
+    fields.update(extra)
+    return " ".join("%s=%s" % kv for kv in fields.items())
+
+
+# Scene b in two rounds: ours sleeping off 1000 / 1200 steps/s, sleeping on 1100 / 1300;
+# MuJoCo 100 / 150; Bullet 200 / 150; ODE 120 / 250 (the faster of the two: 200, then 250).
+RAW = "\n".join([
+    "# meta own_threads=2",
+    "# meta flops_per_body_step=1000",
+    "# meta flops_f64_per_body_step=600",
+    "# meta flops_f32_per_body_step=8",
+    "# meta flops_v128_per_body_step=90",
+    "# meta flops_v256_per_body_step=4",
+    "# meta peak_gflops=100.0",
+    "# meta peak_gflops_float=200.0",
+    "# meta peak_basis=2_cores_x_2000_MHz_x_25_DP_flops/cycle",
+    line("ragdoll_sim", "b", 1000, 1),
+    line("ragdoll_sim_sleep", "b", 1100, 1, sleep=1),
+    line("mujoco-2.2.2", "b", 100, 1),
+    line("bullet-3.24", "b", 200, 1),
+    line("ode-0.16", "b", 120, 1),
+    line("ragdoll_sim", "b", 1200, 2),
+    line("ragdoll_sim_sleep", "b", 1300, 2, sleep=1),
+    line("mujoco-2.2.2", "b", 150, 2),
+    line("bullet-3.24", "b", 150, 2),
+    line("ode-0.16", "b", 250, 2),
+    # an old raw file: ours with sleep=1 under its own name is the sleeping-on engine
+    line("ragdoll_sim", "c", 500, 1, sleep=1),
+    line("mujoco-2.2.2", "c", 100, 1),
+    # scene g: one thread costs 1.0, 1.4 and 1.0 us per body-step at N = 4, 16, 64 (mean 1.133,
+    # N = 16 +24 %), two threads 1.8x one thread at N = 16
+    line("ragdoll_sim_1thread", "g", 1e6 / 60, 1, bodies=60, n=4),
+    line("ragdoll_sim_1thread", "g", 1e6 / 1.4 / 240, 1, bodies=240, n=16),
+    line("ragdoll_sim_1thread", "g", 1e6 / 960, 1, bodies=960, n=64),
+    line("ragdoll_sim", "g", 1.8e6 / 1.4 / 240, 1, bodies=240, n=16),
+    "# FAILED engine=mujoco scenario=g ragdolls=16 round=1 rc=1 reason=x",
+]) + "\n"
+
+
+def make_report(tmp_path, raw=RAW):
+    path = tmp_path / "raw.txt"
+    path.write_text(raw)
+    meta, runs, failures = bench_report.parse(str(path))
+    return bench_report.report(meta, runs, failures, "scaling.png")[0]
+
+
+def table_row(text, first_cell):
+    rows = [l for l in text.splitlines() if l.startswith("| %s |" % first_cell)]
+    assert rows, first_cell
+    return [c.strip() for c in rows[0].strip("|").split("|")]
+
+
+def test_ratio_table_sleep_off_and_on(tmp_path):
+    text = make_report(tmp_path)
+    assert "| scene | ours ÷ mujoco-2.2.2, sleep off | sleep on | ours ÷ bullet-3.24, sleep off" in text
+    assert "ours ÷ the faster of bullet-3.24 and ode-0.16, sleep off | sleep on |" in text
+    b = table_row(text, "b")
+    # medians 1100 / 125 = 8.80; per round 10.00 and 8.00
+    assert b[1] == "8.80 (8.00–10.00)"
+    assert b[2] == "9.60 (8.67–11.00)"  # sleeping on: 1200 / 125; 11.00 and 8.67
+    # the faster of Bullet and ODE: 200 then 250 (median 225): 1100 / 225 = 4.89; 5.00, 4.80
+    assert b[7] == "4.89 (4.80–5.00)"
+    assert b[8] == "5.33 (5.20–5.50)"
+    c = table_row(text, "c")
+    assert c[1] == "-" and c[2] == "5.00 (5.00–5.00)"
+
+
+def test_bars(tmp_path):
+    text = make_report(tmp_path)
+    assert ("- b: ours ÷ mujoco-2.2.2 ≥ 8x: sleep off 8.80 (8.00–10.00), met; "
+            "sleep on 9.60 (8.67–11.00)") in text
+    assert "- b: ours ÷ the faster of bullet-3.24 and ode-0.16 ≥ 6x: sleep off 4.89 (4.80–5.00), not met" in text
+    assert "- c: ours ÷ mujoco-2.2.2" not in text  # no sleeping-off run of c
+    assert ("- one thread, cost per body-step for N = 4, 16, 64: mean 1.133 µs, largest "
+            "deviation +24 % (N = 16); bar ±30 %: met") in text
+    assert "- 2 threads ÷ one thread, N = 16: 1.80 (1.80–1.80); bar ≥ 1.7x: met" in text
+
+
+def test_flops_section(tmp_path):
+    text = make_report(tmp_path)
+    assert "F64 600, F32 8, V128 90, V256 4" in text
+    assert "100.0 GFLOP/s in double; in float 200.0 GFLOP/s, assuming 2 float" in text
+    # scene b sleeping off only (the sleeping-on runs are left out)
+    rows = [l for l in text.splitlines() if l.startswith("| b | 1000 |")]
+    assert rows == ["| b | 1000 | 528000 | 0.53 | 0.53 % | 0.26 % |"]
+
+
+COMPARE_RAW = "\n".join([
+    "# meta old_bin=/o", "# meta new_bin=/n", "# meta new_opts=lanes=0", "# meta rounds=2",
+    line("ragdoll_sim", "p", 100, 1, side="old", label="p", run_threads=1),
+    line("ragdoll_sim", "p", 150, 1, side="new", label="p", run_threads=1, max_ground_pen_m=0.004),
+    line("ragdoll_sim", "p", 120, 2, side="new", label="p", run_threads=1, max_ground_pen_m=0.004),
+    line("ragdoll_sim", "p", 100, 2, side="old", label="p", run_threads=1),
+    line("ragdoll_sim", "g", 1000, 1, side="old", label="g1", run_threads=1),
+    line("ragdoll_sim", "g", 1100, 1, side="new", label="g1", run_threads=1),
+    "# FAILED side=new label=b run_threads=2 round=1 rc=139 reason=x",
+]) + "\n"
+
+
+def test_compare_table():
+    meta, runs, failures = bench_compare_report.parse(COMPARE_RAW.splitlines())
+    text = bench_compare_report.report(meta, runs, failures)
+    assert "new: `/n` --opt lanes=0" in text
+    p = table_row(text, "p")
+    assert p[:6] == ["p", "1", "100 (100–100)", "135 (120–150)", "1.35 (1.20–1.50)", "≥ 1.35: met"]
+    assert p[6:8] == ["0.0005 / 0.003 / 0.01", "0.0005 / 0.004 / 0.01"]
+    g = table_row(text, "g N=1")
+    assert g[4:6] == ["1.10 (1.10–1.10)", "≥ 1.20: not met"]
+    b = table_row(text, "b")
+    assert b[2:5] == ["-", "-", "-"] and b[8] == "1"
+
+
+FAKE = """#!/bin/bash
+echo "$(basename "$0") $*" >> "%s"
+sps=1000; [[ "$0" == *new* ]] && sps=1500
+echo "engine=ragdoll_sim scenario=$1 steps_per_s=$sps max_anchor_err_m=0 max_ground_pen_m=0 max_limit_viol_rad=0"
+"""
+
+
+def test_compare_script_alternates_and_passes_options(tmp_path):
+    log = tmp_path / "calls.txt"
+    bins = []
+    for name in ("old_bench", "new_bench"):
+        b = tmp_path / name
+        b.write_text(FAKE % log)
+        b.chmod(b.stat().st_mode | stat.S_IXUSR)
+        bins.append(str(b))
+    env = dict(os.environ, SCENES="b g1", THREADS="1 2", NEW_OPTS="lanes=0", OPTS="substeps=3",
+               STEPS="7", OUT_RAW=str(tmp_path / "raw.txt"), OUT_MD=str(tmp_path / "t.md"),
+               URDF="u.urdf")
+    out = subprocess.run([os.path.join(SCRIPTS, "bench_compare.sh"), bins[0], bins[1], "2"],
+                         env=env, capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0, out.stderr
+    calls = log.read_text().splitlines()
+    base = "--urdf u.urdf --opt sleep=0,threads=%d --steps 7 --opt substeps=3"
+    assert calls == [
+        "old_bench b " + base % 1, "new_bench b " + base % 1 + " --opt lanes=0",
+        "old_bench b " + base % 2, "new_bench b " + base % 2 + " --opt lanes=0",
+        "old_bench g --urdf u.urdf --opt sleep=0,threads=1 --ragdolls 1 --steps 7 --opt substeps=3",
+        "new_bench g --urdf u.urdf --opt sleep=0,threads=1 --ragdolls 1 --steps 7 --opt substeps=3 --opt lanes=0",
+        # round 2: new first
+        "new_bench b " + base % 1 + " --opt lanes=0", "old_bench b " + base % 1,
+        "new_bench b " + base % 2 + " --opt lanes=0", "old_bench b " + base % 2,
+        "new_bench g --urdf u.urdf --opt sleep=0,threads=1 --ragdolls 1 --steps 7 --opt substeps=3 --opt lanes=0",
+        "old_bench g --urdf u.urdf --opt sleep=0,threads=1 --ragdolls 1 --steps 7 --opt substeps=3",
+    ]
+    assert (tmp_path / "t.md").read_text() in out.stdout
+    assert "| b | 2 | 1,000 (1,000–1,000) | 1,500 (1,500–1,500) | 1.50 (1.50–1.50) |" in out.stdout
+    assert "| g N=1 | 1 | 1,000 (1,000–1,000) | 1,500 (1,500–1,500) | 1.50 (1.50–1.50) | ≥ 1.20: met |" in out.stdout
