@@ -74,7 +74,7 @@ run_one() {
   line="$(grep -m1 '^engine=' <<<"$out" || true)"
   if [[ "$rc" -eq 0 && -n "$line" ]]; then
     echo "$line side=$side round=$r label=$label run_threads=$t" >>"$OUT_RAW"
-    echo "bench_compare: round $r $side $label threads=$t $(grep -o 'steps_per_s=[^ ]*' <<<"$line")" >&2
+    echo "bench_compare: round $r $side $label threads=$t $(grep -o ' steps_per_s=[^ ]*' <<<"$line")" >&2
   else
     echo "# FAILED side=$side label=$label run_threads=$t round=$r rc=$rc reason=$(tail -n1 "$errf" | tr -s ' \t' '_' | cut -c1-160)" |
       tee -a "$OUT_RAW" >&2

@@ -105,7 +105,7 @@ def rows(runs, failures):
 
 def report(meta, runs, failures):
     L = ["## Old against new, interleaved", ""]
-    L.append("Old: `%s`%s; new: `%s`%s. %s rounds, old and new back to back in each (the first "
+    L.append("Old: `%s`%s; new: `%s`%s. Rounds: %s, old and new back to back in each (the first "
              "of the two swapping every round), sleeping off, OMP_NUM_THREADS=1, steps: %s; "
              "%s, nproc %s, load average %s at the start, %s at the end." % (
                  meta.get("old_bin", "?"), " --opt " + meta["old_opts"] if meta.get("old_opts") else "",
