@@ -17,7 +17,8 @@
 #   THREADS="1 2"        --opt threads=T; scene g with fewer than 3 ragdolls runs at the first
 #                        count only (under 32 bodies: islands that small never run in parallel)
 #   STEPS=               --steps for every run (default: each scene's own)
-#   OPTS=                --opt for both binaries, k=v,...
+#   OPTS=                --opt for both binaries, k=v,... (hash=1: the table says whether both
+#                        binaries end every run on the same state hash)
 #   OLD_OPTS=, NEW_OPTS= --opt for one binary only (NEW_OPTS=lanes=0: a binary from before the
 #                        wide solver does not know lanes=)
 #   URDF=../shared/peers/ragdoll15.urdf

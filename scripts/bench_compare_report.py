@@ -68,6 +68,15 @@ def quality(runs):
     return " / ".join(out)
 
 
+def same_state(runs):
+    """With OPTS=hash=1: "yes" when every run of both binaries ends on the same state hash."""
+    hashes = {side: {r["state_hash"] for r in runs if r.get("side") == side and "state_hash" in r}
+              for side in ("old", "new")}
+    if not hashes["old"] or not hashes["new"]:
+        return "-"
+    return "yes" if len(hashes["old"] | hashes["new"]) == 1 else "no"
+
+
 def rows(runs, failures):
     """One row per (scene, threads) in the order they ran."""
     keys = list(OrderedDict.fromkeys((label_of(r), r.get("run_threads", r.get("threads", "?")))
@@ -98,6 +107,7 @@ def rows(runs, failures):
             row += ["-", "≥ %.2f" % bar if bar else ""]
         for side in ("old", "new"):
             row.append(quality([r for r in mine if r.get("side") == side]) if by[side] else "-")
+        row.append(same_state(mine))
         row.append(str(nfail) if nfail else "")
         out.append(row)
     return out
@@ -115,10 +125,11 @@ def report(meta, runs, failures):
     L.append("")
     L.append("Steps/s: median (min–max) over the rounds. new ÷ old: the ratio of the medians "
              "(min–max of the per-round ratios). Quality: max_anchor_err_m / max_ground_pen_m / "
-             "max_limit_viol_rad.")
+             "max_limit_viol_rad. Same state (with `OPTS=hash=1`): every run of both binaries "
+             "gave the same state hash, bit for bit.")
     L.append("")
     header = ["scene", "threads", "old steps/s", "new steps/s", "new ÷ old", "bar",
-              "quality old", "quality new", "failed runs"]
+              "quality old", "quality new", "same state", "failed runs"]
     body = rows(runs, failures)
     L.append("| " + " | ".join(header) + " |")
     L.append("|" + "|".join("---" for _ in header) + "|")

@@ -116,8 +116,10 @@ COMPARE_RAW = "\n".join([
     line("ragdoll_sim", "p", 150, 1, side="new", label="p", run_threads=1, max_ground_pen_m=0.004),
     line("ragdoll_sim", "p", 120, 2, side="new", label="p", run_threads=1, max_ground_pen_m=0.004),
     line("ragdoll_sim", "p", 100, 2, side="old", label="p", run_threads=1),
-    line("ragdoll_sim", "g", 1000, 1, side="old", label="g1", run_threads=1),
-    line("ragdoll_sim", "g", 1100, 1, side="new", label="g1", run_threads=1),
+    line("ragdoll_sim", "g", 1000, 1, side="old", label="g1", run_threads=1, state_hash="ab"),
+    line("ragdoll_sim", "g", 1100, 1, side="new", label="g1", run_threads=1, state_hash="ab"),
+    line("ragdoll_sim", "c", 1000, 1, side="old", label="c", run_threads=1, state_hash="ab"),
+    line("ragdoll_sim", "c", 1100, 1, side="new", label="c", run_threads=1, state_hash="cd"),
     "# FAILED side=new label=b run_threads=2 round=1 rc=139 reason=x",
 ]) + "\n"
 
@@ -131,8 +133,9 @@ def test_compare_table():
     assert p[6:8] == ["0.0005 / 0.003 / 0.01", "0.0005 / 0.004 / 0.01"]
     g = table_row(text, "g N=1")
     assert g[4:6] == ["1.10 (1.10–1.10)", "≥ 1.20: not met"]
+    assert g[8] == "yes" and table_row(text, "c")[8] == "no" and p[8] == "-"
     b = table_row(text, "b")
-    assert b[2:5] == ["-", "-", "-"] and b[8] == "1"
+    assert b[2:5] == ["-", "-", "-"] and b[9] == "1"
 
 
 FAKE = """#!/bin/bash
