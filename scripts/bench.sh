@@ -41,6 +41,7 @@
 #                            the cost per body-step of the algorithm alone, the same thread
 #                            count at every N (N = 1 is one island, which runs on one core)
 #   FLOPS=1                  0 skips the flop count (scripts/flops.sh, valgrind, ~5 min)
+#   FLOPS_OPTS=sleep=0       --opt of the flop count's runs (lanes=4: the wide solver's)
 #   ENSEMBLE="b c"           chaotic scenes that our bench also runs as ENSEMBLE_COPIES (32)
 #                            yaw-perturbed copies after the timed rounds (scripts/bench_ensemble.sh):
 #                            at rest at 3 s and within each quality bar, counted over the copies

@@ -383,9 +383,11 @@ def report(meta, runs, failures, png_name):
              "/usr/bin/python3 scripts/bench_report.py bench/results_raw.txt --md bench/RESULTS.md "
              "--png bench/scaling.png   # report only\n"
              ".ws/bench/bench_ragdoll g --ragdolls 64 --urdf ../shared/peers/ragdoll15.urdf\n"
-             ".ws/bench/peers/scaling_ode g --ragdolls 64 --urdf ../shared/peers/ragdoll15.urdf\n```")
+             ".ws/bench/peers/scaling_ode g --ragdolls 64 --urdf ../shared/peers/ragdoll15.urdf\n"
+             "scripts/bench_compare.sh OLD_BIN NEW_BIN 5   # two binaries interleaved, new ÷ old\n```")
     L.append("")
     L.append("Other settings: PEERS_DIR, SCENES, OWN_SCENES, SCALING_NS, SCALING_STEPS, ENGINES, "
+             "SLEEP_ON, FLOPS_OPTS, "
              "RUN_TIMEOUT (see the header of scripts/bench.sh). Engine stderr of the last sitting: "
              "`.ws/bench/bench_stderr.log`.")
     L.append("")
