@@ -46,7 +46,8 @@ class ContactBatch {
   std::vector<int> lane_of_;  // of wide_[i]: block * kRowBlock + lane
   std::vector<ContactBlock> blocks_;
   std::vector<GraphEdge> edges_;
-  std::vector<int> candidates_;  // the eligible slots, in slot order
+  std::vector<int> candidates_;    // the eligible slots, in slot order
+  std::vector<int> colour_slots_;  // one colour's slots, by point count
   std::vector<int> ends_;  // the bodies of the eligible constraints, for WideBodies::build
   ConstraintGraph graph_;
   WideBodies bodies_;
