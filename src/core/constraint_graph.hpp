@@ -1,4 +1,4 @@
-// Graph colouring for the wide solver (planned, not yet called by the solver): the constraints
+// Graph colouring for the wide solver (the contact rows use it, contact_wide.hpp): the constraints
 // of one island part are split into colours so that no two constraints of a colour share a
 // dynamic body; a colour's constraints then touch disjoint bodies, so solving them 4 or 8 at
 // once in lanes gives the same bits as solving them one after another, in any order.

@@ -103,6 +103,8 @@ void applyRolling(PairVelocity<kLiveA>& u, const ContactConstraint& cc, double l
 Vec3 relativeVelocity(const SolverBody& A, const SolverBody& B, const Vec3& rA, const Vec3& rB) {
   return B.v + B.w.cross(rB) - A.v - A.w.cross(rA);
 }
+}  // namespace
+
 // s = (dpB - dpA).n + (dqB rB).n - (dqA rA).n + base for every point of cc: n is rotated back
 // once per manifold instead of rotating each lever arm.
 void updateSeparations(const SolverBody& A, const SolverBody& B, ContactConstraint& cc) {
@@ -113,7 +115,6 @@ void updateSeparations(const SolverBody& A, const SolverBody& B, ContactConstrai
     p.separation = dpn + p.rB.dot(nB) - p.rA.dot(nA) + p.base_separation;
   }
 }
-}  // namespace
 
 std::vector<int>& ContactSolver::selectActive(const std::vector<Contact>& contacts,
                                               const std::vector<BodyMotion>& motions) {
@@ -193,6 +194,18 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
       cc.roll_mass = inverseOrZero(K);
     }
   }
+  if (begin >= end) return;
+  if (ctx.lanes != 1) batches_[begin].build(constraints_, ctx, begin, end);
+  else batches_[begin].clear();  // so that no later call takes an older step's batch
+}
+
+ContactBatch* ContactSolver::batchOf(const StepContext& ctx, int begin, int end) {
+  if (ctx.lanes == 1 || begin >= end || !batches_[begin].holds(begin, end)) return nullptr;
+  return &batches_[begin];
+}
+
+void ContactSolver::syncImpulses(int begin, int end) {
+  if (begin < end && batches_[begin].holds(begin, end)) batches_[begin].syncImpulses(constraints_);
 }
 
 namespace {
@@ -320,25 +333,39 @@ void solveConstraint(ContactConstraint& cc, SolverBody& A, SolverBody& B, const 
 }
 }  // namespace
 
+// With a wide batch: its blocks in lanes, then the scalar rest; else every slot scalar.
+template <class Slot>
+void forSlots(ContactBatch* batch, int begin, int end, Slot&& slot) {
+  if (!batch) {
+    for (int k = begin; k < end; ++k) slot(k);
+    return;
+  }
+  for (const int k : batch->scalar()) slot(k);
+}
+
 void ContactSolver::warmStart(const StepContext& ctx, int begin, int end, bool positions_moved) {
   auto& bodies = *ctx.bodies;
-  for (int k = begin; k < end; ++k) {
+  ContactBatch* batch = batchOf(ctx, begin, end);
+  if (batch) batch->warmStart(constraints_, ctx, positions_moved);
+  forSlots(batch, begin, end, [&](int k) {
     ContactConstraint& cc = constraints_[k];
     SolverBody &A = bodies[cc.a], &B = bodies[cc.b];
     if (movable(A)) warmStartConstraint<true>(cc, A, B, positions_moved);
     else warmStartConstraint<false>(cc, A, B, positions_moved);
-  }
+  });
 }
 
 void ContactSolver::solve(const StepContext& ctx, bool use_bias, int begin, int end,
                           bool positions_moved) {
   auto& bodies = *ctx.bodies;
-  for (int k = begin; k < end; ++k) {
+  ContactBatch* batch = batchOf(ctx, begin, end);
+  if (batch) batch->solve(constraints_, ctx, use_bias, positions_moved);
+  forSlots(batch, begin, end, [&](int k) {
     ContactConstraint& cc = constraints_[k];
     SolverBody &A = bodies[cc.a], &B = bodies[cc.b];
     if (movable(A)) solveConstraint<true>(cc, A, B, ctx, use_bias, positions_moved);
     else solveConstraint<false>(cc, A, B, ctx, use_bias, positions_moved);
-  }
+  });
 }
 
 bool ContactSolver::project(const StepContext& ctx, int begin, int end, int sweep) {
@@ -366,6 +393,7 @@ bool ContactSolver::project(const StepContext& ctx, int begin, int end, int swee
 }
 
 void ContactSolver::applyRestitution(const StepContext& ctx, int begin, int end) {
+  syncImpulses(begin, end);  // the double constraints are the source from here on
   auto& bodies = *ctx.bodies;
   const double threshold = ctx.settings->restitution_threshold;
   for (int k = begin; k < end; ++k) {
@@ -404,6 +432,7 @@ void ContactSolver::storeImpulses(std::vector<Contact>& contacts, double h, int 
 }
 
 void ContactSolver::trackSubstep(int begin, int end, bool first) {
+  syncImpulses(begin, end);
   for (int k = begin; k < end; ++k) {
     ContactConstraint& cc = constraints_[k];
     for (int i = 0; i < cc.count; ++i) {

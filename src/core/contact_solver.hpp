@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "contact.hpp"
+#include "contact_wide.hpp"
 #include "solver_context.hpp"
 
 namespace ragdoll_sim {
@@ -50,6 +51,9 @@ struct ContactConstraint {
   ContactConstraintPoint points[Manifold::kMaxPoints];
 };
 
+// s = (dpB - dpA + dqB rB - dqA rA).n + base_separation of every point of cc, in double.
+void updateSeparations(const SolverBody& A, const SolverBody& B, ContactConstraint& cc);
+
 // Constraints are stored grouped by island (World groups the selected contacts, then each
 // island's are prepared by the thread that solves it); the per-substep calls take the range
 // [begin, end) of one island, so islands can be solved in parallel.
@@ -61,8 +65,13 @@ class ContactSolver {
                                  const std::vector<BodyMotion>& motions);
   // One constraint slot per selected contact, in the selected order; then prepare fills the
   // slots [begin, end) (each on its own: ranges may be prepared on different threads).
-  void resize() { constraints_.resize(active_.size()); }
+  void resize() {
+    constraints_.resize(active_.size());
+    if (batches_.size() < active_.size()) batches_.resize(active_.size());
+  }
   const std::vector<int>& active() const { return active_; }  // selectActive's contacts
+  // With ctx.lanes != 1 it also builds the range's wide batch (contact_wide.hpp), which the
+  // calls with the same range then solve before the scalar rest.
   void prepare(const std::vector<Contact>& contacts, const StepContext& ctx, int begin, int end);
   // positions_moved: as for solve; false when a sweep already recomputed the separations at
   // the current deltas (the first relax sweep after the last position update).
@@ -86,7 +95,13 @@ class ContactSolver {
                    double h, int begin, int end) const;
 
  private:
+  // The wide batch of [begin, end) when this step solves it in lanes, else nullptr.
+  ContactBatch* batchOf(const StepContext& ctx, int begin, int end);
+  // The lanes' impulses into the double constraints of [begin, end) (a no-op without a batch).
+  void syncImpulses(int begin, int end);
+
   std::vector<ContactConstraint> constraints_;
+  std::vector<ContactBatch> batches_;  // the batch of a range at its first slot
   std::vector<int> active_;  // contact index of each constraint
 };
 

@@ -2,7 +2,7 @@
 // operations the wide rows need. W = 4 is SSE2 (the x86-64 baseline), W = 8 is AVX (built only
 // in a kernel file compiled with -mavx2), any other W or a target without them is a plain array.
 //
-// Every operation is one correctly rounded IEEE float operation per lane (no reciprocal or
+// Every operation (sqrt included) is one correctly rounded IEEE float operation per lane (no reciprocal or
 // square-root estimates, no fused multiply-add), so a formula gives the same bits in each lane
 // whatever W and whatever the instruction set; kernel files are compiled with -ffp-contract=off
 // so that the compiler does not fuse a product and a sum on its own either.
@@ -108,6 +108,10 @@ struct FloatArrayW {
   RAGDOLL_SIM_ARRAY_OP(min, a.v[i] < b.v[i] ? a.v[i] : b.v[i])
   RAGDOLL_SIM_ARRAY_OP(max, a.v[i] > b.v[i] ? a.v[i] : b.v[i])
 #undef RAGDOLL_SIM_ARRAY_OP
+  friend FloatArrayW sqrt(FloatArrayW a) {
+    for (int i = 0; i < W; ++i) a.v[i] = __builtin_sqrtf(a.v[i]);
+    return a;
+  }
 
 #define RAGDOLL_SIM_ARRAY_CMP(NAME, OP)                        \
   friend Mask NAME(FloatArrayW a, FloatArrayW b) {             \
@@ -172,6 +176,7 @@ struct Float4 {
   friend Float4 operator/(Float4 a, Float4 b) { return {_mm_div_ps(a.v, b.v)}; }
   friend Float4 min(Float4 a, Float4 b) { return {_mm_min_ps(a.v, b.v)}; }
   friend Float4 max(Float4 a, Float4 b) { return {_mm_max_ps(a.v, b.v)}; }
+  friend Float4 sqrt(Float4 a) { return {_mm_sqrt_ps(a.v)}; }
   friend Mask4 operator<(Float4 a, Float4 b) { return {_mm_cmplt_ps(a.v, b.v)}; }
   friend Mask4 operator<=(Float4 a, Float4 b) { return {_mm_cmple_ps(a.v, b.v)}; }
   friend Mask4 operator>(Float4 a, Float4 b) { return {_mm_cmpgt_ps(a.v, b.v)}; }
@@ -226,6 +231,7 @@ struct Float8 {
   friend Float8 operator/(Float8 a, Float8 b) { return {_mm256_div_ps(a.v, b.v)}; }
   friend Float8 min(Float8 a, Float8 b) { return {_mm256_min_ps(a.v, b.v)}; }
   friend Float8 max(Float8 a, Float8 b) { return {_mm256_max_ps(a.v, b.v)}; }
+  friend Float8 sqrt(Float8 a) { return {_mm256_sqrt_ps(a.v)}; }
   // Ordered, non-signalling predicates: the same truth table as the SSE2 compares.
   friend Mask8 operator<(Float8 a, Float8 b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_LT_OQ)}; }
   friend Mask8 operator<=(Float8 a, Float8 b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_LE_OQ)}; }

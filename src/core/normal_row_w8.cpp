@@ -6,6 +6,7 @@
 #define RAGDOLL_SIM_KERNEL_NS kernel_w8
 #include "normal_row_wide.inc"
 #else
+#include "contact_rows_wide.hpp"
 #include "normal_row_wide.hpp"
 
 namespace ragdoll_sim {
@@ -16,6 +17,13 @@ void kernel_w8::solveNormalRows(NormalRowBlock* blocks, int count, const BodyVel
 void kernel_w8::solveNormalRowsAos(NormalRowBlock* blocks, int count, BodyVelocityF* bodies,
                                    const NormalRowParams& params) {
   kernel_w4::solveNormalRowsAos(blocks, count, bodies, params);
+}
+void kernel_w8::warmStartContactBlocks(ContactBlock* blocks, int count, BodyVelocityF* bodies) {
+  kernel_w4::warmStartContactBlocks(blocks, count, bodies);
+}
+void kernel_w8::solveContactBlocks(ContactBlock* blocks, int count, BodyVelocityF* bodies,
+                                   const NormalRowParams& params) {
+  kernel_w4::solveContactBlocks(blocks, count, bodies, params);
 }
 }  // namespace ragdoll_sim
 #endif

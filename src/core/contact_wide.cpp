@@ -1,0 +1,177 @@
+// The wide contact path of a prepared range (contact_wide.hpp); the kernels are in
+// contact_rows_wide.inc.
+#include "contact_wide.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+#include "contact_solver.hpp"
+#include "lane_width.hpp"
+
+namespace ragdoll_sim {
+
+static_assert(kBlockPoints == Manifold::kMaxPoints, "a block holds a whole manifold");
+
+namespace {
+bool eligible(const ContactConstraint& cc) { return !cc.compliant && cc.rolling == 0.0; }
+
+void setVec(float (&field)[3][kRowBlock], int lane, const Vec3& x) {
+  for (int k = 0; k < 3; ++k) field[k][lane] = float(x[k]);
+}
+void setRow(ContactRowLanes& r, int lane, const ContactRow& row) {
+  setVec(r.ang_a, lane, row.angA);
+  setVec(r.ang_b, lane, row.angB);
+  setVec(r.iang_a, lane, row.iangA);
+  setVec(r.iang_b, lane, row.iangB);
+  r.mass[lane] = float(row.mass);
+}
+
+bool wide8(int width) { return width == 8 && cpuHasAvx2(); }
+}  // namespace
+
+void ContactBatch::build(std::vector<ContactConstraint>& cs, const StepContext& ctx, int begin,
+                         int end) {
+  const auto& bodies = *ctx.bodies;
+  begin_ = begin;
+  end_ = end;
+  scalar_.clear();
+  wide_.clear();
+  lane_of_.clear();
+  blocks_.clear();
+  ends_.clear();
+  std::vector<int>& candidates = candidates_;
+  candidates.clear();
+  for (int k = begin; k < end; ++k) {
+    if (!eligible(cs[k])) {
+      scalar_.push_back(k);
+      continue;
+    }
+    candidates.push_back(k);
+    ends_.push_back(cs[k].a);
+    ends_.push_back(cs[k].b);
+  }
+  if (candidates.empty()) return;
+  bodies_.build(bodies, ends_.data(), int(ends_.size()));
+  edges_.resize(candidates.size());
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    const ContactConstraint& cc = cs[candidates[i]];
+    GraphEdge& e = edges_[i];
+    e.body_a = bodies_.record(cc.a);
+    e.body_b = bodies_.record(cc.b);
+    e.dynamic_a = e.body_a >= 0;
+    e.dynamic_b = e.body_b >= 0;
+  }
+  graph_.colour(edges_.data(), int(edges_.size()), std::max(1, bodies_.size()));
+  for (int c = 0; c < graph_.colourCount(); ++c) {
+    // A block loops over the points of its largest manifold: sorted by point count, the
+    // manifolds of a colour fill the blocks' points better. The constraints of a colour share
+    // no body, so their order within it changes no bit.
+    colour_slots_.clear();
+    for (int j = 0; j < graph_.colourSize(c); ++j)
+      colour_slots_.push_back(candidates[graph_.order()[graph_.colourBegin(c) + j]]);
+    std::stable_sort(colour_slots_.begin(), colour_slots_.end(),
+                     [&](int x, int y) { return cs[x].count > cs[y].count; });
+    for (int j = 0; j < int(colour_slots_.size()); ++j) {
+      if (j % kRowBlock == 0) {
+        blocks_.emplace_back();
+        ContactBlock& b = blocks_.back();
+        std::memset(static_cast<void*>(&b), 0, sizeof b);  // padding: zero rows, mass 0
+        for (int l = 0; l < kRowBlock; ++l) b.body_a[l] = b.body_b[l] = -1;
+      }
+      const int slot = colour_slots_[j];
+      const int lane_slot = (int(blocks_.size()) - 1) * kRowBlock + j % kRowBlock;
+      wide_.push_back(slot);
+      lane_of_.push_back(lane_slot);
+      fillLane(cs[slot], bodies, lane_slot);
+    }
+  }
+  const int overflow = graph_.colourBegin(graph_.colourCount());
+  for (int j = overflow; j < graph_.size(); ++j) scalar_.push_back(candidates[graph_.order()[j]]);
+  std::sort(scalar_.begin(), scalar_.end());
+}
+
+void ContactBatch::fillLane(const ContactConstraint& cc, const std::vector<SolverBody>& bodies,
+                            int lane_slot) {
+  ContactBlock& b = blocks_[lane_slot / kRowBlock];
+  const int l = lane_slot % kRowBlock;
+  b.body_a[l] = bodies_.record(cc.a);
+  b.body_b[l] = bodies_.record(cc.b);
+  b.inv_mass_a[l] = float(bodies[cc.a].inv_mass);
+  b.inv_mass_b[l] = float(bodies[cc.b].inv_mass);
+  setVec(b.n, l, cc.normal);
+  setVec(b.t0, l, cc.tangent[0]);
+  setVec(b.t1, l, cc.tangent[1]);
+  b.friction[l] = float(cc.friction);
+  b.points = std::max(b.points, int32_t(cc.count));
+  for (int i = 0; i < cc.count; ++i) {
+    const ContactConstraintPoint& p = cc.points[i];
+    ContactPointLanes& q = b.point[i];
+    setRow(q.row[0], l, p.normal_row);
+    setRow(q.row[1], l, p.tangent_row[0]);
+    setRow(q.row[2], l, p.tangent_row[1]);
+    q.separation[l] = float(p.separation);
+    q.impulse[0][l] = float(p.normal_impulse);
+    q.impulse[1][l] = float(p.tangent_impulse[0]);
+    q.impulse[2][l] = float(p.tangent_impulse[1]);
+    q.max_impulse[l] = float(p.max_normal_impulse);
+  }
+}
+
+void ContactBatch::updateSeparations(std::vector<ContactConstraint>& cs, const StepContext& ctx) {
+  const auto& bodies = *ctx.bodies;
+  for (size_t i = 0; i < wide_.size(); ++i) {
+    ContactConstraint& cc = cs[wide_[i]];
+    ragdoll_sim::updateSeparations(bodies[cc.a], bodies[cc.b], cc);
+    ContactBlock& b = blocks_[lane_of_[i] / kRowBlock];
+    const int l = lane_of_[i] % kRowBlock;
+    for (int p = 0; p < cc.count; ++p) b.point[p].separation[l] = float(cc.points[p].separation);
+  }
+}
+
+void ContactBatch::warmStart(std::vector<ContactConstraint>& cs, const StepContext& ctx,
+                             bool positions_moved) {
+  if (blocks_.empty()) return;
+  if (positions_moved) updateSeparations(cs, ctx);
+  bodies_.gather(*ctx.bodies);
+  const int n = int(blocks_.size());
+  if (wide8(ctx.lanes)) kernel_w8::warmStartContactBlocks(blocks_.data(), n, bodies_.records());
+  else kernel_w4::warmStartContactBlocks(blocks_.data(), n, bodies_.records());
+  bodies_.scatter(*ctx.bodies);
+}
+
+void ContactBatch::solve(std::vector<ContactConstraint>& cs, const StepContext& ctx,
+                         bool use_bias, bool positions_moved) {
+  if (blocks_.empty()) return;
+  if (positions_moved) updateSeparations(cs, ctx);
+  const SolverSettings& s = *ctx.settings;
+  NormalRowParams p;
+  p.inv_h = float(ctx.inv_h);
+  p.bias_rate = float(ctx.contact_softness.bias_rate);
+  p.mass_scale = float(ctx.contact_softness.mass_scale);
+  p.impulse_scale = float(ctx.contact_softness.impulse_scale);
+  p.linear_slop = float(s.linear_slop);
+  p.max_push_velocity = float(s.max_push_velocity);
+  p.use_bias = use_bias;
+  bodies_.gather(*ctx.bodies);
+  const int n = int(blocks_.size());
+  if (wide8(ctx.lanes)) kernel_w8::solveContactBlocks(blocks_.data(), n, bodies_.records(), p);
+  else kernel_w4::solveContactBlocks(blocks_.data(), n, bodies_.records(), p);
+  bodies_.scatter(*ctx.bodies);
+}
+
+void ContactBatch::syncImpulses(std::vector<ContactConstraint>& cs) const {
+  for (size_t i = 0; i < wide_.size(); ++i) {
+    ContactConstraint& cc = cs[wide_[i]];
+    const ContactBlock& b = blocks_[lane_of_[i] / kRowBlock];
+    const int l = lane_of_[i] % kRowBlock;
+    for (int p = 0; p < cc.count; ++p) {
+      const ContactPointLanes& q = b.point[p];
+      cc.points[p].normal_impulse = q.impulse[0][l];
+      cc.points[p].tangent_impulse[0] = q.impulse[1][l];
+      cc.points[p].tangent_impulse[1] = q.impulse[2][l];
+      cc.points[p].max_normal_impulse = q.max_impulse[l];
+    }
+  }
+}
+
+}  // namespace ragdoll_sim

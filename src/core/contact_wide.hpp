@@ -1,0 +1,56 @@
+// The contact constraints of one prepared range in float lanes (SolverSettings::lanes != 1):
+// the eligible manifolds coloured and packed one per lane into ContactBlocks, the rest left to
+// the scalar double rows (docs/physics.md, the wide solver).
+#pragma once
+
+#include <vector>
+
+#include "constraint_graph.hpp"
+#include "contact_rows_wide.hpp"
+#include "wide_bodies.hpp"
+
+namespace ragdoll_sim {
+
+struct ContactConstraint;
+struct StepContext;
+
+// Built by prepare for the range [begin, end) and stored at its first slot, so ranges prepared
+// on different threads share nothing.
+class ContactBatch {
+ public:
+  // The wide blocks of constraints cs[begin, end) (already prepared in double): rigid ones
+  // without rolling resistance, in colours of the graph of their dynamic bodies; the others
+  // and the colouring's overflow go to scalar().
+  void build(std::vector<ContactConstraint>& cs, const StepContext& ctx, int begin, int end);
+  // True when this holds the batch of [begin, end) (built this step with lanes != 1).
+  bool holds(int begin, int end) const { return begin == begin_ && end == end_; }
+  void clear() { end_ = -1; }
+  // The slots the scalar rows solve after the blocks, in slot order.
+  const std::vector<int>& scalar() const { return scalar_; }
+
+  // positions_moved: the double separations are recomputed and copied into the lanes first.
+  void warmStart(std::vector<ContactConstraint>& cs, const StepContext& ctx, bool positions_moved);
+  void solve(std::vector<ContactConstraint>& cs, const StepContext& ctx, bool use_bias,
+             bool positions_moved);
+  // The lanes' impulses (normal, tangents, largest normal increment) into the double
+  // constraints, which stay the source for everything after the substeps.
+  void syncImpulses(std::vector<ContactConstraint>& cs) const;
+
+ private:
+  void updateSeparations(std::vector<ContactConstraint>& cs, const StepContext& ctx);
+  void fillLane(const ContactConstraint& cc, const std::vector<SolverBody>& bodies, int lane_slot);
+
+  int begin_ = 0, end_ = -1;
+  std::vector<int> scalar_;
+  std::vector<int> wide_;     // the slots in blocks
+  std::vector<int> lane_of_;  // of wide_[i]: block * kRowBlock + lane
+  std::vector<ContactBlock> blocks_;
+  std::vector<GraphEdge> edges_;
+  std::vector<int> candidates_;    // the eligible slots, in slot order
+  std::vector<int> colour_slots_;  // one colour's slots, by point count
+  std::vector<int> ends_;  // the bodies of the eligible constraints, for WideBodies::build
+  ConstraintGraph graph_;
+  WideBodies bodies_;
+};
+
+}  // namespace ragdoll_sim
