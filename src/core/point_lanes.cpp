@@ -1,6 +1,7 @@
 #include "point_lanes.hpp"
 
 #include <cmath>
+#include <cstddef>
 
 #include "joint.hpp"
 
@@ -46,87 +47,109 @@ PointLanes::Range* PointLanes::rangeOf(const IslandRange& p) {
   return p.joint_end > p.joint_begin ? &ranges_[p.joint_begin] : nullptr;
 }
 
+namespace {
+bool sameEdges(const std::vector<GraphEdge>& x, const std::vector<GraphEdge>& y) {
+  if (x.size() != y.size()) return false;
+  for (size_t k = 0; k < x.size(); ++k)
+    if (x[k].body_a != y[k].body_a || x[k].body_b != y[k].body_b ||
+        x[k].dynamic_a != y[k].dynamic_a || x[k].dynamic_b != y[k].dynamic_b)
+      return false;
+  return true;
+}
+}  // namespace
+
 void PointLanes::build(const IslandRange& p, Joint* const* js,
                        const std::vector<SolverBody>& bodies) {
   Range* R = rangeOf(p);
   if (!R) return;
-  R->members.clear();
-  R->body_index.clear();
+  // The colouring's scratch is this thread's: ranges are built on different threads, and a
+  // range's result is copied into its own blocks before the next one is built.
+  thread_local ConstraintGraph graph;
+  thread_local LanePacking packing;
+  thread_local std::vector<GraphEdge> edges;
+  thread_local std::vector<AnchorPart*> members;
+  edges.clear();
+  members.clear();
   for (int k = p.joint_begin; k < p.joint_end; ++k) {
-    const Joint& j = *js[k];
-    if (!anchorOf(*js[k]) || !wideAnchor(j)) continue;
-    R->members.push_back(k);
-    R->body_index.push_back(j.a);
-    R->body_index.push_back(j.b);
+    Joint& j = *js[k];
+    AnchorPart* anchor = anchorOf(j);
+    if (!anchor || !wideAnchor(j)) continue;
+    const bool da = movable(bodies[j.a]), db = movable(bodies[j.b]);
+    if (!da && !db) continue;
+    members.push_back(anchor);
+    edges.push_back({j.a, j.b, da, db});
   }
-  R->bodies.build(bodies, R->body_index.data(), int(R->body_index.size()));
-  R->edges.clear();
-  for (const int k : R->members) {
-    const int a = R->bodies.record(js[k]->a), b = R->bodies.record(js[k]->b);
-    R->edges.push_back({a, b, a >= 0, b >= 0});
+  if (members != R->anchors || !sameEdges(edges, R->edges)) {
+    R->anchors = members;
+    R->edges = edges;
+    R->lanes.clear();
+    R->blocks.clear();
+    if (members.empty()) return;
+    graph.colour(edges, int(bodies.size()));
+    packing.pack(graph, kRowBlock);
+    const int count = packing.recordCount();
+    R->blocks.assign(count, PointRowBlock{});
+    for (int r = 0; r < count; ++r) {
+      PointRowBlock& blk = R->blocks[r];
+      for (int i = 0; i < kRowBlock; ++i) {
+        const int c = packing.lane(r, i);
+        blk.body_a[i] = blk.body_b[i] = -1;
+        if (c < 0) continue;
+        const GraphEdge& e = edges[c];
+        R->lanes.push_back({members[c], e.body_a, e.body_b, r * kRowBlock + i});
+        // a body the rows must not write stays -1, with mass and inertia 0 in its lane
+        if (e.dynamic_a) blk.body_a[i] = e.body_a;
+        if (e.dynamic_b) blk.body_b[i] = e.body_b;
+      }
+    }
   }
-  R->graph.colour(R->edges, R->bodies.size());
-  R->packing.pack(R->graph, kRowBlock);
-  const int count = R->packing.recordCount();
-  R->blocks.assign(count, PointRowBlock{});
-  R->lane_joint.assign(size_t(count) * kRowBlock, -1);
-  for (int r = 0; r < count; ++r) {
-    PointRowBlock& blk = R->blocks[r];
-    for (int i = 0; i < kRowBlock; ++i) {
-      const int c = R->packing.lane(r, i);
-      blk.body_a[i] = blk.body_b[i] = -1;
-      if (c < 0) continue;
-      Joint& j = *js[R->members[c]];
-      anchorOf(j)->in_lanes = true;
-      R->lane_joint[r * kRowBlock + i] = R->members[c];
-      blk.body_a[i] = R->edges[c].body_a;
-      blk.body_b[i] = R->edges[c].body_b;
-      // a body the rows must not write keeps mass and inertia 0 in its lane
-      if (blk.body_a[i] >= 0) {
-        blk.inv_mass_a[i] = float(bodies[j.a].inv_mass);
-        putSymmetric(blk.ii_a, i, bodies[j.a].inv_inertia);
-      }
-      if (blk.body_b[i] >= 0) {
-        blk.inv_mass_b[i] = float(bodies[j.b].inv_mass);
-        putSymmetric(blk.ii_b, i, bodies[j.b].inv_inertia);
-      }
+  // The joints' flags and the bodies' masses and world inertias (new every step).
+  for (Lane& l : R->lanes) {
+    PointRowBlock& blk = R->blocks[l.slot / kRowBlock];
+    const int i = l.slot % kRowBlock;
+    l.anchor->in_lanes = true;
+    if (blk.body_a[i] >= 0) {
+      blk.inv_mass_a[i] = float(bodies[l.a].inv_mass);
+      putSymmetric(blk.ii_a, i, bodies[l.a].inv_inertia);
+    }
+    if (blk.body_b[i] >= 0) {
+      blk.inv_mass_b[i] = float(bodies[l.b].inv_mass);
+      putSymmetric(blk.ii_b, i, bodies[l.b].inv_inertia);
     }
   }
 }
 
-void PointLanes::load(const IslandRange& p, Joint* const* js,
-                      const std::vector<SolverBody>& bodies) {
+void PointLanes::load(const IslandRange& p, const std::vector<SolverBody>& bodies,
+                      bool anchors_moved) {
   Range* R = rangeOf(p);
   if (!R) return;
-  for (size_t l = 0; l < R->lane_joint.size(); ++l) {
-    if (R->lane_joint[l] < 0) continue;
-    const Joint& j = *js[R->lane_joint[l]];
-    const PointPart& pt = anchorOf(*js[R->lane_joint[l]])->point;
-    PointRowBlock& blk = R->blocks[l / kRowBlock];
-    const int i = int(l % kRowBlock);
+  for (const Lane& l : R->lanes) {
+    const PointPart& pt = l.anchor->point;
+    PointRowBlock& blk = R->blocks[l.slot / kRowBlock];
+    const int i = l.slot % kRowBlock;
     putSymmetric(blk.k_inv, i, pt.k_inv);
-    putVec(blk.r_a, i, pt.rA);
-    putVec(blk.r_b, i, pt.rB);
-    putVec(blk.error, i, pt.error(bodies[j.a], bodies[j.b]));
+    if (anchors_moved) {
+      putVec(blk.r_a, i, pt.rA);
+      putVec(blk.r_b, i, pt.rB);
+    }
+    putVec(blk.error, i, pt.error(bodies[l.a], bodies[l.b]));
     putVec(blk.impulse, i, pt.impulse);
   }
 }
 
-void PointLanes::refreshAnchors(const IslandRange& p, Joint* const* js) {
+void PointLanes::refreshAnchors(const IslandRange& p) {
   Range* R = rangeOf(p);
   if (!R) return;
-  for (size_t l = 0; l < R->lane_joint.size(); ++l) {
-    if (R->lane_joint[l] < 0) continue;
-    const PointPart& pt = anchorOf(*js[R->lane_joint[l]])->point;
-    PointRowBlock& blk = R->blocks[l / kRowBlock];
-    const int i = int(l % kRowBlock);
-    putVec(blk.r_a, i, pt.rA);
-    putVec(blk.r_b, i, pt.rB);
+  for (const Lane& l : R->lanes) {
+    PointRowBlock& blk = R->blocks[l.slot / kRowBlock];
+    const int i = l.slot % kRowBlock;
+    putVec(blk.r_a, i, l.anchor->point.rA);
+    putVec(blk.r_b, i, l.anchor->point.rB);
   }
 }
 
-void PointLanes::solve(const IslandRange& p, Joint* const* js, std::vector<SolverBody>& bodies,
-                       const StepContext& ctx, bool use_bias) {
+void PointLanes::solve(const IslandRange& p, std::vector<SolverBody>& bodies,
+                       const StepContext& ctx, bool use_bias, bool sync) {
   Range* R = rangeOf(p);
   if (!R || R->blocks.empty()) return;
   const Softness s = ctx.joint_softness.orRigid(use_bias);
@@ -135,15 +158,17 @@ void PointLanes::solve(const IslandRange& p, Joint* const* js, std::vector<Solve
   params.mass_scale = float(s.mass_scale);
   params.impulse_scale = float(s.impulse_scale);
   params.use_bias = use_bias;
-  R->bodies.gather(bodies);
-  solvePointRows(ctx.lanes, R->blocks.data(), int(R->blocks.size()), R->bodies.records(), params);
-  R->bodies.scatter(bodies);
-  for (size_t l = 0; l < R->lane_joint.size(); ++l) {
-    if (R->lane_joint[l] < 0) continue;
-    const PointRowBlock& blk = R->blocks[l / kRowBlock];
-    const int i = int(l % kRowBlock);
-    Vec3& impulse = anchorOf(*js[R->lane_joint[l]])->point.impulse;
-    for (int k = 0; k < 3; ++k) impulse[k] = double(blk.impulse[k][i]);
+  static_assert(offsetof(SolverBody, w) == offsetof(SolverBody, v) + 3 * sizeof(double),
+                "the kernel reads w right after v");
+  static_assert(sizeof(SolverBody) % (4 * sizeof(double)) == 0 && alignof(SolverBody) >= 32,
+                "the kernel loads v with aligned 32-byte loads");
+  const PointRowBodies view{bodies.data()->v.data(), int(sizeof(SolverBody) / sizeof(double))};
+  solvePointRows(ctx.lanes, R->blocks.data(), int(R->blocks.size()), view, params);
+  if (!sync) return;
+  for (const Lane& l : R->lanes) {
+    const PointRowBlock& blk = R->blocks[l.slot / kRowBlock];
+    const int i = l.slot % kRowBlock;
+    for (int k = 0; k < 3; ++k) l.anchor->point.impulse[k] = double(blk.impulse[k][i]);
   }
 }
 

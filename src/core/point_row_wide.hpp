@@ -20,7 +20,14 @@ struct alignas(32) PointRowBlock {
   float inv_mass_a[kRowBlock], inv_mass_b[kRowBlock];
   float error[3][kRowBlock];                       // C at the current position state
   float impulse[3][kRowBlock];                     // accumulated over the substep
-  int32_t body_a[kRowBlock], body_b[kRowBlock];    // into the BodyVelocityF records, -1: static
+  int32_t body_a[kRowBlock], body_b[kRowBlock];    // solver body index, -1: not movable
+};
+
+// The solver bodies as the kernel reads them: body i's v (3 doubles) and w (3 doubles, right
+// after v) start at v + i * stride, 32-byte aligned (SolverBody, body.hpp).
+struct PointRowBodies {
+  double* v = nullptr;
+  int stride = 0;  // doubles
 };
 
 // A sweep's softness (softness.hpp, orRigid): the biased sweep's terms or a rigid row.
@@ -34,16 +41,16 @@ struct PointRowParams {
 // One sweep over blocks [0, count) in order, at 4 lanes (SSE2) or 8 lanes (AVX2: call it only
 // when cpuHasAvx2()). Both give the same bits.
 namespace kernel_w4 {
-void solvePointRows(PointRowBlock* blocks, int count, BodyVelocityF* bodies,
+void solvePointRows(PointRowBlock* blocks, int count, const PointRowBodies& bodies,
                     const PointRowParams& params);
 }
 namespace kernel_w8 {
-void solvePointRows(PointRowBlock* blocks, int count, BodyVelocityF* bodies,
+void solvePointRows(PointRowBlock* blocks, int count, const PointRowBodies& bodies,
                     const PointRowParams& params);
 }
 
 // The kernel of lane width `width` (chooseLaneWidth's answer: 4 or 8).
-void solvePointRows(int width, PointRowBlock* blocks, int count, BodyVelocityF* bodies,
+void solvePointRows(int width, PointRowBlock* blocks, int count, const PointRowBodies& bodies,
                     const PointRowParams& params);
 
 }  // namespace ragdoll_sim
