@@ -97,25 +97,19 @@ void PointLanes::build(const IslandRange& p, Joint* const* js,
         if (c < 0) continue;
         const GraphEdge& e = edges[c];
         R->lanes.push_back({members[c], e.body_a, e.body_b, r * kRowBlock + i});
-        // a body the rows must not write stays -1, with mass and inertia 0 in its lane
+        // a body the rows must not write stays -1, with inertia 0 in its lane
         if (e.dynamic_a) blk.body_a[i] = e.body_a;
         if (e.dynamic_b) blk.body_b[i] = e.body_b;
       }
     }
   }
-  // The joints' flags and the bodies' masses and world inertias (new every step).
+  // The joints' flags and the bodies' world inverse inertias (new every step).
   for (Lane& l : R->lanes) {
     PointRowBlock& blk = R->blocks[l.slot / kRowBlock];
     const int i = l.slot % kRowBlock;
     l.anchor->in_lanes = true;
-    if (blk.body_a[i] >= 0) {
-      blk.inv_mass_a[i] = float(bodies[l.a].inv_mass);
-      putSymmetric(blk.ii_a, i, bodies[l.a].inv_inertia);
-    }
-    if (blk.body_b[i] >= 0) {
-      blk.inv_mass_b[i] = float(bodies[l.b].inv_mass);
-      putSymmetric(blk.ii_b, i, bodies[l.b].inv_inertia);
-    }
+    if (blk.body_a[i] >= 0) putSymmetric(blk.ii_a, i, bodies[l.a].inv_inertia);
+    if (blk.body_b[i] >= 0) putSymmetric(blk.ii_b, i, bodies[l.b].inv_inertia);
   }
 }
 
@@ -158,8 +152,9 @@ void PointLanes::solve(const IslandRange& p, std::vector<SolverBody>& bodies,
   params.mass_scale = float(s.mass_scale);
   params.impulse_scale = float(s.impulse_scale);
   params.use_bias = use_bias;
-  static_assert(offsetof(SolverBody, w) == offsetof(SolverBody, v) + 3 * sizeof(double),
-                "the kernel reads w right after v");
+  static_assert(offsetof(SolverBody, w) == offsetof(SolverBody, v) + 3 * sizeof(double) &&
+                    offsetof(SolverBody, inv_mass) == offsetof(SolverBody, v) + 6 * sizeof(double),
+                "the kernel reads w and the inverse mass right after v");
   static_assert(sizeof(SolverBody) % (4 * sizeof(double)) == 0 && alignof(SolverBody) >= 32,
                 "the kernel loads v with aligned 32-byte loads");
   const PointRowBodies view{bodies.data()->v.data(), int(sizeof(SolverBody) / sizeof(double))};

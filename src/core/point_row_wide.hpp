@@ -17,14 +17,13 @@ struct alignas(32) PointRowBlock {
   float r_a[3][kRowBlock], r_b[3][kRowBlock];      // anchors from the COMs (world)
   float k_inv[6][kRowBlock];                       // K^-1 of the substep
   float ii_a[6][kRowBlock], ii_b[6][kRowBlock];    // world inverse inertias, 0 for a static body
-  float inv_mass_a[kRowBlock], inv_mass_b[kRowBlock];
   float error[3][kRowBlock];                       // C at the current position state
   float impulse[3][kRowBlock];                     // accumulated over the substep
   int32_t body_a[kRowBlock], body_b[kRowBlock];    // solver body index, -1: not movable
 };
 
-// The solver bodies as the kernel reads them: body i's v (3 doubles) and w (3 doubles, right
-// after v) start at v + i * stride, 32-byte aligned (SolverBody, body.hpp).
+// The solver bodies as the kernel reads and writes them: body i's v (3 doubles), then w (3
+// doubles) and its inverse mass, from v + i * stride, 32-byte aligned (SolverBody, body.hpp).
 struct PointRowBodies {
   double* v = nullptr;
   int stride = 0;  // doubles

@@ -162,3 +162,27 @@ TEST(WidePoints, HangingChainCarriesWeightBelow) {
                 int(exact), worst);
   }
 }
+
+// A spinning free pair on a ball joint (no gravity) keeps its linear momentum to double
+// rounding: the lanes' impulse reaches both bodies through their double inverse masses.
+TEST(WidePoints, FreePairKeepsLinearMomentum) {
+  for (const int lanes : {4, 8}) {
+    WorldDef def = wideDef(lanes, 1);
+    def.gravity.setZero();
+    World w(def);
+    const BodyId a = addDynamic(w, 3.0, diag(0.03, 0.05, 0.04), Transform(Vec3(0, 0, 0), Quat::Identity()),
+                                Vec3::Zero(), Vec3(0.5, -0.2, 0.1), Vec3(0.4, -1.0, 2.0));
+    const BodyId b = addDynamic(w, 1.2, diag(0.01, 0.012, 0.008),
+                                Transform(Vec3(0.4, 0.1, 0.0), Quat::Identity()), Vec3::Zero(),
+                                Vec3(-1.0, 0.5, 0.3), Vec3(-2.0, 1.5, 0.5));
+    const Transform f(Vec3(0.2, 0.05, 0.0), Quat::Identity());
+    BallJointDef j;
+    j.body_a = a, j.body_b = b, j.frame_a = local(w, a, f), j.frame_b = local(w, b, f);
+    w.createBallJoint(j);
+    const Vec3 p0 = w.linearMomentum();
+    for (int i = 0; i < 2000; ++i) w.step(kDt);
+    const double dp = (w.linearMomentum() - p0).norm() / p0.norm();
+    EXPECT_LT(dp, 1e-12) << "lanes " << lanes;
+    std::printf("[ momentum ] lanes %d: relative change of the linear momentum %.2e\n", lanes, dp);
+  }
+}
