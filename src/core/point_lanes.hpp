@@ -9,7 +9,7 @@
 // colours stays in its joint's scalar solve (AnchorPart::in_lanes false). The warm start and
 // K^-1 stay scalar in double; the blocks take K^-1, the anchors, C and the impulse after each
 // warm start, the anchors again after the position update. The kernel reads and writes the
-// double solver bodies itself (a body takes the exact double difference of its float lanes).
+// double solver bodies itself (the impulse reaches v through the double inverse masses).
 // After the substep's last joint sweep the impulses go back to PointPart::impulse in double,
 // so whatever reads them later (forces, breaks, the joint trees, the next warm start) sees them.
 //
