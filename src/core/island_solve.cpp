@@ -91,6 +91,7 @@ void World::Impl::prepareOutsideBodies() {
 void World::Impl::prepareIsland(const IslandRange& p, const StepContext& c) {
   for (int k = p.body_begin; k < p.body_end; ++k) prepareSolverBody(island_bodies[k]);
   for (int k = p.joint_begin; k < p.joint_end; ++k) prepareJoint(*active_joints[k], c);
+  if (c.lanes != 1) point_lanes.build(p, active_joints.data(), solver);
   if (def.solver.exact_joints) joint_tree.build(p, island_bodies, active_joints.data(), solver);
   contact_solver.prepare(contacts, c, p.contact_begin, p.contact_end);
 }
@@ -162,6 +163,7 @@ class World::Impl::IslandPass {
     parts([&](const IslandRange& p) {
       w.integrateVelocities(ctx.h, p.body_begin, p.body_end);
       joints(p, [&](Joint& j) { warmStartJoint(j, ctx, sub == 0); });
+      if (wide) w.point_lanes.load(p, w.solver, sub == 0);
       w.contact_solver.warmStart(ctx, p.contact_begin, p.contact_end, moved);
     });
     boundary([&](int b, int e) {
@@ -174,10 +176,11 @@ class World::Impl::IslandPass {
   // positions advance.
   void solveBiasedAndIntegrate() {
     parts([&](const IslandRange& p) {
-      joints(p, [&](Joint& j) { solveJoint(j, ctx, true); });
+      solveJoints(p, true, last_joint_sweep < 0);
       w.contact_solver.solve(ctx, true, p.contact_begin, p.contact_end, false);
       w.integratePositions(ctx.h, p.body_begin, p.body_end);
       joints(p, [&](Joint& j) { advanceJoint(j, ctx); });
+      if (wide) w.point_lanes.refreshAnchors(p);
     });
   }
 
@@ -189,14 +192,11 @@ class World::Impl::IslandPass {
   void relax(int it) {
     // an anchor velocity error that moves it less than a tenth of the slop per step is left
     const double tolerance = 0.1 * w.def.solver.joint_slop / ctx.dt;
-    const int last_joint_sweep = w.def.solver.exact_joints
-                                     ? std::min(ctx.relax, w.def.solver.joint_relax_iterations) - 1
-                                     : -1;
+    const int last_tree_sweep = w.def.solver.exact_joints ? last_joint_sweep : -1;
     boundary([&](int b, int e) { w.contact_solver.solve(ctx, false, b, e, it == 0); });
     parts([&](const IslandRange& p) {
-      if (it < w.def.solver.joint_relax_iterations)
-        joints(p, [&](Joint& j) { solveJoint(j, ctx, false); });
-      if (it == last_joint_sweep) w.joint_tree.projectVelocities(p, w.solver, w.island_bodies, ctx.h, tolerance);
+      if (it < w.def.solver.joint_relax_iterations) solveJoints(p, false, it == last_joint_sweep);
+      if (it == last_tree_sweep) w.joint_tree.projectVelocities(p, w.solver, w.island_bodies, ctx.h, tolerance);
       w.contact_solver.solve(ctx, false, p.contact_begin, p.contact_end, it == 0);
     });
   }
@@ -243,6 +243,12 @@ class World::Impl::IslandPass {
     for (int k = t; k < 2; k += nt) contacts(r.boundaryBegin(k), r.boundaryEnd(k));
     w.team_barrier.wait(t, nt);
   }
+  // A joint sweep: with lanes, every joint's other parts, then the rigid anchors' wide pass
+  // (last: the substep's last joint sweep, after which the impulses are read).
+  void solveJoints(const IslandRange& p, bool use_bias, bool last) {
+    joints(p, [&](Joint& j) { solveJoint(j, ctx, use_bias); });
+    if (wide) w.point_lanes.solve(p, w.solver, ctx, use_bias, last);
+  }
   template <class F>
   void joints(const IslandRange& p, F&& f) {
     for (int k = p.joint_begin; k < p.joint_end; ++k)
@@ -254,6 +260,9 @@ class World::Impl::IslandPass {
   const StepContext& ctx;
   const IslandRange halves[2];
   Joint* const* js;
+  const bool wide = ctx.lanes != 1;
+  // the substep's last sweep that solves the joints (-1: the biased one)
+  const int last_joint_sweep = std::min(ctx.relax, w.def.solver.joint_relax_iterations) - 1;
   int t = 0, nt = 1;
 };
 
@@ -392,6 +401,7 @@ void World::Impl::solveSplitIsland(const IslandRange& r, const StepContexts& ctx
 void World::Impl::solveIslands(const StepContexts& ctx) {
   contact_solver.resize();
   joint_tree.reserve(int(bodies.size()), int(island_bodies.size()), int(active_joints.size()));
+  point_lanes.reserve(int(active_joints.size()));
   if (track_contacts) contact_tracks.assign(contacts.size(), ContactTrack());
   const int count = int(island_ranges.size());
   for (const IslandRange& r : island_ranges)

@@ -18,6 +18,7 @@
 #include "body.hpp"
 #include "contact_solver.hpp"
 #include "joint_tree.hpp"
+#include "point_lanes.hpp"
 #include "solver_context.hpp"
 #include "team_barrier.hpp"
 
@@ -42,6 +43,7 @@ struct SolveData {
   bool track_contacts = false;
   std::vector<ContactTrack> contact_tracks;
   JointTree joint_tree;  // exact anchors (SolverSettings::exact_joints)
+  PointLanes point_lanes;  // the joint anchors in float lanes (SolverSettings::lanes != 1)
   TeamBarrier team_barrier;  // the two threads of a split island
   // Whether each thread of a split island moved a body in a position sweep, by the sweep's
   // parity (IslandPass::projectPositions).

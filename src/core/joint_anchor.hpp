@@ -10,8 +10,11 @@ namespace ragdoll_sim {
 
 struct AnchorPart {
   PointPart point;
+  // The sweeps leave the rigid point part to the wide pass (point_lanes.hpp), set per step.
+  bool in_lanes = false;
 
   void prepare(const JointBase& j, const StepContext& ctx) {
+    in_lanes = false;
     const auto& m = *ctx.motions;
     point.prepare(m[j.a], m[j.b], j.frame_a.p, j.frame_b.p);
   }
@@ -30,6 +33,7 @@ struct AnchorPart {
       if (use_bias) j.force = point.solveSpring(A, B, j.spring.stiffness, j.spring.damping, ctx.h);
       return;
     }
+    if (in_lanes) return;
     const double max_impulse = j.spring.break_force * ctx.h;
     if (point.solve(A, B, ctx.joint_softness, use_bias, max_impulse)) j.overloaded = true;
   }

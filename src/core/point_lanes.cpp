@@ -1,0 +1,170 @@
+#include "point_lanes.hpp"
+
+#include <cmath>
+#include <cstddef>
+
+#include "joint.hpp"
+
+namespace ragdoll_sim {
+
+namespace {
+// The anchor of a ball, hinge or fixed joint (a slider has none).
+AnchorPart* anchorOf(Joint& j) {
+  switch (j.kind.index()) {
+    case 0: return &std::get_if<0>(&j.kind)->anchor;
+    case 1: return &std::get_if<1>(&j.kind)->anchor;
+    case 2: return &std::get_if<2>(&j.kind)->anchor;
+    default: return nullptr;
+  }
+}
+
+// Rigid and unbreakable: a breakable anchor keeps its capped scalar solve, and only those can
+// break within the step.
+bool wideAnchor(const Joint& j) {
+  return !j.broken && !(j.spring.stiffness > 0.0) && !std::isfinite(j.spring.break_force) &&
+         !std::isfinite(j.spring.break_torque);
+}
+
+// Symmetric matrix m into lane i of a six-entry field (xx, yy, zz, xy, xz, yz).
+void putSymmetric(float (&field)[6][kRowBlock], int i, const Mat3& m) {
+  field[0][i] = float(m(0, 0));
+  field[1][i] = float(m(1, 1));
+  field[2][i] = float(m(2, 2));
+  field[3][i] = float(m(0, 1));
+  field[4][i] = float(m(0, 2));
+  field[5][i] = float(m(1, 2));
+}
+void putVec(float (&field)[3][kRowBlock], int i, const Vec3& v) {
+  for (int k = 0; k < 3; ++k) field[k][i] = float(v[k]);
+}
+}  // namespace
+
+void PointLanes::reserve(int joints) {
+  if (int(ranges_.size()) < joints) ranges_.resize(joints);
+}
+
+PointLanes::Range* PointLanes::rangeOf(const IslandRange& p) {
+  return p.joint_end > p.joint_begin ? &ranges_[p.joint_begin] : nullptr;
+}
+
+namespace {
+bool sameEdges(const std::vector<GraphEdge>& x, const std::vector<GraphEdge>& y) {
+  if (x.size() != y.size()) return false;
+  for (size_t k = 0; k < x.size(); ++k)
+    if (x[k].body_a != y[k].body_a || x[k].body_b != y[k].body_b ||
+        x[k].dynamic_a != y[k].dynamic_a || x[k].dynamic_b != y[k].dynamic_b)
+      return false;
+  return true;
+}
+}  // namespace
+
+void PointLanes::build(const IslandRange& p, Joint* const* js,
+                       const std::vector<SolverBody>& bodies) {
+  Range* R = rangeOf(p);
+  if (!R) return;
+  // The colouring's scratch is this thread's: ranges are built on different threads, and a
+  // range's result is copied into its own blocks before the next one is built.
+  thread_local ConstraintGraph graph;
+  thread_local LanePacking packing;
+  thread_local std::vector<GraphEdge> edges;
+  thread_local std::vector<AnchorPart*> members;
+  edges.clear();
+  members.clear();
+  for (int k = p.joint_begin; k < p.joint_end; ++k) {
+    Joint& j = *js[k];
+    AnchorPart* anchor = anchorOf(j);
+    if (!anchor || !wideAnchor(j)) continue;
+    const bool da = movable(bodies[j.a]), db = movable(bodies[j.b]);
+    if (!da && !db) continue;
+    members.push_back(anchor);
+    edges.push_back({j.a, j.b, da, db});
+  }
+  if (members != R->anchors || !sameEdges(edges, R->edges)) {
+    R->anchors = members;
+    R->edges = edges;
+    R->lanes.clear();
+    R->blocks.clear();
+    if (members.empty()) return;
+    graph.colour(edges, int(bodies.size()));
+    packing.pack(graph, kRowBlock);
+    const int count = packing.recordCount();
+    R->blocks.assign(count, PointRowBlock{});
+    for (int r = 0; r < count; ++r) {
+      PointRowBlock& blk = R->blocks[r];
+      for (int i = 0; i < kRowBlock; ++i) {
+        const int c = packing.lane(r, i);
+        blk.body_a[i] = blk.body_b[i] = -1;
+        if (c < 0) continue;
+        const GraphEdge& e = edges[c];
+        R->lanes.push_back({members[c], e.body_a, e.body_b, r * kRowBlock + i});
+        // a body the rows must not write stays -1, with inertia 0 in its lane
+        if (e.dynamic_a) blk.body_a[i] = e.body_a;
+        if (e.dynamic_b) blk.body_b[i] = e.body_b;
+      }
+    }
+  }
+  // The joints' flags and the bodies' world inverse inertias (new every step).
+  for (Lane& l : R->lanes) {
+    PointRowBlock& blk = R->blocks[l.slot / kRowBlock];
+    const int i = l.slot % kRowBlock;
+    l.anchor->in_lanes = true;
+    if (blk.body_a[i] >= 0) putSymmetric(blk.ii_a, i, bodies[l.a].inv_inertia);
+    if (blk.body_b[i] >= 0) putSymmetric(blk.ii_b, i, bodies[l.b].inv_inertia);
+  }
+}
+
+void PointLanes::load(const IslandRange& p, const std::vector<SolverBody>& bodies,
+                      bool anchors_moved) {
+  Range* R = rangeOf(p);
+  if (!R) return;
+  for (const Lane& l : R->lanes) {
+    const PointPart& pt = l.anchor->point;
+    PointRowBlock& blk = R->blocks[l.slot / kRowBlock];
+    const int i = l.slot % kRowBlock;
+    putSymmetric(blk.k_inv, i, pt.k_inv);
+    if (anchors_moved) {
+      putVec(blk.r_a, i, pt.rA);
+      putVec(blk.r_b, i, pt.rB);
+    }
+    putVec(blk.error, i, pt.error(bodies[l.a], bodies[l.b]));
+    putVec(blk.impulse, i, pt.impulse);
+  }
+}
+
+void PointLanes::refreshAnchors(const IslandRange& p) {
+  Range* R = rangeOf(p);
+  if (!R) return;
+  for (const Lane& l : R->lanes) {
+    PointRowBlock& blk = R->blocks[l.slot / kRowBlock];
+    const int i = l.slot % kRowBlock;
+    putVec(blk.r_a, i, l.anchor->point.rA);
+    putVec(blk.r_b, i, l.anchor->point.rB);
+  }
+}
+
+void PointLanes::solve(const IslandRange& p, std::vector<SolverBody>& bodies,
+                       const StepContext& ctx, bool use_bias, bool sync) {
+  Range* R = rangeOf(p);
+  if (!R || R->blocks.empty()) return;
+  const Softness s = ctx.joint_softness.orRigid(use_bias);
+  PointRowParams params;
+  params.bias_rate = float(s.bias_rate);
+  params.mass_scale = float(s.mass_scale);
+  params.impulse_scale = float(s.impulse_scale);
+  params.use_bias = use_bias;
+  static_assert(offsetof(SolverBody, w) == offsetof(SolverBody, v) + 3 * sizeof(double) &&
+                    offsetof(SolverBody, inv_mass) == offsetof(SolverBody, v) + 6 * sizeof(double),
+                "the kernel reads w and the inverse mass right after v");
+  static_assert(sizeof(SolverBody) % (4 * sizeof(double)) == 0 && alignof(SolverBody) >= 32,
+                "the kernel loads v with aligned 32-byte loads");
+  const PointRowBodies view{bodies.data()->v.data(), int(sizeof(SolverBody) / sizeof(double))};
+  solvePointRows(ctx.lanes, R->blocks.data(), int(R->blocks.size()), view, params);
+  if (!sync) return;
+  for (const Lane& l : R->lanes) {
+    const PointRowBlock& blk = R->blocks[l.slot / kRowBlock];
+    const int i = l.slot % kRowBlock;
+    for (int k = 0; k < 3; ++k) l.anchor->point.impulse[k] = double(blk.impulse[k][i]);
+  }
+}
+
+}  // namespace ragdoll_sim
