@@ -12,39 +12,11 @@ import statistics
 import sys
 from collections import OrderedDict
 
+from bench_raw import fnum, parse
+
 # new / old bars of the wide solver's issue (scene label -> least ratio of steps/s)
 BARS = {"p": 1.35, "g1": 1.2}
 QUALITY = ("max_anchor_err_m", "max_ground_pen_m", "max_limit_viol_rad")
-
-
-def parse_kv(text):
-    d = OrderedDict()
-    for tok in text.split():
-        if "=" in tok:
-            k, v = tok.split("=", 1)
-            d[k] = v
-    return d
-
-
-def parse(lines):
-    meta, runs, failures = OrderedDict(), [], []
-    for raw in lines:
-        line = raw.strip()
-        if line.startswith("# meta "):
-            k, _, v = line[len("# meta "):].partition("=")
-            meta[k.strip()] = v.strip()
-        elif line.startswith("# FAILED"):
-            failures.append(parse_kv(line[len("# FAILED"):]))
-        elif line.startswith("engine="):
-            runs.append(parse_kv(line))
-    return meta, runs, failures
-
-
-def fnum(x):
-    try:
-        return float(x)
-    except (TypeError, ValueError):
-        return float("nan")
 
 
 def fmt_sps(x):

@@ -8,15 +8,9 @@ and 8 float operations each, masks and integer lanes included). flops_per_body_s
 F64 + F32 + 4 V128 + 8 V256, an upper bound.
 """
 import statistics
+from bench_raw import fnum
 
 FLOAT_PER_DOUBLE = 2  # SSE and AVX units do twice as many float as double operations a cycle
-
-
-def fnum(x):
-    try:
-        return float(x)
-    except (TypeError, ValueError):
-        return float("nan")
 
 
 def section(meta, ours_groups, md_table, label):

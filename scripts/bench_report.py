@@ -13,9 +13,11 @@ import sys
 from collections import OrderedDict, defaultdict
 
 import bench_flops_report  # flops per body-step and the peak
+import bench_raw  # the raw lines
 import bench_ratios  # ours / peers, sleep off and on; the bars
 import bench_scale_report  # scenes f, w, v, l
 from bench_ratios import OURS, OURS_1T, OURS_SLEEP
+from bench_raw import fnum
 
 ENGINE_ORDER = [OURS, OURS_SLEEP, OURS_1T, "mujoco", "bullet", "ode"]
 SCENE_ORDER = ["a", "b", "c", "g", "p", "s", "f", "w", "v"]
@@ -42,44 +44,15 @@ def family(engine):
     return engine.split("-", 1)[0]
 
 
-def parse_kv(text):
-    d = OrderedDict()
-    for tok in text.split():
-        if "=" in tok:
-            k, v = tok.split("=", 1)
-            d[k] = v
-    return d
-
-
 def parse(path):
-    meta, runs, failures = OrderedDict(), [], []
     with open(path) as f:
-        for raw in f:
-            line = raw.strip()
-            if not line:
-                continue
-            if line.startswith("# meta "):
-                k, _, v = line[len("# meta "):].partition("=")
-                meta[k.strip()] = v.strip()
-            elif line.startswith("# FAILED"):
-                failures.append(parse_kv(line[len("# FAILED"):]))
-            elif line.startswith("# ensemble "):
-                meta.setdefault("ensembles", []).append(parse_kv(line[len("# ensemble "):]))
-            elif line.startswith("engine="):
-                d = parse_kv(line)
-                # ours with sleeping on in the scenes that also run with it off
-                if (d["engine"] == OURS and d.get("sleep") == "1" and
-                        d.get("scenario") in bench_ratios.SLEEP_SCENES):
-                    d["engine"] = OURS_SLEEP
-                runs.append(d)
+        meta, runs, failures = bench_raw.parse(f)
+    for d in runs:
+        # ours with sleeping on in the scenes that also run with it off
+        if (d["engine"] == OURS and d.get("sleep") == "1" and
+                d.get("scenario") in bench_ratios.SLEEP_SCENES):
+            d["engine"] = OURS_SLEEP
     return meta, runs, failures
-
-
-def fnum(x):
-    try:
-        return float(x)
-    except (TypeError, ValueError):
-        return float("nan")
 
 
 def group_key(d):

@@ -8,6 +8,7 @@ Scene l (bench_world_load): a generated SDF world of dynamic primitives loaded w
 loadWorldString (parse) and put into a World (build).
 """
 import statistics
+from bench_raw import fnum
 
 SCALE_SCENES = ("f", "w", "v")
 SCENE_DESC = {
@@ -17,13 +18,6 @@ SCENE_DESC = {
 }
 TARGET_RATIO = 0.75  # issue 56: >= 0.75 x the plane's speed
 TARGET_LOAD_S = 5.0  # issue 56: a world of 3 000 dynamic primitives loads in < 5 s
-
-
-def fnum(x):
-    try:
-        return float(x)
-    except (TypeError, ValueError):
-        return float("nan")
 
 
 def split_runs(runs):

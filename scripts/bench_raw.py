@@ -1,0 +1,40 @@
+"""The raw lines of the benchmark scripts (bench.sh, bench_compare.sh): one `key=value` line per
+run (`engine=...`), `# meta key=value`, `# FAILED ...` and `# ensemble ...` lines. Standard
+library only; shared by the report scripts.
+"""
+from collections import OrderedDict
+
+
+def parse_kv(text):
+    """'a=1 b=x' -> OrderedDict(a='1', b='x'); tokens without '=' are skipped."""
+    d = OrderedDict()
+    for tok in text.split():
+        if "=" in tok:
+            k, v = tok.split("=", 1)
+            d[k] = v
+    return d
+
+
+def fnum(x):
+    """float(x), or NaN for a missing or non-numeric field."""
+    try:
+        return float(x)
+    except (TypeError, ValueError):
+        return float("nan")
+
+
+def parse(lines):
+    """(meta, runs, failures) of raw lines; `# ensemble` lines go to meta['ensembles']."""
+    meta, runs, failures = OrderedDict(), [], []
+    for raw in lines:
+        line = raw.strip()
+        if line.startswith("# meta "):
+            k, _, v = line[len("# meta "):].partition("=")
+            meta[k.strip()] = v.strip()
+        elif line.startswith("# FAILED"):
+            failures.append(parse_kv(line[len("# FAILED"):]))
+        elif line.startswith("# ensemble "):
+            meta.setdefault("ensembles", []).append(parse_kv(line[len("# ensemble "):]))
+        elif line.startswith("engine="):
+            runs.append(parse_kv(line))
+    return meta, runs, failures
