@@ -34,6 +34,9 @@ struct IslandRange {
   int attach[3] = {0, 0, 0};
   bool attached = false;
   bool resting = false;  // takes SleepDef::rest_substeps (markResting)
+  // Consecutive whole islands solved as one range (with lanes, island_solve.cpp): islands
+  // [island_begin, island_end) of island_ranges; empty for one island or a half.
+  int island_begin = 0, island_end = 0;
   int work() const {
     return (body_end - body_begin) + (joint_end - joint_begin) + (contact_end - contact_begin);
   }

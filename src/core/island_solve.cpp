@@ -10,6 +10,26 @@
 namespace ragdoll_sim {
 
 namespace {
+// The most work (IslandRange::work) of the consecutive islands that a thread solves as one range
+// with lanes: enough for full lanes, little enough that the other thread still finds islands to
+// steal at the end of its run.
+constexpr int kLaneRangeWork = 512;
+
+// Appends island r to range c when it follows c directly in the body, joint and contact arrays,
+// takes the same substeps and keeps c within kLaneRangeWork; false (c unchanged) otherwise.
+// k: r's index in island_ranges.
+bool extendsRange(IslandRange& c, const IslandRange& r, int k) {
+  const bool follows = k == c.island_end && r.body_begin == c.body_end &&
+                       r.joint_begin == c.joint_end && r.contact_begin == c.contact_end &&
+                       r.resting == c.resting;
+  if (!follows || c.work() + r.work() > kLaneRangeWork) return false;
+  c.body_end = r.body_end;
+  c.joint_end = r.joint_end;
+  c.contact_end = r.contact_end;
+  c.island_end = k + 1;
+  return true;
+}
+
 // This thread's number and the team's size in the enclosing parallel region ({0, 1} outside).
 std::pair<int, int> teamSlot() {
 #ifdef _OPENMP
@@ -92,7 +112,8 @@ void World::Impl::prepareIsland(const IslandRange& p, const StepContext& c) {
   for (int k = p.body_begin; k < p.body_end; ++k) prepareSolverBody(island_bodies[k]);
   for (int k = p.joint_begin; k < p.joint_end; ++k) prepareJoint(*active_joints[k], c);
   if (c.lanes != 1) point_lanes.build(p, active_joints.data(), solver);
-  if (def.solver.exact_joints) joint_tree.build(p, island_bodies, active_joints.data(), solver);
+  if (def.solver.exact_joints)
+    forIslands(p, [&](const IslandRange& q) { joint_tree.build(q, island_bodies, active_joints.data(), solver); });
   contact_solver.prepare(contacts, c, p.contact_begin, p.contact_end);
 }
 
@@ -196,7 +217,10 @@ class World::Impl::IslandPass {
     boundary([&](int b, int e) { w.contact_solver.solve(ctx, false, b, e, it == 0); });
     parts([&](const IslandRange& p) {
       if (it < w.def.solver.joint_relax_iterations) solveJoints(p, false, it == last_joint_sweep);
-      if (it == last_tree_sweep) w.joint_tree.projectVelocities(p, w.solver, w.island_bodies, ctx.h, tolerance);
+      if (it == last_tree_sweep)
+        w.forIslands(p, [&](const IslandRange& q) {
+          w.joint_tree.projectVelocities(q, w.solver, w.island_bodies, ctx.h, tolerance);
+        });
       w.contact_solver.solve(ctx, false, p.contact_begin, p.contact_end, it == 0);
     });
   }
@@ -333,8 +357,10 @@ void World::Impl::IslandPass::projectPositions() {
   // The joint trees' anchors exact (joint_tree.hpp); each half's trees are its own.
   if (def.exact_joints)
     parts([&](const IslandRange& p) {
-      w.joint_tree.projectPositions(p, w.solver, w.island_bodies, def.joint_slop,
-                                    def.max_position_correction);
+      w.forIslands(p, [&](const IslandRange& q) {
+        w.joint_tree.projectPositions(q, w.solver, w.island_bodies, def.joint_slop,
+                                      def.max_position_correction);
+      });
     });
 }
 
@@ -406,18 +432,40 @@ void World::Impl::solveIslands(const StepContexts& ctx) {
   const int count = int(island_ranges.size());
   for (const IslandRange& r : island_ranges)
     if (r.split) solveSplitIsland(r, ctx);
-  const auto solveOne = [&](int k) {
-    const IslandRange& r = island_ranges[k];
-    if (r.split || r.attached) return;
+  const auto solveRange = [&](const IslandRange& r) {
     const StepContext& c = ctx.of(r.resting);
     prepareIsland(r, c);
     solveIsland(r, c);
     restitute(r.contact_begin, r.contact_end, c);
     finishIslandBodies(r);
   };
+  const auto solveOne = [&](int k) {
+    const IslandRange& r = island_ranges[k];
+    if (!r.split && !r.attached) solveRange(r);
+  };
+  // With lanes, a thread solves consecutive whole islands of its run as one range, so that their
+  // rows fill the lanes together; an island's arithmetic does not depend on the islands that
+  // share its range (docs/physics.md, the wide solver), only the lanes' fill does.
+  const bool chunks = ctx.full.lanes != 1;
   run_queue.reset(island_runs);
   const auto solveRun = [&](int t) {
-    for (int k; (k = run_queue.take(t)) >= 0;) solveOne(k);
+    IslandRange chunk;
+    bool open = false;
+    const auto flush = [&] {
+      if (open) solveRange(chunk);
+      open = false;
+    };
+    for (int k; (k = run_queue.take(t)) >= 0;) {
+      const IslandRange& r = island_ranges[k];
+      if (r.split || r.attached) continue;
+      if (chunks && open && extendsRange(chunk, r, k)) continue;
+      flush();
+      chunk = r;
+      chunk.island_begin = k;
+      chunk.island_end = k + 1;
+      open = true;
+    }
+    flush();
     for (int k; (k = run_queue.steal(t)) >= 0;) solveOne(k);
   };
   // (no runs when every island is split or goes along with a split one's half)

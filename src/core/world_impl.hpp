@@ -208,6 +208,13 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
   void prepareSolverBody(int i);
   void prepareOutsideBodies();
   void prepareIsland(const IslandRange& p, const StepContext& c);
+  // f(each island of p) when p is several whole islands solved as one range, else f(p): the
+  // joint trees stop early by their range's largest error, so each island keeps its own range.
+  template <class F>
+  void forIslands(const IslandRange& p, F&& f) const {
+    if (p.island_end - p.island_begin < 2) return f(p);
+    for (int k = p.island_begin; k < p.island_end; ++k) f(island_ranges[k]);
+  }
   void integrateVelocities(double h, int begin, int end);
   void integratePositions(double h, int begin, int end);
   void solveIsland(const IslandRange& r, const StepContext& ctx);

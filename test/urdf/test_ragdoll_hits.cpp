@@ -205,41 +205,67 @@ TEST(RagdollHits, TorqueAtTheCommandCapOnAFootStaysBounded) {
               farthest);
 }
 
+namespace {
+// The scene of the determinism tests: 12 ragdolls, pushed and kicked at fixed steps, `steps` long.
+uint64_t commandedPileHash(const RagdollDef& def, int threads, int lanes, int steps) {
+  WorldDef wd;
+  wd.threads = threads;
+  wd.solver.lanes = lanes;
+  World w(wd);
+  addGround(w);
+  // 12 ragdolls: a row standing apart (separate islands) and a pile (one island).
+  for (int i = 0; i < 8; ++i)
+    spawnRagdoll(w, def, Transform(Vec3(1.2 * i, 0, 1.1), Quat::Identity()));
+  for (int k = 0; k < 4; ++k)
+    spawnRagdoll(w, def, Transform(Vec3(0, 4, 0.4 + 0.5 * k), quatFromRpy(0, M_PI / 2, 0.7 * k)));
+  // Commands at fixed fractions of the run: an impulse every 7 % of it on a different body
+  // (waking what slept), and a 30 N push on one pelvis for 2 % of it from the middle.
+  const int bodies = w.bodyCount();
+  const int every = steps * 7 / 100, push = steps / 2;
+  for (int i = 0; i < steps; ++i) {
+    if (i % every == every * 3 / 7) {
+      const BodyId b{1 + (i / every * 37) % (bodies - 1)};
+      w.applyLinearImpulse(b, Vec3(20, -10, 5), w.bodyPose(b).p);
+    }
+    if (i >= push && i < push + steps / 50)
+      w.applyForce(BodyId{16}, Vec3(0, 30, 0), w.comPosition(BodyId{16}));
+    w.step(1e-3);
+  }
+  return poseHash(w);
+}
+}  // namespace
+
 TEST(RagdollHits, StepIsBitIdenticalAcrossRunsAndThreadCounts) {
   const RagdollDef def = bundled();
-  auto run = [&](int threads) {
-    WorldDef wd;
-    wd.threads = threads;
-    World w(wd);
-    addGround(w);
-    // 12 ragdolls: a row standing apart (separate islands) and a pile (one island).
-    for (int i = 0; i < 8; ++i)
-      spawnRagdoll(w, def, Transform(Vec3(1.2 * i, 0, 1.1), Quat::Identity()));
-    for (int k = 0; k < 4; ++k)
-      spawnRagdoll(w, def, Transform(Vec3(0, 4, 0.4 + 0.5 * k), quatFromRpy(0, M_PI / 2, 0.7 * k)));
-    // 10 000 steps with commands at fixed steps: an impulse every 700 steps on a different
-    // body (waking what slept), and a 30 N push on one pelvis during steps 5000..5199.
-    // (RAGDOLL_SIM_TEST_SCALE shortens the run and the schedule together, to 1000 steps at least.)
-    const int bodies = w.bodyCount();
-    const int steps = test_scale::count(10000, 1000);
-    const int every = steps * 7 / 100, push = steps / 2;
-    for (int i = 0; i < steps; ++i) {
-      if (i % every == every * 3 / 7) {
-        const BodyId b{1 + (i / every * 37) % (bodies - 1)};
-        w.applyLinearImpulse(b, Vec3(20, -10, 5), w.bodyPose(b).p);
-      }
-      if (i >= push && i < push + steps / 50)
-        w.applyForce(BodyId{16}, Vec3(0, 30, 0), w.comPosition(BodyId{16}));
-      w.step(1e-3);
-    }
-    return poseHash(w);
-  };
+  // (RAGDOLL_SIM_TEST_SCALE shortens the run and the schedule together, to 1000 steps at least.)
+  const int steps = test_scale::count(10000, 1000);
+  const auto run = [&](int threads) { return commandedPileHash(def, threads, 1, steps); };
   const uint64_t h1 = run(1), h1b = run(1), h2 = run(2);
   std::printf("[ hits     ] pose hash after %d steps: 1 thread %016llx, again %016llx, 2 threads %016llx\n",
               test_scale::count(10000, 1000), (unsigned long long)h1, (unsigned long long)h1b,
               (unsigned long long)h2);
   EXPECT_EQ(h1, h1b);
   EXPECT_EQ(h1, h2);
+}
+
+// The wide solver (SolverSettings::lanes): 4 and 8 lanes give the same bits on 1 and 2 threads;
+// with 2 threads the islands are solved in other ranges (a thread's run as one range), the pile
+// as two halves, so this also holds the claim that an island's arithmetic does not depend on
+// the islands that share its range.
+TEST(RagdollHits, WideSolverIsBitIdenticalAcrossWidthsAndThreadCounts) {
+  const RagdollDef def = bundled();
+  const int steps = test_scale::count(3000, 1000);
+  const uint64_t w4 = commandedPileHash(def, 1, 4, steps), w8 = commandedPileHash(def, 1, 8, steps);
+  const uint64_t w4t2 = commandedPileHash(def, 2, 4, steps), w8t2 = commandedPileHash(def, 2, 8, steps);
+  const uint64_t scalar = commandedPileHash(def, 1, 1, steps);
+  std::printf("[ hits     ] pose hash after %d steps: lanes 4 %016llx, 8 %016llx, 4 on 2 threads "
+              "%016llx, 8 on 2 threads %016llx, double rows %016llx\n",
+              steps, (unsigned long long)w4, (unsigned long long)w8, (unsigned long long)w4t2,
+              (unsigned long long)w8t2, (unsigned long long)scalar);
+  EXPECT_EQ(w4, w8);
+  EXPECT_EQ(w4, w4t2);
+  EXPECT_EQ(w4, w8t2);
+  EXPECT_NE(w4, scalar);  // the lanes ran
 }
 
 // The peers' scene c (8 ragdoll15 dropped prone onto each other, friction 0.8), turned by
