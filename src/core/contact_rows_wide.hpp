@@ -5,6 +5,7 @@
 
 #include <cstdint>
 
+#include "lane_bodies.hpp"
 #include "normal_row_wide.hpp"
 
 namespace ragdoll_sim {
@@ -33,22 +34,22 @@ struct alignas(32) ContactBlock {
   float n[3][kRowBlock], t0[3][kRowBlock], t1[3][kRowBlock];  // normal (A to B), tangents
   float friction[kRowBlock];
   float inv_mass_a[kRowBlock], inv_mass_b[kRowBlock];  // 0 for a static body
-  int32_t body_a[kRowBlock], body_b[kRowBlock];        // into the records, -1: not written
+  int32_t body_a[kRowBlock], body_b[kRowBlock];        // solver body, -1: not movable
   int32_t points;                                      // the most points of a lane
   ContactPointLanes point[kBlockPoints];
 };
 
 // One sweep over blocks [0, count) in order: the warm start (the accumulated impulses applied),
-// or the solve (normal rows, then friction). Width 4 (SSE2) or 8 (AVX2: only when
-// cpuHasAvx2()); both give the same bits.
+// or the solve (normal rows, then friction), reading and writing the double solver bodies.
+// Width 4 (SSE2) or 8 (AVX2: only when cpuHasAvx2()); both give the same bits.
 namespace kernel_w4 {
-void warmStartContactBlocks(ContactBlock* blocks, int count, BodyVelocityF* bodies);
-void solveContactBlocks(ContactBlock* blocks, int count, BodyVelocityF* bodies,
+void warmStartContactBlocks(ContactBlock* blocks, int count, const LaneBodies& bodies);
+void solveContactBlocks(ContactBlock* blocks, int count, const LaneBodies& bodies,
                         const NormalRowParams& params);
 }
 namespace kernel_w8 {
-void warmStartContactBlocks(ContactBlock* blocks, int count, BodyVelocityF* bodies);
-void solveContactBlocks(ContactBlock* blocks, int count, BodyVelocityF* bodies,
+void warmStartContactBlocks(ContactBlock* blocks, int count, const LaneBodies& bodies);
+void solveContactBlocks(ContactBlock* blocks, int count, const LaneBodies& bodies,
                         const NormalRowParams& params);
 }
 

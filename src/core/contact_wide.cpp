@@ -6,7 +6,9 @@
 #include <cstring>
 
 #include "contact_solver.hpp"
+#include "lane_bodies.hpp"
 #include "lane_width.hpp"
+#include "solver_context.hpp"
 
 namespace ragdoll_sim {
 
@@ -27,6 +29,8 @@ void setRow(ContactRowLanes& r, int lane, const ContactRow& row) {
 }
 
 bool wide8(int width) { return width == 8 && cpuHasAvx2(); }
+// The kernels write a movable body only (a static or sleeping one is shared between ranges).
+int writable(const std::vector<SolverBody>& bodies, int b) { return movable(bodies[b]) ? b : -1; }
 }  // namespace
 
 void ContactBatch::build(std::vector<ContactConstraint>& cs, const StepContext& ctx, int begin,
@@ -38,7 +42,6 @@ void ContactBatch::build(std::vector<ContactConstraint>& cs, const StepContext& 
   wide_.clear();
   lane_of_.clear();
   blocks_.clear();
-  ends_.clear();
   std::vector<int>& candidates = candidates_;
   candidates.clear();
   for (int k = begin; k < end; ++k) {
@@ -47,21 +50,18 @@ void ContactBatch::build(std::vector<ContactConstraint>& cs, const StepContext& 
       continue;
     }
     candidates.push_back(k);
-    ends_.push_back(cs[k].a);
-    ends_.push_back(cs[k].b);
   }
   if (candidates.empty()) return;
-  bodies_.build(bodies, ends_.data(), int(ends_.size()));
   edges_.resize(candidates.size());
   for (size_t i = 0; i < candidates.size(); ++i) {
     const ContactConstraint& cc = cs[candidates[i]];
     GraphEdge& e = edges_[i];
-    e.body_a = bodies_.record(cc.a);
-    e.body_b = bodies_.record(cc.b);
-    e.dynamic_a = e.body_a >= 0;
-    e.dynamic_b = e.body_b >= 0;
+    e.body_a = cc.a;
+    e.body_b = cc.b;
+    e.dynamic_a = movable(bodies[cc.a]);
+    e.dynamic_b = movable(bodies[cc.b]);
   }
-  graph_.colour(edges_.data(), int(edges_.size()), std::max(1, bodies_.size()));
+  graph_.colour(edges_.data(), int(edges_.size()), int(bodies.size()));
   for (int c = 0; c < graph_.colourCount(); ++c) {
     // A block loops over the points of its largest manifold: sorted by point count, the
     // manifolds of a colour fill the blocks' points better. The constraints of a colour share
@@ -94,8 +94,8 @@ void ContactBatch::fillLane(const ContactConstraint& cc, const std::vector<Solve
                             int lane_slot) {
   ContactBlock& b = blocks_[lane_slot / kRowBlock];
   const int l = lane_slot % kRowBlock;
-  b.body_a[l] = bodies_.record(cc.a);
-  b.body_b[l] = bodies_.record(cc.b);
+  b.body_a[l] = writable(bodies, cc.a);
+  b.body_b[l] = writable(bodies, cc.b);
   b.inv_mass_a[l] = float(bodies[cc.a].inv_mass);
   b.inv_mass_b[l] = float(bodies[cc.b].inv_mass);
   setVec(b.n, l, cc.normal);
@@ -132,11 +132,10 @@ void ContactBatch::warmStart(std::vector<ContactConstraint>& cs, const StepConte
                              bool positions_moved) {
   if (blocks_.empty()) return;
   if (positions_moved) updateSeparations(cs, ctx);
-  bodies_.gather(*ctx.bodies);
+  const LaneBodies view = laneBodies(ctx.bodies->data());
   const int n = int(blocks_.size());
-  if (wide8(ctx.lanes)) kernel_w8::warmStartContactBlocks(blocks_.data(), n, bodies_.records());
-  else kernel_w4::warmStartContactBlocks(blocks_.data(), n, bodies_.records());
-  bodies_.scatter(*ctx.bodies);
+  if (wide8(ctx.lanes)) kernel_w8::warmStartContactBlocks(blocks_.data(), n, view);
+  else kernel_w4::warmStartContactBlocks(blocks_.data(), n, view);
 }
 
 void ContactBatch::solve(std::vector<ContactConstraint>& cs, const StepContext& ctx,
@@ -152,11 +151,10 @@ void ContactBatch::solve(std::vector<ContactConstraint>& cs, const StepContext& 
   p.linear_slop = float(s.linear_slop);
   p.max_push_velocity = float(s.max_push_velocity);
   p.use_bias = use_bias;
-  bodies_.gather(*ctx.bodies);
+  const LaneBodies view = laneBodies(ctx.bodies->data());
   const int n = int(blocks_.size());
-  if (wide8(ctx.lanes)) kernel_w8::solveContactBlocks(blocks_.data(), n, bodies_.records(), p);
-  else kernel_w4::solveContactBlocks(blocks_.data(), n, bodies_.records(), p);
-  bodies_.scatter(*ctx.bodies);
+  if (wide8(ctx.lanes)) kernel_w8::solveContactBlocks(blocks_.data(), n, view, p);
+  else kernel_w4::solveContactBlocks(blocks_.data(), n, view, p);
 }
 
 void ContactBatch::syncImpulses(std::vector<ContactConstraint>& cs) const {

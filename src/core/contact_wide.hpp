@@ -7,7 +7,6 @@
 
 #include "constraint_graph.hpp"
 #include "contact_rows_wide.hpp"
-#include "wide_bodies.hpp"
 
 namespace ragdoll_sim {
 
@@ -48,9 +47,7 @@ class ContactBatch {
   std::vector<GraphEdge> edges_;
   std::vector<int> candidates_;    // the eligible slots, in slot order
   std::vector<int> colour_slots_;  // one colour's slots, by point count
-  std::vector<int> ends_;  // the bodies of the eligible constraints, for WideBodies::build
   ConstraintGraph graph_;
-  WideBodies bodies_;
 };
 
 }  // namespace ragdoll_sim

@@ -18,10 +18,10 @@ void kernel_w8::solveNormalRowsAos(NormalRowBlock* blocks, int count, BodyVeloci
                                    const NormalRowParams& params) {
   kernel_w4::solveNormalRowsAos(blocks, count, bodies, params);
 }
-void kernel_w8::warmStartContactBlocks(ContactBlock* blocks, int count, BodyVelocityF* bodies) {
+void kernel_w8::warmStartContactBlocks(ContactBlock* blocks, int count, const LaneBodies& bodies) {
   kernel_w4::warmStartContactBlocks(blocks, count, bodies);
 }
-void kernel_w8::solveContactBlocks(ContactBlock* blocks, int count, BodyVelocityF* bodies,
+void kernel_w8::solveContactBlocks(ContactBlock* blocks, int count, const LaneBodies& bodies,
                                    const NormalRowParams& params) {
   kernel_w4::solveContactBlocks(blocks, count, bodies, params);
 }

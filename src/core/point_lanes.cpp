@@ -1,7 +1,6 @@
 #include "point_lanes.hpp"
 
 #include <cmath>
-#include <cstddef>
 
 #include "joint.hpp"
 
@@ -152,12 +151,7 @@ void PointLanes::solve(const IslandRange& p, std::vector<SolverBody>& bodies,
   params.mass_scale = float(s.mass_scale);
   params.impulse_scale = float(s.impulse_scale);
   params.use_bias = use_bias;
-  static_assert(offsetof(SolverBody, w) == offsetof(SolverBody, v) + 3 * sizeof(double) &&
-                    offsetof(SolverBody, inv_mass) == offsetof(SolverBody, v) + 6 * sizeof(double),
-                "the kernel reads w and the inverse mass right after v");
-  static_assert(sizeof(SolverBody) % (4 * sizeof(double)) == 0 && alignof(SolverBody) >= 32,
-                "the kernel loads v with aligned 32-byte loads");
-  const PointRowBodies view{bodies.data()->v.data(), int(sizeof(SolverBody) / sizeof(double))};
+  const LaneBodies view = laneBodies(bodies.data());
   solvePointRows(ctx.lanes, R->blocks.data(), int(R->blocks.size()), view, params);
   if (!sync) return;
   for (const Lane& l : R->lanes) {

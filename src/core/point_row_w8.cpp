@@ -9,7 +9,7 @@
 #include "point_row_wide.hpp"
 
 namespace ragdoll_sim {
-void kernel_w8::solvePointRows(PointRowBlock* blocks, int count, const PointRowBodies& bodies,
+void kernel_w8::solvePointRows(PointRowBlock* blocks, int count, const LaneBodies& bodies,
                                const PointRowParams& params) {
   kernel_w4::solvePointRows(blocks, count, bodies, params);
 }

@@ -5,7 +5,7 @@
 
 namespace ragdoll_sim {
 
-void solvePointRows(int width, PointRowBlock* blocks, int count, const PointRowBodies& bodies,
+void solvePointRows(int width, PointRowBlock* blocks, int count, const LaneBodies& bodies,
                     const PointRowParams& params) {
   if (width == 8 && cpuHasAvx2()) kernel_w8::solvePointRows(blocks, count, bodies, params);
   else kernel_w4::solvePointRows(blocks, count, bodies, params);

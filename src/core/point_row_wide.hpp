@@ -6,6 +6,7 @@
 
 #include <cstdint>
 
+#include "lane_bodies.hpp"
 #include "normal_row_wide.hpp"
 
 namespace ragdoll_sim {
@@ -22,13 +23,6 @@ struct alignas(32) PointRowBlock {
   int32_t body_a[kRowBlock], body_b[kRowBlock];    // solver body index, -1: not movable
 };
 
-// The solver bodies as the kernel reads and writes them: body i's v (3 doubles), then w (3
-// doubles) and its inverse mass, from v + i * stride, 32-byte aligned (SolverBody, body.hpp).
-struct PointRowBodies {
-  double* v = nullptr;
-  int stride = 0;  // doubles
-};
-
 // A sweep's softness (softness.hpp, orRigid): the biased sweep's terms or a rigid row.
 struct PointRowParams {
   float bias_rate = 0.0f;
@@ -40,16 +34,16 @@ struct PointRowParams {
 // One sweep over blocks [0, count) in order, at 4 lanes (SSE2) or 8 lanes (AVX2: call it only
 // when cpuHasAvx2()). Both give the same bits.
 namespace kernel_w4 {
-void solvePointRows(PointRowBlock* blocks, int count, const PointRowBodies& bodies,
+void solvePointRows(PointRowBlock* blocks, int count, const LaneBodies& bodies,
                     const PointRowParams& params);
 }
 namespace kernel_w8 {
-void solvePointRows(PointRowBlock* blocks, int count, const PointRowBodies& bodies,
+void solvePointRows(PointRowBlock* blocks, int count, const LaneBodies& bodies,
                     const PointRowParams& params);
 }
 
 // The kernel of lane width `width` (chooseLaneWidth's answer: 4 or 8).
-void solvePointRows(int width, PointRowBlock* blocks, int count, const PointRowBodies& bodies,
+void solvePointRows(int width, PointRowBlock* blocks, int count, const LaneBodies& bodies,
                     const PointRowParams& params);
 
 }  // namespace ragdoll_sim

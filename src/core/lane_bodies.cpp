@@ -1,0 +1,18 @@
+#include "lane_bodies.hpp"
+
+#include <cstddef>
+
+#include "body.hpp"
+
+namespace ragdoll_sim {
+
+LaneBodies laneBodies(SolverBody* first) {
+  static_assert(offsetof(SolverBody, w) == offsetof(SolverBody, v) + 3 * sizeof(double) &&
+                    offsetof(SolverBody, inv_mass) == offsetof(SolverBody, v) + 6 * sizeof(double),
+                "the kernels read w and the inverse mass right after v");
+  static_assert(sizeof(SolverBody) % (4 * sizeof(double)) == 0 && alignof(SolverBody) >= 32,
+                "the kernels load v with aligned 32-byte loads");
+  return {first ? first->v.data() : nullptr, int(sizeof(SolverBody) / sizeof(double))};
+}
+
+}  // namespace ragdoll_sim
