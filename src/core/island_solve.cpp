@@ -4,7 +4,6 @@
 #include <utility>
 
 #include "constants.hpp"
-#include "lane_width.hpp"
 #include "world_impl.hpp"
 
 namespace ragdoll_sim {
@@ -50,7 +49,7 @@ StepContexts World::Impl::makeContexts(double dt) {
     c.substeps = n;
     c.relax = std::max(0, relax);
     c.track_impulses = track_contacts;
-    c.lanes = def.solver.lanes == 1 ? 1 : chooseLaneWidth(def.solver.lanes);
+    c.lanes = lane_width;
     c.settings = &def.solver;
     c.bodies = &solver;
     c.motions = &motions;

@@ -49,6 +49,16 @@ struct Joint : JointBase {
     }
   }
 
+  // The anchor of a ball, hinge or fixed joint; nullptr for a slider, which has none.
+  AnchorPart* anchor() {
+    switch (kind.index()) {
+      case 0: return &std::get_if<0>(&kind)->anchor;
+      case 1: return &std::get_if<1>(&kind)->anchor;
+      case 2: return &std::get_if<2>(&kind)->anchor;
+      default: return nullptr;
+    }
+  }
+
   // Every part's accumulated impulse times s (warmStartScale, solver_context.hpp).
   void scaleImpulses(double s) {
     visit([&](auto& t) { t.scaleImpulses(s); });

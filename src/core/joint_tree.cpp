@@ -16,13 +16,8 @@ constexpr int kNewtonSteps = 2;
 
 // The rigid point part of a joint (a spring anchor is meant to stretch; a slider has none).
 PointPart* rigidAnchor(Joint& j) {
-  if (j.spring.stiffness > 0.0) return nullptr;
-  switch (j.kind.index()) {
-    case 0: return &std::get_if<0>(&j.kind)->anchor.point;
-    case 1: return &std::get_if<1>(&j.kind)->anchor.point;
-    case 2: return &std::get_if<2>(&j.kind)->anchor.point;
-    default: return nullptr;
-  }
+  AnchorPart* a = j.spring.stiffness > 0.0 ? nullptr : j.anchor();
+  return a ? &a->point : nullptr;
 }
 
 using Vec6 = Eigen::Matrix<double, 6, 1>;

@@ -7,16 +7,6 @@
 namespace ragdoll_sim {
 
 namespace {
-// The anchor of a ball, hinge or fixed joint (a slider has none).
-AnchorPart* anchorOf(Joint& j) {
-  switch (j.kind.index()) {
-    case 0: return &std::get_if<0>(&j.kind)->anchor;
-    case 1: return &std::get_if<1>(&j.kind)->anchor;
-    case 2: return &std::get_if<2>(&j.kind)->anchor;
-    default: return nullptr;
-  }
-}
-
 // Rigid and unbreakable: a breakable anchor keeps its capped scalar solve, and only those can
 // break within the step.
 bool wideAnchor(const Joint& j) {
@@ -71,7 +61,7 @@ void PointLanes::build(const IslandRange& p, Joint* const* js,
   members.clear();
   for (int k = p.joint_begin; k < p.joint_end; ++k) {
     Joint& j = *js[k];
-    AnchorPart* anchor = anchorOf(j);
+    AnchorPart* anchor = j.anchor();
     if (!anchor || !wideAnchor(j)) continue;
     const bool da = movable(bodies[j.a]), db = movable(bodies[j.b]);
     if (!da && !db) continue;

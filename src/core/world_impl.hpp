@@ -45,6 +45,9 @@ struct ShapeRef {
 struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, SleepData,
                      SubstepSampleData {
   WorldDef def;
+  // def.solver.lanes resolved once when set (1, 4 or 8; lane_width.hpp reads the CPU and the
+  // environment), not per step.
+  int lane_width = 1;
   WorldTuning tuning;  // world_tuning.hpp
   double time = 0.0;
   std::vector<Body> bodies;
