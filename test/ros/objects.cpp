@@ -350,7 +350,10 @@ TEST(Objects, F_SpawnFixedBaseRagdoll) {
 TEST(Objects, G_BadInputRefused) {
   ASSERT_TRUE(fx->sim.step(1).success);
   size_t entries = 0;
-  ASSERT_TRUE(fx->waitFor([&] { return !fx->link_states.ragdoll.empty(); }));
+  // F's deleted "hung" may still be in a message sent before its deletion.
+  ASSERT_TRUE(fx->waitFor([&] {
+    return !fx->link_states.ragdoll.empty() && !fx->hasObjectInLinkStates("hung");
+  }));
   {
     std::lock_guard<std::mutex> lock(fx->mutex);
     entries = fx->link_states.ragdoll.size();
