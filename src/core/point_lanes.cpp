@@ -87,7 +87,7 @@ void PointLanes::build(const IslandRange& p, Joint* const* js,
         blk.body_a[i] = blk.body_b[i] = -1;
         if (c < 0) continue;
         const GraphEdge& e = edges[c];
-        R->lanes.push_back({members[c], e.body_a, e.body_b, r * kRowBlock + i});
+        R->lanes.push_back({members[c], e.body_a, e.body_b, r, i});
         // a body the rows must not write stays -1, with inertia 0 in its lane
         if (e.dynamic_a) blk.body_a[i] = e.body_a;
         if (e.dynamic_b) blk.body_b[i] = e.body_b;
@@ -97,8 +97,8 @@ void PointLanes::build(const IslandRange& p, Joint* const* js,
   // The joints' flags and the bodies' world inverse inertias and inverse masses (new every
   // step; a body the rows do not move counts as 0, as in pointMass).
   for (Lane& l : R->lanes) {
-    PointRowBlock& blk = R->blocks[l.slot / kRowBlock];
-    const int i = l.slot % kRowBlock;
+    PointRowBlock& blk = R->blocks[l.block];
+    const int i = l.lane;
     l.anchor->in_lanes = true;
     double inv_mass = 0.0;
     if (blk.body_a[i] >= 0) {
@@ -119,8 +119,8 @@ void PointLanes::load(const IslandRange& p, std::vector<SolverBody>& bodies,
   if (!R || R->blocks.empty()) return;
   for (const Lane& l : R->lanes) {
     const PointPart& pt = l.anchor->point;
-    PointRowBlock& blk = R->blocks[l.slot / kRowBlock];
-    const int i = l.slot % kRowBlock;
+    PointRowBlock& blk = R->blocks[l.block];
+    const int i = l.lane;
     if (anchors_moved) {
       putVec(blk.r_a, i, pt.rA);
       putVec(blk.r_b, i, pt.rB);
@@ -136,8 +136,8 @@ void PointLanes::refreshAnchors(const IslandRange& p) {
   Range* R = rangeOf(p);
   if (!R) return;
   for (const Lane& l : R->lanes) {
-    PointRowBlock& blk = R->blocks[l.slot / kRowBlock];
-    const int i = l.slot % kRowBlock;
+    PointRowBlock& blk = R->blocks[l.block];
+    const int i = l.lane;
     putVec(blk.r_a, i, l.anchor->point.rA);
     putVec(blk.r_b, i, l.anchor->point.rB);
   }
@@ -157,8 +157,8 @@ void PointLanes::solve(const IslandRange& p, std::vector<SolverBody>& bodies,
   solvePointRows(ctx.lanes, R->blocks.data(), int(R->blocks.size()), view, params);
   if (!sync) return;
   for (const Lane& l : R->lanes) {
-    const PointRowBlock& blk = R->blocks[l.slot / kRowBlock];
-    const int i = l.slot % kRowBlock;
+    const PointRowBlock& blk = R->blocks[l.block];
+    const int i = l.lane;
     for (int k = 0; k < 3; ++k) l.anchor->point.impulse[k] = double(blk.impulse[k][i]);
   }
 }

@@ -56,11 +56,11 @@ class PointLanes {
              bool use_bias, bool sync);
 
  private:
-  // A used lane: its joint's anchor and bodies (block l / kRowBlock, lane l % kRowBlock).
+  // A used lane: its joint's anchor and bodies, and where it sits.
   struct Lane {
     AnchorPart* anchor;
     int a, b;
-    int slot;  // l
+    int block, lane;
   };
   struct alignas(64) Range {  // its own cache lines (allocated by the thread that builds it)
     std::vector<Lane> lanes;
