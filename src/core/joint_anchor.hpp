@@ -19,8 +19,14 @@ struct AnchorPart {
     point.prepare(m[j.a], m[j.b], j.frame_a.p, j.frame_b.p);
   }
 
+  // In the lanes, K^-1 and the warm start are the wide pass's (PointLanes::load); the anchors
+  // are still refreshed here, for the error, the joint trees and the blocks.
   void warmStart(const JointBase& j, SolverBody& A, SolverBody& B, const StepContext& ctx,
                  bool anchors_current) {
+    if (in_lanes) {
+      if (!anchors_current) point.refresh(A, B);
+      return;
+    }
     const double k = j.spring.stiffness;
     point.updateMass(A, B, k > 0.0 ? PointPart::springGamma(k, j.spring.damping, ctx.h) : 0.0,
                      anchors_current);

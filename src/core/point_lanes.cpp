@@ -32,8 +32,8 @@ void PointLanes::reserve(int joints) {
   if (int(ranges_.size()) < joints) ranges_.resize(joints);
 }
 
-PointLanes::Range* PointLanes::rangeOf(const IslandRange& p) {
-  return p.joint_end > p.joint_begin ? &ranges_[p.joint_begin] : nullptr;
+PointLanes::Range* PointLanes::rangeOf(const IslandRange& p) const {
+  return p.joint_end > p.joint_begin ? ranges_[p.joint_begin].get() : nullptr;
 }
 
 namespace {
@@ -49,8 +49,10 @@ bool sameEdges(const std::vector<GraphEdge>& x, const std::vector<GraphEdge>& y)
 
 void PointLanes::build(const IslandRange& p, Joint* const* js,
                        const std::vector<SolverBody>& bodies) {
-  Range* R = rangeOf(p);
-  if (!R) return;
+  if (p.joint_end <= p.joint_begin) return;
+  std::unique_ptr<Range>& slot = ranges_[p.joint_begin];
+  if (!slot) slot = std::make_unique<Range>();  // on this thread, in its own memory
+  Range* R = slot.get();
   // The colouring's scratch is this thread's: ranges are built on different threads, and a
   // range's result is copied into its own blocks before the next one is built.
   thread_local ConstraintGraph graph;
@@ -85,32 +87,40 @@ void PointLanes::build(const IslandRange& p, Joint* const* js,
         blk.body_a[i] = blk.body_b[i] = -1;
         if (c < 0) continue;
         const GraphEdge& e = edges[c];
-        R->lanes.push_back({members[c], e.body_a, e.body_b, r * kRowBlock + i});
+        R->lanes.push_back({members[c], e.body_a, e.body_b, r, i});
         // a body the rows must not write stays -1, with inertia 0 in its lane
         if (e.dynamic_a) blk.body_a[i] = e.body_a;
         if (e.dynamic_b) blk.body_b[i] = e.body_b;
       }
     }
   }
-  // The joints' flags and the bodies' world inverse inertias (new every step).
+  // The joints' flags and the bodies' world inverse inertias and inverse masses (new every
+  // step; a body the rows do not move counts as 0, as in pointMass).
   for (Lane& l : R->lanes) {
-    PointRowBlock& blk = R->blocks[l.slot / kRowBlock];
-    const int i = l.slot % kRowBlock;
+    PointRowBlock& blk = R->blocks[l.block];
+    const int i = l.lane;
     l.anchor->in_lanes = true;
-    if (blk.body_a[i] >= 0) putSymmetric(blk.ii_a, i, bodies[l.a].inv_inertia);
-    if (blk.body_b[i] >= 0) putSymmetric(blk.ii_b, i, bodies[l.b].inv_inertia);
+    double inv_mass = 0.0;
+    if (blk.body_a[i] >= 0) {
+      putSymmetric(blk.ii_a, i, bodies[l.a].inv_inertia);
+      inv_mass += bodies[l.a].inv_mass;
+    }
+    if (blk.body_b[i] >= 0) {
+      putSymmetric(blk.ii_b, i, bodies[l.b].inv_inertia);
+      inv_mass += bodies[l.b].inv_mass;
+    }
+    blk.inv_mass[i] = float(inv_mass);
   }
 }
 
-void PointLanes::load(const IslandRange& p, const std::vector<SolverBody>& bodies,
-                      bool anchors_moved) {
+void PointLanes::load(const IslandRange& p, std::vector<SolverBody>& bodies,
+                      const StepContext& ctx, bool anchors_moved) {
   Range* R = rangeOf(p);
-  if (!R) return;
+  if (!R || R->blocks.empty()) return;
   for (const Lane& l : R->lanes) {
     const PointPart& pt = l.anchor->point;
-    PointRowBlock& blk = R->blocks[l.slot / kRowBlock];
-    const int i = l.slot % kRowBlock;
-    putSymmetric(blk.k_inv, i, pt.k_inv);
+    PointRowBlock& blk = R->blocks[l.block];
+    const int i = l.lane;
     if (anchors_moved) {
       putVec(blk.r_a, i, pt.rA);
       putVec(blk.r_b, i, pt.rB);
@@ -118,14 +128,16 @@ void PointLanes::load(const IslandRange& p, const std::vector<SolverBody>& bodie
     putVec(blk.error, i, pt.error(bodies[l.a], bodies[l.b]));
     putVec(blk.impulse, i, pt.impulse);
   }
+  const LaneBodies view = laneBodies(bodies.data());
+  warmStartPointRows(ctx.lanes, R->blocks.data(), int(R->blocks.size()), view);
 }
 
 void PointLanes::refreshAnchors(const IslandRange& p) {
   Range* R = rangeOf(p);
   if (!R) return;
   for (const Lane& l : R->lanes) {
-    PointRowBlock& blk = R->blocks[l.slot / kRowBlock];
-    const int i = l.slot % kRowBlock;
+    PointRowBlock& blk = R->blocks[l.block];
+    const int i = l.lane;
     putVec(blk.r_a, i, l.anchor->point.rA);
     putVec(blk.r_b, i, l.anchor->point.rB);
   }
@@ -145,8 +157,8 @@ void PointLanes::solve(const IslandRange& p, std::vector<SolverBody>& bodies,
   solvePointRows(ctx.lanes, R->blocks.data(), int(R->blocks.size()), view, params);
   if (!sync) return;
   for (const Lane& l : R->lanes) {
-    const PointRowBlock& blk = R->blocks[l.slot / kRowBlock];
-    const int i = l.slot % kRowBlock;
+    const PointRowBlock& blk = R->blocks[l.block];
+    const int i = l.lane;
     for (int k = 0; k < 3; ++k) l.anchor->point.impulse[k] = double(blk.impulse[k][i]);
   }
 }

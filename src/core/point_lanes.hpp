@@ -6,18 +6,23 @@
 // break force and torque: no such joint breaks within the step, so the batches stay valid)
 // are coloured in joint order (ConstraintGraph, FirstFit; no two of a colour share a dynamic
 // body) and packed colour by colour into blocks of kRowBlock lanes; the overflow set past the
-// colours stays in its joint's scalar solve (AnchorPart::in_lanes false). The warm start and
-// K^-1 stay scalar in double; the blocks take K^-1, the anchors, C and the impulse after each
-// warm start, the anchors again after the position update. The kernel reads and writes the
-// double solver bodies itself (the impulse reaches v through the double inverse masses).
-// After the substep's last joint sweep the impulses go back to PointPart::impulse in double,
-// so whatever reads them later (forces, breaks, the joint trees, the next warm start) sees them.
+// colours stays in its joint's scalar solve (AnchorPart::in_lanes false). The bodies' world
+// inverse inertias and inverse masses go into the blocks once per step, the anchors once per
+// position state (the first substep's warm start, then after each position update). Each
+// substep the blocks take C and the impulse, and the kernel forms K^-1 from the anchors and
+// applies the warm start, colour by colour, in place of the joints' scalar ones. The kernels
+// read and write the double solver bodies themselves (the impulse reaches v through the double
+// inverse masses). After the substep's last joint sweep the impulses go back to
+// PointPart::impulse in double, so whatever reads them later (forces, breaks, the joint trees,
+// which add to them, the next warm start) sees them.
 //
-// Ranges are prepared and solved on different threads: each range keeps its own storage,
-// found by its first joint (ranges with joints have distinct first joints). A range whose
-// joints and bodies are those of the last step at its slot keeps its colouring.
+// Ranges are prepared and solved on different threads: each range keeps its own storage, found
+// by its first joint (ranges with joints have distinct first joints) and allocated by the thread
+// that first builds it; its blocks are whole cache lines, so two threads never write one line.
+// A range whose joints and bodies are those of the last step at its slot keeps its colouring.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "constraint_graph.hpp"
@@ -38,10 +43,11 @@ class PointLanes {
   // After the range's joints are prepared (ctx.lanes != 1): the blocks, and the joints they
   // hold marked in_lanes.
   void build(const IslandRange& p, Joint* const* js, const std::vector<SolverBody>& bodies);
-  // After the range's joints warm started: K^-1, errors and impulses into the blocks, and the
-  // anchors when the warm start refreshed them (anchors_moved: the first substep; later ones
-  // keep what refreshAnchors put after the last position update).
-  void load(const IslandRange& p, const std::vector<SolverBody>& bodies, bool anchors_moved);
+  // After the range's joints warm started: errors and impulses into the blocks, and the anchors
+  // when the warm start refreshed them (anchors_moved: the first substep; later ones keep what
+  // refreshAnchors put after the last position update); then K^-1 and the warm start in lanes.
+  void load(const IslandRange& p, std::vector<SolverBody>& bodies, const StepContext& ctx,
+            bool anchors_moved);
   // After the range's joints advanced: the refreshed anchors.
   void refreshAnchors(const IslandRange& p);
   // One wide pass over the range's blocks, colour by colour; sync: the impulses back to the
@@ -50,22 +56,22 @@ class PointLanes {
              bool use_bias, bool sync);
 
  private:
-  // A used lane: its joint's anchor and bodies (block l / kRowBlock, lane l % kRowBlock).
+  // A used lane: its joint's anchor and bodies, and where it sits.
   struct Lane {
     AnchorPart* anchor;
     int a, b;
-    int slot;  // l
+    int block, lane;
   };
-  struct Range {
+  struct alignas(64) Range {  // its own cache lines (allocated by the thread that builds it)
     std::vector<Lane> lanes;
     std::vector<PointRowBlock> blocks;
     // What the layout was coloured from: a step with the same anchors on the same bodies keeps it.
     std::vector<AnchorPart*> anchors;
     std::vector<GraphEdge> edges;
   };
-  Range* rangeOf(const IslandRange& p);
+  Range* rangeOf(const IslandRange& p) const;
 
-  std::vector<Range> ranges_;  // by the range's first joint
+  std::vector<std::unique_ptr<Range>> ranges_;  // by the range's first joint, null until built
 };
 
 }  // namespace ragdoll_sim

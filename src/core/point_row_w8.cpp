@@ -9,6 +9,9 @@
 #include "point_row_wide.hpp"
 
 namespace ragdoll_sim {
+void kernel_w8::warmStartPointRows(PointRowBlock* blocks, int count, const LaneBodies& bodies) {
+  kernel_w4::warmStartPointRows(blocks, count, bodies);
+}
 void kernel_w8::solvePointRows(PointRowBlock* blocks, int count, const LaneBodies& bodies,
                                const PointRowParams& params) {
   kernel_w4::solvePointRows(blocks, count, bodies, params);

@@ -13,15 +13,19 @@ namespace ragdoll_sim {
 
 // One block of point parts, kRowBlock lanes whatever the width (normal_row_wide.hpp), structure
 // of arrays: field[i] belongs to lane i. Symmetric 3x3 matrices are stored as their six entries
-// xx, yy, zz, xy, xz, yz. A padding lane has both bodies -1 and K^-1 = 0, so its impulse stays 0.
-struct alignas(32) PointRowBlock {
+// xx, yy, zz, xy, xz, yz. A padding lane has both bodies -1 and all zeros, so its K is 0, its
+// K^-1 is 0 and its impulse stays 0. Aligned to a cache line (and a whole number of them, see
+// the static_assert): ranges solved by two threads never write the same line.
+struct alignas(64) PointRowBlock {
   float r_a[3][kRowBlock], r_b[3][kRowBlock];      // anchors from the COMs (world)
-  float k_inv[6][kRowBlock];                       // K^-1 of the substep
+  float k_inv[6][kRowBlock];                       // K^-1 of the substep, formed by warmStartPointRows
   float ii_a[6][kRowBlock], ii_b[6][kRowBlock];    // world inverse inertias, 0 for a static body
+  float inv_mass[kRowBlock];                       // 1/mA + 1/mB (0 for a static body's part)
   float error[3][kRowBlock];                       // C at the current position state
   float impulse[3][kRowBlock];                     // accumulated over the substep
   int32_t body_a[kRowBlock], body_b[kRowBlock];    // solver body index, -1: not movable
 };
+static_assert(sizeof(PointRowBlock) % 64 == 0, "a block is whole cache lines");
 
 // A sweep's softness (softness.hpp, orRigid): the biased sweep's terms or a rigid row.
 struct PointRowParams {
@@ -31,18 +35,24 @@ struct PointRowParams {
   bool use_bias = false;
 };
 
-// One sweep over blocks [0, count) in order, at 4 lanes (SSE2) or 8 lanes (AVX2: call it only
-// when cpuHasAvx2()). Both give the same bits.
+// warmStartPointRows: each block's K^-1 from its anchors, inverse inertias and inverse masses,
+// then its impulse applied to the bodies, blocks [0, count) in order (after the substep's
+// anchors and impulses are in the blocks). solvePointRows: one sweep over blocks [0, count) in
+// order. At 4 lanes (SSE2) or 8 lanes (AVX2: call it only when cpuHasAvx2()); both give the same
+// bits.
 namespace kernel_w4 {
+void warmStartPointRows(PointRowBlock* blocks, int count, const LaneBodies& bodies);
 void solvePointRows(PointRowBlock* blocks, int count, const LaneBodies& bodies,
                     const PointRowParams& params);
 }
 namespace kernel_w8 {
+void warmStartPointRows(PointRowBlock* blocks, int count, const LaneBodies& bodies);
 void solvePointRows(PointRowBlock* blocks, int count, const LaneBodies& bodies,
                     const PointRowParams& params);
 }
 
-// The kernel of lane width `width` (chooseLaneWidth's answer: 4 or 8).
+// The kernels of lane width `width` (chooseLaneWidth's answer: 4 or 8).
+void warmStartPointRows(int width, PointRowBlock* blocks, int count, const LaneBodies& bodies);
 void solvePointRows(int width, PointRowBlock* blocks, int count, const LaneBodies& bodies,
                     const PointRowParams& params);
 
