@@ -30,8 +30,14 @@ void Broadphase::findPairs(const std::vector<int>& bounded, const std::vector<Aa
   frozen_ = frozen;
   pairs.clear();
   bounded_.assign(bounded.begin(), bounded.end());
-  if (int(bounded_.size()) >= kGridMin) grid(aabbs, pairs);
-  else sweep(aabbs, pairs, int(bounded_.size()) >= kParallelMin ? std::max(1, threads) : 1);
+  const int sweep_threads = int(bounded_.size()) >= kParallelMin ? std::max(1, threads) : 1;
+  if (int(bounded_.size()) >= kGridMin) {
+    kept_valid_ = false;
+    grid(aabbs, pairs);
+  } else if (!sweepKept(aabbs, pairs, sweep_threads)) {
+    kept_valid_ = false;
+    sweep(aabbs, pairs, sweep_threads);
+  }
 
   for (const PlaneProxy& p : planes) {
     for (int id : bounded_) {
@@ -46,7 +52,7 @@ void Broadphase::findPairs(const std::vector<int>& bounded, const std::vector<Aa
 }
 
 void Broadphase::sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs,
-                       int threads) {
+                       int threads, bool raw) {
   // Keep the previous order, drop stale or unbounded ids, append new ones. seen_ is all 0
   // between calls (cleared through bounded_), so that a call costs nothing per shape left out.
   seen_.resize(aabbs.size(), 0);
@@ -103,29 +109,125 @@ void Broadphase::sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int
     bounds_[k] = {b.hi[ax], b.lo[ax1], b.hi[ax1], b.lo[ax2], b.hi[ax2]};
   }
   // Slice t of the sweep order: the boxes [m t / T, m (t + 1) / T) against those after them.
+  // Returns the candidates it looked at.
   const auto slice = [&](int t, int slices, std::vector<std::pair<int, int>>& out) {
     const size_t end = m * size_t(t + 1) / size_t(slices);
+    size_t work = 0;
     for (size_t i = m * size_t(t) / size_t(slices); i < end; ++i) {
       const SweepBounds a = bounds_[i];
       const double lo = key_[i];
-      for (size_t j = i + 1; j < m; ++j) {
+      size_t j = i + 1;
+      for (; j < m; ++j) {
         if (key_[j] > a.hi) break;
         const SweepBounds& b = bounds_[j];
         if (lo <= b.hi && b.lo_u <= a.hi_u && a.lo_u <= b.hi_u && b.lo_w <= a.hi_w &&
-            a.lo_w <= b.hi_w)  // Aabb::overlaps
-          addPair(out, order_[i], order_[j]);
+            a.lo_w <= b.hi_w) {  // Aabb::overlaps
+          if (raw) out.emplace_back(order_[i], order_[j]);
+          else addPair(out, order_[i], order_[j]);
+        }
+      }
+      work += j - i - 1;
+    }
+    return work;
+  };
+  if (threads <= 1) {
+    sweep_work_ = slice(0, 1, pairs);
+    return;
+  }
+  slice_pairs_.resize(threads);
+  size_t work = 0;
+#pragma omp parallel for schedule(static, 1) num_threads(threads) reduction(+ : work)
+  for (int t = 0; t < threads; ++t) {
+    slice_pairs_[t].clear();
+    work += slice(t, threads, slice_pairs_[t]);
+  }
+  sweep_work_ = work;
+  for (int t = 0; t < threads; ++t)
+    pairs.insert(pairs.end(), slice_pairs_[t].begin(), slice_pairs_[t].end());
+}
+
+void Broadphase::testCandidates(const std::vector<Aabb>& aabbs, size_t begin, size_t end,
+                                std::vector<std::pair<int, int>>& pairs) const {
+  for (size_t k = begin; k < end; ++k) {
+    const auto [i, j] = candidates_[k];
+    const Aabb &a = aabbs[i], &b = aabbs[j];
+    if (a.lo.x() <= b.hi.x() && b.lo.x() <= a.hi.x() && a.lo.y() <= b.hi.y() &&
+        b.lo.y() <= a.hi.y() && a.lo.z() <= b.hi.z() && b.lo.z() <= a.hi.z())  // overlaps
+      addPair(pairs, i, j);
+  }
+}
+
+bool Broadphase::sweepKept(const std::vector<Aabb>& aabbs,
+                           std::vector<std::pair<int, int>>& pairs, int threads) {
+  const auto fatBox = [](const Aabb& b) {
+    const double grow = kFatRatio * (b.hi - b.lo).maxCoeff();
+    return Aabb{b.lo - Vec3::Constant(grow), b.hi + Vec3::Constant(grow)};
+  };
+  const auto finite = [](const Aabb& b) { return b.lo.allFinite() && b.hi.allFinite(); };
+  fat_.resize(aabbs.size());
+  moved_.resize(aabbs.size(), 0);
+  escaped_.clear();
+  const bool rebuild = !kept_valid_ || kept_bounded_ != bounded_;
+  if (rebuild) {
+    for (int id : bounded_) {
+      if (!finite(aabbs[id])) return false;
+      fat_[id] = fatBox(aabbs[id]);
+    }
+  } else {
+    for (int id : bounded_) {
+      const Aabb &b = aabbs[id], &f = fat_[id];
+      if (f.lo.x() <= b.lo.x() && f.lo.y() <= b.lo.y() && f.lo.z() <= b.lo.z() &&
+          b.hi.x() <= f.hi.x() && b.hi.y() <= f.hi.y() && b.hi.z() <= f.hi.z())
+        continue;  // inside (a NaN bound is never inside)
+      if (!finite(b)) return false;
+      escaped_.push_back(id);
+    }
+    for (int id : escaped_) fat_[id] = fatBox(aabbs[id]);
+  }
+  const size_t m = bounded_.size(), k = escaped_.size();
+  if (rebuild || k * m > sweep_work_) {
+    // Many boxes left (or nothing is kept): the whole sweep over the fat boxes.
+    candidates_.clear();
+    sweep(fat_, candidates_, threads, true);
+    kept_bounded_ = bounded_;
+    kept_valid_ = true;
+  } else if (k > 0) {
+    // A few left: drop their candidates, then test each against every fat box (a pair of two
+    // of them once, from its lower id).
+    for (int id : escaped_) moved_[id] = 1;
+    candidates_.erase(std::remove_if(candidates_.begin(), candidates_.end(),
+                                     [&](const std::pair<int, int>& p) {
+                                       return moved_[p.first] || moved_[p.second];
+                                     }),
+                      candidates_.end());
+    for (int s : escaped_) {
+      const Aabb a = fat_[s];
+      for (int t : bounded_) {
+        if (t == s || (moved_[t] && t < s)) continue;
+        const Aabb& b = fat_[t];
+        if (a.lo.x() <= b.hi.x() && b.lo.x() <= a.hi.x() && a.lo.y() <= b.hi.y() &&
+            b.lo.y() <= a.hi.y() && a.lo.z() <= b.hi.z() && b.lo.z() <= a.hi.z())
+          candidates_.emplace_back(s, t);
       }
     }
-  };
-  if (threads <= 1) return slice(0, 1, pairs);
+    for (int id : escaped_) moved_[id] = 0;
+  }
+  // The exact boxes of the candidates, sliced over threads as the sweep is.
+  const size_t c = candidates_.size();
+  if (threads <= 1) {
+    testCandidates(aabbs, 0, c, pairs);
+    return true;
+  }
   slice_pairs_.resize(threads);
 #pragma omp parallel for schedule(static, 1) num_threads(threads)
   for (int t = 0; t < threads; ++t) {
     slice_pairs_[t].clear();
-    slice(t, threads, slice_pairs_[t]);
+    testCandidates(aabbs, c * size_t(t) / size_t(threads), c * size_t(t + 1) / size_t(threads),
+                   slice_pairs_[t]);
   }
   for (int t = 0; t < threads; ++t)
     pairs.insert(pairs.end(), slice_pairs_[t].begin(), slice_pairs_[t].end());
+  return true;
 }
 
 void Broadphase::insert(int proxy, const int cell[3]) {

@@ -13,6 +13,12 @@
 //     than the sweep, hence the switch by shape count.
 //     Boxes longer than kMaxSpan cells (a pit's walls) or not finite are tested against every
 //     box instead.
+// The sweep runs over kept fat boxes (each shape's box grown by kFatRatio of its largest side,
+// kept while the box stays inside it), and its candidates (the pairs whose fat boxes overlap)
+// are kept between calls: a box inside its fat box cannot overlap a box whose fat box it does
+// not overlap, so each call tests only the kept candidates against the exact boxes. When a few
+// boxes left their fat boxes, only their candidates are found again (against every fat box);
+// when many did, the whole sweep runs again over the fat boxes.
 #pragma once
 
 #include <cstddef>
@@ -80,8 +86,17 @@ class Broadphase {
   static constexpr int kParallelMin = 64;
 
  private:
+  // Sweep and prune over boxes; raw: every overlapping pair (no filter, no frozen test) into
+  // pairs, else through addPair.
   void sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs,
-             int threads);
+             int threads, bool raw = false);
+  // The sweep's pairs through the kept candidates (fat boxes); false when a box is not finite
+  // (then the plain sweep runs, as the fat boxes cannot bound it).
+  bool sweepKept(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs,
+                 int threads);
+  // Exact boxes of the kept candidates [begin, end) through addPair.
+  void testCandidates(const std::vector<Aabb>& aabbs, size_t begin, size_t end,
+                      std::vector<std::pair<int, int>>& pairs) const;
   void grid(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs);
   // Appends (min, max) of i and j when accept_ takes it.
   void addPair(std::vector<std::pair<int, int>>& pairs, int i, int j) const;
@@ -105,6 +120,16 @@ class Broadphase {
   std::vector<char> seen_;
   std::vector<double> key_;          // lo on the sweep axis, in sweep order
   std::vector<SweepBounds> bounds_;  // in sweep order
+  size_t sweep_work_ = 0;            // candidates the last sweep looked at
+
+  // kept candidates
+  static constexpr double kFatRatio = 0.2;  // fat margin per side over the box's largest side
+  bool kept_valid_ = false;
+  std::vector<int> kept_bounded_;              // bounded_ when the candidates were found
+  std::vector<Aabb> fat_;                      // per shape id
+  std::vector<char> moved_;                    // per shape id, all 0 between calls
+  std::vector<int> escaped_;                   // shapes whose box left its fat box
+  std::vector<std::pair<int, int>> candidates_;  // pairs whose fat boxes overlap
 
   // hash grid
   static constexpr double kMaxSpan = 8.0;     // cells per axis before a box counts as large

@@ -1,7 +1,8 @@
 // The broadphase's pairs are exactly the brute-force overlaps, for both of its methods (sweep
 // and prune below Broadphase::kGridMin bounded shapes, hash grid from it), over steps in which
 // the boxes move (the sweep keeps its order between calls) and shapes come and go; the sweep
-// split over threads gives the same list, and a filter drops exactly the pairs it rejects.
+// split over threads gives the same list, and a filter drops exactly the pairs it rejects; the
+// sweep's kept candidates give the same pairs as a fresh sweep.
 // The world's sort of the pairs' keys (group_by.hpp) gives std::sort's order.
 #include <gtest/gtest.h>
 
@@ -110,6 +111,63 @@ TEST_P(BroadphaseExact, PairsEqualBruteForceWhileBoxesMove) {
 INSTANTIATE_TEST_SUITE_P(SweepAndGrid, BroadphaseExact,
                          // kGridMin + 4: the grid, then the sweep once 7 shapes are gone.
                          ::testing::Values(40, 500, Broadphase::kGridMin + 4, 3000));
+
+// The sweep keeps its candidates between calls (fat boxes): over many calls in which most boxes
+// barely move or change size (kept candidates), a few jump (their candidates found again) and
+// now and then all of them move (the whole sweep again), the pairs stay the brute-force ones,
+// the same list on one and on three threads, and with a filter and frozen shapes the same as a
+// fresh broadphase's.
+TEST(Broadphase, KeptCandidatesEqualBruteForce) {
+  const int n = 400;
+  std::mt19937 rng(23);
+  std::vector<Aabb> boxes = scatter(rng, n);
+  const std::vector<char> unbounded(n, 0);
+  std::normal_distribution<double> jitter(0.0, 0.001), jump(0.0, 0.4), drift(0.0, 0.05);
+  std::uniform_int_distribution<int> pick(0, n - 1);
+  std::vector<char> frozen(n, 0);
+  for (int i = 0; i < n; i += 3) frozen[i] = 1;
+  const auto keep = [](int i, int j) { return (i + j) % 5 != 0; };
+  Broadphase bp, sliced, filtered;
+  Pairs pairs, sliced_pairs, filtered_pairs, fresh_pairs;
+  size_t total = 0;
+  for (int call = 0; call < 80; ++call) {
+    bp.findPairs(boxes, unbounded, {}, 0.0, pairs);
+    sliced.findPairs(boxes, unbounded, {}, 0.0, sliced_pairs, nullptr, 3);
+    filtered.findPairs(boxes, unbounded, {}, 0.0, filtered_pairs, keep, 2, &frozen);
+    Broadphase fresh;
+    fresh.findPairs(boxes, unbounded, {}, 0.0, fresh_pairs, keep, 1, &frozen);
+    ASSERT_EQ(sliced_pairs, pairs) << "call " << call;
+    std::sort(pairs.begin(), pairs.end());
+    ASSERT_EQ(pairs, bruteForce(boxes, unbounded, {}, 0.0)) << "call " << call;
+    std::sort(filtered_pairs.begin(), filtered_pairs.end());
+    std::sort(fresh_pairs.begin(), fresh_pairs.end());
+    ASSERT_EQ(filtered_pairs, fresh_pairs) << "call " << call;
+    total += pairs.size();
+    if (call % 20 == 19) {  // everything moves
+      for (Aabb& b : boxes) {
+        const Vec3 d(drift(rng), drift(rng), drift(rng));
+        b.lo += d;
+        b.hi += d;
+      }
+      continue;
+    }
+    for (Aabb& b : boxes) {  // bodies at rest: a little motion, the boxes grow and shrink
+      if ((b.hi - b.lo).minCoeff() < 0.05) continue;  // a point or thin box keeps no margin
+      const Vec3 d(jitter(rng), jitter(rng), jitter(rng));
+      const double g = 0.5 * std::abs(jitter(rng));
+      b.lo += d - Vec3::Constant(call % 2 ? g : -g).cwiseMin(b.hi - b.lo);
+      b.hi += d;
+    }
+    for (int k = 0; k < 4; ++k) {  // a few jump, one of them onto another box
+      Aabb& b = boxes[pick(rng)];
+      const Vec3 d = k == 0 ? Vec3(boxes[pick(rng)].lo - b.lo)
+                            : Vec3(jump(rng), jump(rng), 0.25 * jump(rng));
+      b.lo += d;
+      b.hi += d;
+    }
+  }
+  EXPECT_GT(total, size_t(n));
+}
 
 // A box whose bounds are NaN or infinite overlaps nothing, and the finite ones still pair up.
 TEST(Broadphase, NonFiniteBoxesPairWithNothing) {
