@@ -1,9 +1,36 @@
 // The per-body phases of the island solve: the solver body prepared at the step start, and the
 // velocities and positions advanced in each substep (semi-implicit Euler, island_solve.hpp).
-#include "integrate_kernel.hpp"
+#include "integrate.hpp"
+#include "lane_width.hpp"
 #include "world_impl.hpp"
 
 namespace ragdoll_sim {
+
+static_assert(sizeof(Mat3) == 9 * sizeof(double), "rotations are read as 9 doubles a body");
+
+integrate_kernel::BodyFields bodyFields(std::vector<SolverBody>& solver,
+                                        const std::vector<BodyMotion>& motions,
+                                        std::vector<Mat3>& rotations) {
+  const SolverBody& s = solver[0];
+  const BodyMotion& m = motions[0];
+  const auto at = [](const void* field, const void* base) {
+    return long((const char*)field - (const char*)base);
+  };
+  integrate_kernel::BodyFields f;
+  f.solver = (char*)solver.data();
+  f.solver_stride = sizeof(SolverBody);
+  f.v = at(s.v.data(), &s);
+  f.w = at(s.w.data(), &s);
+  f.dp = at(s.dp.data(), &s);
+  f.dq = at(s.dq.coeffs().data(), &s);
+  f.motion = (const char*)motions.data();
+  f.motion_stride = sizeof(BodyMotion);
+  f.inertia = at(m.inertia_local.data(), &m);
+  f.inv_inertia = at(m.inv_inertia_local.data(), &m);
+  f.q = at(m.q.coeffs().data(), &m);
+  f.rotations = rotations[0].data();
+  return f;
+}
 
 // The solver body of body i at the step start: an awake body's velocities, inverse mass
 // and world inverse inertia, an identity state for the others.
@@ -44,54 +71,24 @@ void World::Impl::integrateVelocities(double h, int begin, int end) {
 // L = R I R^T w, which free rotation conserves: w' = R' I^-1 R'^T L. This is the gyroscopic
 // term (precession, the middle-axis flip) and keeps L exact in free flight. Two loops: the
 // first parks L in w, the second turns it back; each body's chain (a square root and a division
-// in the middle) is then short enough for the core to overlap bodies. Bodies go two at a time
-// through the SSE2 lanes (integrate_kernel.hpp: each lane does the one-body operations).
+// in the middle) is then short enough for the core to overlap bodies. Bodies go four at a time
+// through AVX lanes where the CPU has AVX2, then two at a time through SSE2 lanes, the last one
+// alone (integrate_kernel.hpp: each lane does the one-body operations, so all give the same bits).
 void World::Impl::integratePositions(double h, int begin, int end) {
+  if (begin >= end) return;
   using namespace integrate_kernel;
   const double half_h = 0.5 * h;
-  const Double2 h2 = {h, h}, half_h2 = {half_h, half_h};
-  int k = begin;
-  for (; k + 1 < end; k += 2) {
-    const int i0 = island_bodies[k], i1 = island_bodies[k + 1];
-    const BodyMotion &m0 = motions[i0], &m1 = motions[i1];
-    SolverBody &s0 = solver[i0], &s1 = solver[i1];
-    double *R0 = rotations[i0].data(), *R1 = rotations[i1].data();
-    Double2 v[3], dp[3], w[3], dq[4], R[9], inertia[9], q[4];
-    gather<3>(s0.v.data(), s1.v.data(), v);
-    gather<3>(s0.dp.data(), s1.dp.data(), dp);
-    gather<3>(s0.w.data(), s1.w.data(), w);
-    gather<4>(s0.dq.coeffs().data(), s1.dq.coeffs().data(), dq);
-    gather<9>(R0, R1, R);
-    gather<9>(m0.inertia_local.data(), m1.inertia_local.data(), inertia);
-    gather<4>(m0.q.coeffs().data(), m1.q.coeffs().data(), q);
-    advanceRotation(h2, half_h2, v, dp, w, dq, R, inertia, q);
-    scatter<3>(dp, s0.dp.data(), s1.dp.data());
-    scatter<3>(w, s0.w.data(), s1.w.data());
-    scatter<4>(dq, s0.dq.coeffs().data(), s1.dq.coeffs().data());
-    scatter<9>(R, R0, R1);
-  }
-  if (k < end) {
-    const int i = island_bodies[k];
-    const BodyMotion& m = motions[i];
-    SolverBody& s = solver[i];
-    advanceRotation(h, half_h, s.v.data(), s.dp.data(), s.w.data(), s.dq.coeffs().data(),
-                    rotations[i].data(), m.inertia_local.data(), m.q.coeffs().data());
-  }
-  for (k = begin; k + 1 < end; k += 2) {
-    const int i0 = island_bodies[k], i1 = island_bodies[k + 1];
-    SolverBody &s0 = solver[i0], &s1 = solver[i1];
-    Double2 w[3], R[9], inv_inertia[9];
-    gather<3>(s0.w.data(), s1.w.data(), w);
-    gather<9>(rotations[i0].data(), rotations[i1].data(), R);
-    gather<9>(motions[i0].inv_inertia_local.data(), motions[i1].inv_inertia_local.data(),
-              inv_inertia);
-    finishRotation(R, inv_inertia, w);
-    scatter<3>(w, s0.w.data(), s1.w.data());
-  }
-  if (k < end) {
-    const int i = island_bodies[k];
-    finishRotation(rotations[i].data(), motions[i].inv_inertia_local.data(), solver[i].w.data());
-  }
+  const BodyFields f = bodyFields(solver, motions, rotations);
+  const int* bodies = island_bodies.data() + begin;
+  const int n = end - begin;
+  const int n4 = cpuHasAvx2() ? n / 4 * 4 : 0;
+  const int n2 = n4 + (n - n4) / 2 * 2;
+  integrate_w4::advanceRotations(f, bodies, n4, h, half_h);
+  advanceRotations<Double2>(f, bodies + n4, n2 - n4, h, half_h);
+  advanceRotations<double>(f, bodies + n2, n - n2, h, half_h);
+  integrate_w4::finishRotations(f, bodies, n4);
+  finishRotations<Double2>(f, bodies + n4, n2 - n4);
+  finishRotations<double>(f, bodies + n2, n - n2);
 }
 
 }  // namespace ragdoll_sim

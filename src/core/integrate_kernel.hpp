@@ -1,26 +1,52 @@
 // The rotation step of integratePositions on plain arrays, written once for a lane type D:
-// double (one body) or Double2 (two bodies in the two halves of an SSE2 register, the x86-64
-// baseline). Every lane does exactly the IEEE operations, in the order, of the Eigen expressions
-// they replace (EIGEN_DONT_VECTORIZE: Eigen's scalar paths), so both types give the bits of
+// double (one body), Double2 (two bodies in an SSE2 register, the x86-64 baseline) or Double4
+// (four bodies in an AVX register, integrate_w4.cpp, compiled with -mavx2 -mno-fma). Every lane
+// does exactly the IEEE operations, in the order, of the Eigen expressions they replace
+// (EIGEN_DONT_VECTORIZE: Eigen's scalar paths), so all types give the bits of
 //   dp += h v;  L = R (I (R^T w));  dq = (dq + (0, h/2 w) dq).normalized();
 //   R = (dq q).toRotationMatrix();  w = R (I^-1 (R^T L))
 // where a 3-term sum a0 + a1 + a2 is Eigen's a0 + (a1 + a2) (its unrolled reduction halves the
 // range), a quaternion product sums left to right, and |c|^2 = (x^2 + y^2) + (z^2 + w^2).
 // Matrices are column-major (Eigen's default), quaternions stored x, y, z, w.
+// As lanes.hpp: no std headers or Eigen (the AVX file includes this), and an inline namespace
+// per instruction set, so that no AVX copy of an inline function replaces a baseline one.
 #pragma once
 
 #include <emmintrin.h>
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
 
-#include <cmath>
+#if defined(__AVX2__)
+#define RAGDOLL_SIM_INTEGRATE_ISA integrate_avx2
+#else
+#define RAGDOLL_SIM_INTEGRATE_ISA integrate_sse2
+#endif
 
 namespace ragdoll_sim {
 namespace integrate_kernel {
 
+// Where the position step finds a body's fields: each body array's base, stride and the
+// fields' byte offsets, so that the kernels need no Eigen type (the AVX file cannot include it).
+// Plain data outside the per-ISA namespace: both builds of the kernels take the same type.
+struct BodyFields {
+  char* solver;  // SolverBody array
+  long solver_stride, v, w, dp, dq;
+  const char* motion;  // BodyMotion array
+  long motion_stride, inertia, inv_inertia, q;
+  double* rotations;  // 9 per body, column-major
+};
+
+inline namespace RAGDOLL_SIM_INTEGRATE_ISA {
+
 // Two doubles, one per body; the operators are the element-wise IEEE operations.
 typedef double Double2 __attribute__((vector_size(16)));
-
-inline double squareRoot(double x) { return std::sqrt(x); }
+inline double squareRoot(double x) { return __builtin_sqrt(x); }
 inline Double2 squareRoot(Double2 x) { return Double2(_mm_sqrt_pd(__m128d(x))); }
+#if defined(__AVX__)
+typedef double Double4 __attribute__((vector_size(32)));
+inline Double4 squareRoot(Double4 x) { return Double4(_mm256_sqrt_pd(__m256d(x))); }
+#endif
 
 // c / sqrt(z) where z > 0, c unchanged elsewhere (Eigen's normalized()).
 inline void divideByRoot(double z, double c[4]) {
@@ -29,10 +55,10 @@ inline void divideByRoot(double z, double c[4]) {
     for (int j = 0; j < 4; ++j) c[j] = c[j] / n;
   }
 }
-inline void divideByRoot(Double2 z, Double2 c[4]) {
-  const Double2 zero = {0.0, 0.0};
-  const auto positive = z > zero;
-  const Double2 n = squareRoot(z);
+template <class D>
+inline void divideByRoot(D z, D c[4]) {
+  const auto positive = z > D() + 0.0;
+  const D n = squareRoot(z);
   for (int j = 0; j < 4; ++j) c[j] = positive ? c[j] / n : c[j];
 }
 
@@ -109,18 +135,110 @@ inline void finishRotation(const D R[9], const D inv_inertia[9], D w[3]) {
   worldProduct(R, inv_inertia, w);
 }
 
-// Lanes of two bodies' arrays: out[j] = {a[j], b[j]}, and back.
+inline double* solverField(const BodyFields& f, int body, long offset) {
+  return (double*)(f.solver + body * f.solver_stride + offset);
+}
+inline const double* motionField(const BodyFields& f, int body, long offset) {
+  return (const double*)(f.motion + body * f.motion_stride + offset);
+}
+
+// The lanes of W bodies' arrays: out[j] = {p[0][j], ..., p[W-1][j]}, and back.
 template <int N>
-inline void gather(const double* a, const double* b, Double2 out[N]) {
-  for (int j = 0; j < N; ++j) out[j] = Double2{a[j], b[j]};
+inline void gather(const double* const p[1], double out[N]) {
+  for (int j = 0; j < N; ++j) out[j] = p[0][j];
 }
 template <int N>
-inline void scatter(const Double2 in[N], double* a, double* b) {
+inline void scatter(const double in[N], double* const p[1]) {
+  for (int j = 0; j < N; ++j) p[0][j] = in[j];
+}
+template <int N>
+inline void gather(const double* const p[2], Double2 out[N]) {
+  for (int j = 0; j < N; ++j) out[j] = Double2{p[0][j], p[1][j]};
+}
+template <int N>
+inline void scatter(const Double2 in[N], double* const p[2]) {
   for (int j = 0; j < N; ++j) {
-    a[j] = in[j][0];
-    b[j] = in[j][1];
+    p[0][j] = in[j][0];
+    p[1][j] = in[j][1];
+  }
+}
+#if defined(__AVX__)
+template <int N>
+inline void gather(const double* const p[4], Double4 out[N]) {
+  for (int j = 0; j < N; ++j) out[j] = Double4{p[0][j], p[1][j], p[2][j], p[3][j]};
+}
+template <int N>
+inline void scatter(const Double4 in[N], double* const p[4]) {
+  for (int j = 0; j < N; ++j)
+    for (int l = 0; l < 4; ++l) p[l][j] = in[j][l];
+}
+#endif
+
+// advanceRotation on bodies[0..count), W = sizeof(D) / 8 at a time; count a multiple of W.
+template <class D>
+inline void advanceRotations(const BodyFields& f, const int* bodies, int count, double h,
+                             double half_h) {
+  constexpr int W = sizeof(D) / sizeof(double);
+  const D hl = D() + h, half_hl = D() + half_h;
+  for (int k = 0; k < count; k += W) {
+    const double *v[W], *inertia[W], *q[W];
+    double *dp[W], *w[W], *dq[W], *R[W];
+    for (int l = 0; l < W; ++l) {
+      const int b = bodies[k + l];
+      v[l] = solverField(f, b, f.v);
+      dp[l] = solverField(f, b, f.dp);
+      w[l] = solverField(f, b, f.w);
+      dq[l] = solverField(f, b, f.dq);
+      R[l] = f.rotations + 9 * b;
+      inertia[l] = motionField(f, b, f.inertia);
+      q[l] = motionField(f, b, f.q);
+    }
+    D vl[3], dpl[3], wl[3], dql[4], Rl[9], inertial[9], ql[4];
+    gather<3>(v, vl);
+    gather<3>(dp, dpl);
+    gather<3>(w, wl);
+    gather<4>(dq, dql);
+    gather<9>(R, Rl);
+    gather<9>(inertia, inertial);
+    gather<4>(q, ql);
+    advanceRotation(hl, half_hl, vl, dpl, wl, dql, Rl, inertial, ql);
+    scatter<3>(dpl, dp);
+    scatter<3>(wl, w);
+    scatter<4>(dql, dq);
+    scatter<9>(Rl, R);
   }
 }
 
+// finishRotation on bodies[0..count), as advanceRotations.
+template <class D>
+inline void finishRotations(const BodyFields& f, const int* bodies, int count) {
+  constexpr int W = sizeof(D) / sizeof(double);
+  for (int k = 0; k < count; k += W) {
+    const double *R[W], *inv_inertia[W];
+    double* w[W];
+    for (int l = 0; l < W; ++l) {
+      const int b = bodies[k + l];
+      w[l] = solverField(f, b, f.w);
+      R[l] = f.rotations + 9 * b;
+      inv_inertia[l] = motionField(f, b, f.inv_inertia);
+    }
+    D wl[3], Rl[9], inv_inertial[9];
+    gather<3>(w, wl);
+    gather<9>(R, Rl);
+    gather<9>(inv_inertia, inv_inertial);
+    finishRotation(Rl, inv_inertial, wl);
+    scatter<3>(wl, w);
+  }
+}
+
+}  // namespace RAGDOLL_SIM_INTEGRATE_ISA
 }  // namespace integrate_kernel
+
+// The four-body kernels (integrate_w4.cpp), for a CPU with AVX2 (cpuHasAvx2); count a multiple
+// of 4. Built for the baseline (no AVX2 compiler), they run the two-body kernels instead.
+namespace integrate_w4 {
+void advanceRotations(const integrate_kernel::BodyFields& f, const int* bodies, int count,
+                      double h, double half_h);
+void finishRotations(const integrate_kernel::BodyFields& f, const int* bodies, int count);
+}  // namespace integrate_w4
 }  // namespace ragdoll_sim

@@ -1,11 +1,14 @@
-// integrate_kernel.hpp against the Eigen expressions it replaces: one body (double) and two
-// bodies (Double2 lanes) must give the same bits as the Eigen code, whatever the inputs.
+// integrate_kernel.hpp against the Eigen expressions it replaces: one body (double), two
+// (Double2 lanes) and four (AVX lanes, where the CPU has AVX2) must give the same bits as the
+// Eigen code, whatever the inputs.
 #include <gtest/gtest.h>
 
 #include <cstring>
 #include <random>
+#include <vector>
 
-#include "integrate_kernel.hpp"
+#include "integrate.hpp"
+#include "lane_width.hpp"
 #include "ragdoll_sim/math.hpp"
 
 namespace ragdoll_sim {
@@ -31,28 +34,45 @@ void referenceStep(double h, BodyState& b) {
   b.w = b.R * (b.inv_inertia * (b.R.transpose() * L));
 }
 
-void scalarStep(double h, BodyState& b) {
-  advanceRotation(h, 0.5 * h, b.v.data(), b.dp.data(), b.w.data(), b.dq.coeffs().data(),
-                  b.R.data(), b.inertia.data(), b.q.coeffs().data());
-  finishRotation(b.R.data(), b.inv_inertia.data(), b.w.data());
-}
-
-void pairStep(double h, BodyState& a, BodyState& b) {
-  Double2 v[3], dp[3], w[3], dq[4], R[9], inertia[9], inv_inertia[9], q[4];
-  gather<3>(a.v.data(), b.v.data(), v);
-  gather<3>(a.dp.data(), b.dp.data(), dp);
-  gather<3>(a.w.data(), b.w.data(), w);
-  gather<4>(a.dq.coeffs().data(), b.dq.coeffs().data(), dq);
-  gather<9>(a.R.data(), b.R.data(), R);
-  gather<9>(a.inertia.data(), b.inertia.data(), inertia);
-  gather<9>(a.inv_inertia.data(), b.inv_inertia.data(), inv_inertia);
-  gather<4>(a.q.coeffs().data(), b.q.coeffs().data(), q);
-  advanceRotation(Double2{h, h}, Double2{0.5 * h, 0.5 * h}, v, dp, w, dq, R, inertia, q);
-  finishRotation(R, inv_inertia, w);
-  scatter<3>(dp, a.dp.data(), b.dp.data());
-  scatter<3>(w, a.w.data(), b.w.data());
-  scatter<4>(dq, a.dq.coeffs().data(), b.dq.coeffs().data());
-  scatter<9>(R, a.R.data(), b.R.data());
+// The position step of bodies[0..n) through the arrays, `width` bodies at a time (4: the AVX
+// kernel).
+void arrayStep(double h, int width, std::vector<BodyState>& states) {
+  const int n = int(states.size());
+  std::vector<SolverBody> solver(n);
+  std::vector<BodyMotion> motions(n);
+  std::vector<Mat3> rotations(n);
+  std::vector<int> bodies;
+  for (int i = n - 1; i >= 0; --i) bodies.push_back(i);  // any order: each body alone
+  for (int i = 0; i < n; ++i) {
+    const BodyState& b = states[i];
+    solver[i].v = b.v;
+    solver[i].dp = b.dp;
+    solver[i].w = b.w;
+    solver[i].dq = b.dq;
+    motions[i].q = b.q;
+    motions[i].inertia_local = b.inertia;
+    motions[i].inv_inertia_local = b.inv_inertia;
+    rotations[i] = b.R;
+  }
+  const BodyFields f = bodyFields(solver, motions, rotations);
+  if (width == 4) {
+    integrate_w4::advanceRotations(f, bodies.data(), n, h, 0.5 * h);
+    integrate_w4::finishRotations(f, bodies.data(), n);
+  } else if (width == 2) {
+    advanceRotations<Double2>(f, bodies.data(), n, h, 0.5 * h);
+    finishRotations<Double2>(f, bodies.data(), n);
+  } else {
+    advanceRotations<double>(f, bodies.data(), n, h, 0.5 * h);
+    finishRotations<double>(f, bodies.data(), n);
+  }
+  for (int i = 0; i < n; ++i) {
+    BodyState& b = states[i];
+    b.v = solver[i].v;
+    b.dp = solver[i].dp;
+    b.w = solver[i].w;
+    b.dq = solver[i].dq;
+    b.R = rotations[i];
+  }
 }
 
 template <class M>
@@ -83,19 +103,23 @@ BodyState randomBody(std::mt19937_64& rng, int kind) {
   return b;
 }
 
-TEST(IntegrateKernel, OneAndTwoBodiesGiveTheEigenBits) {
+TEST(IntegrateKernel, OneTwoAndFourBodiesGiveTheEigenBits) {
   std::mt19937_64 rng(60);
-  for (int n = 0; n < 20000; ++n) {
+  std::vector<int> widths = {1, 2};
+  if (cpuHasAvx2()) widths.push_back(4);
+  for (int n = 0; n < 5000; ++n) {
     const double h = (n % 7 + 1) * 1.0 / 240.0;
-    BodyState a = randomBody(rng, n % 5), b = randomBody(rng, (n / 5) % 5);
-    BodyState ra = a, rb = b, sa = a;
-    referenceStep(h, ra);
-    referenceStep(h, rb);
-    scalarStep(h, sa);
-    pairStep(h, a, b);
-    ASSERT_TRUE(sameBits(sa, ra)) << "scalar, case " << n;
-    ASSERT_TRUE(sameBits(a, ra)) << "lane 0, case " << n;
-    ASSERT_TRUE(sameBits(b, rb)) << "lane 1, case " << n;
+    std::vector<BodyState> start;
+    for (int l = 0; l < 4; ++l) start.push_back(randomBody(rng, (n + l * (n / 5)) % 5));
+    std::vector<BodyState> reference = start;
+    for (BodyState& b : reference) referenceStep(h, b);
+    for (const int width : widths) {
+      std::vector<BodyState> states = start;
+      arrayStep(h, width, states);
+      for (int l = 0; l < 4; ++l)
+        ASSERT_TRUE(sameBits(states[l], reference[l])) << "width " << width << ", lane " << l
+                                                        << ", case " << n;
+    }
   }
 }
 
