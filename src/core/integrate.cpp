@@ -69,11 +69,11 @@ void World::Impl::integrateVelocities(double h, int begin, int end) {
 
 // The rotation advances with w; then w is recomputed from the world angular momentum
 // L = R I R^T w, which free rotation conserves: w' = R' I^-1 R'^T L. This is the gyroscopic
-// term (precession, the middle-axis flip) and keeps L exact in free flight. Two loops: the
-// first parks L in w, the second turns it back; each body's chain (a square root and a division
-// in the middle) is then short enough for the core to overlap bodies. Bodies go four at a time
-// through AVX lanes where the CPU has AVX2, then two at a time through SSE2 lanes, the last one
-// alone (integrate_kernel.hpp: each lane does the one-body operations, so all give the same bits).
+// term (precession, the middle-axis flip) and keeps L exact in free flight. Bodies go four at a
+// time through AVX lanes where the CPU has AVX2, then two at a time through SSE2 lanes, the last
+// one alone (integrate_kernel.hpp: each lane does the one-body operations, so all give the same
+// bits); the lanes' side-by-side chains (a square root and a division in the middle) keep the
+// core busy.
 void World::Impl::integratePositions(double h, int begin, int end) {
   if (begin >= end) return;
   using namespace integrate_kernel;
@@ -83,12 +83,9 @@ void World::Impl::integratePositions(double h, int begin, int end) {
   const int n = end - begin;
   const int n4 = cpuHasAvx2() ? n / 4 * 4 : 0;
   const int n2 = n4 + (n - n4) / 2 * 2;
-  integrate_w4::advanceRotations(f, bodies, n4, h, half_h);
-  advanceRotations<Double2>(f, bodies + n4, n2 - n4, h, half_h);
-  advanceRotations<double>(f, bodies + n2, n - n2, h, half_h);
-  integrate_w4::finishRotations(f, bodies, n4);
-  finishRotations<Double2>(f, bodies + n4, n2 - n4);
-  finishRotations<double>(f, bodies + n2, n - n2);
+  integrate_w4::stepPositions(f, bodies, n4, h, half_h);
+  stepPositions<Double2>(f, bodies + n4, n2 - n4, h, half_h);
+  stepPositions<double>(f, bodies + n2, n - n2, h, half_h);
 }
 
 }  // namespace ragdoll_sim

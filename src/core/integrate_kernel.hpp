@@ -174,14 +174,16 @@ inline void scatter(const Double4 in[N], double* const p[4]) {
 }
 #endif
 
-// advanceRotation on bodies[0..count), W = sizeof(D) / 8 at a time; count a multiple of W.
+// The position step (advanceRotation, then finishRotation) of bodies[0..count), W = sizeof(D) / 8
+// at a time; count a multiple of W. The W bodies' chains run side by side in the lanes, so one
+// loop does both halves (the scalar code splits them to let the core overlap bodies).
 template <class D>
-inline void advanceRotations(const BodyFields& f, const int* bodies, int count, double h,
+inline void stepPositions(const BodyFields& f, const int* bodies, int count, double h,
                              double half_h) {
   constexpr int W = sizeof(D) / sizeof(double);
   const D hl = D() + h, half_hl = D() + half_h;
   for (int k = 0; k < count; k += W) {
-    const double *v[W], *inertia[W], *q[W];
+    const double *v[W], *inertia[W], *inv_inertia[W], *q[W];
     double *dp[W], *w[W], *dq[W], *R[W];
     for (int l = 0; l < W; ++l) {
       const int b = bodies[k + l];
@@ -191,6 +193,7 @@ inline void advanceRotations(const BodyFields& f, const int* bodies, int count, 
       dq[l] = solverField(f, b, f.dq);
       R[l] = f.rotations + 9 * b;
       inertia[l] = motionField(f, b, f.inertia);
+      inv_inertia[l] = motionField(f, b, f.inv_inertia);
       q[l] = motionField(f, b, f.q);
     }
     D vl[3], dpl[3], wl[3], dql[4], Rl[9], inertial[9], ql[4];
@@ -202,32 +205,13 @@ inline void advanceRotations(const BodyFields& f, const int* bodies, int count, 
     gather<9>(inertia, inertial);
     gather<4>(q, ql);
     advanceRotation(hl, half_hl, vl, dpl, wl, dql, Rl, inertial, ql);
+    D inv_inertial[9];
+    gather<9>(inv_inertia, inv_inertial);
+    finishRotation(Rl, inv_inertial, wl);
     scatter<3>(dpl, dp);
     scatter<3>(wl, w);
     scatter<4>(dql, dq);
     scatter<9>(Rl, R);
-  }
-}
-
-// finishRotation on bodies[0..count), as advanceRotations.
-template <class D>
-inline void finishRotations(const BodyFields& f, const int* bodies, int count) {
-  constexpr int W = sizeof(D) / sizeof(double);
-  for (int k = 0; k < count; k += W) {
-    const double *R[W], *inv_inertia[W];
-    double* w[W];
-    for (int l = 0; l < W; ++l) {
-      const int b = bodies[k + l];
-      w[l] = solverField(f, b, f.w);
-      R[l] = f.rotations + 9 * b;
-      inv_inertia[l] = motionField(f, b, f.inv_inertia);
-    }
-    D wl[3], Rl[9], inv_inertial[9];
-    gather<3>(w, wl);
-    gather<9>(R, Rl);
-    gather<9>(inv_inertia, inv_inertial);
-    finishRotation(Rl, inv_inertial, wl);
-    scatter<3>(wl, w);
   }
 }
 
@@ -237,8 +221,7 @@ inline void finishRotations(const BodyFields& f, const int* bodies, int count) {
 // The four-body kernels (integrate_w4.cpp), for a CPU with AVX2 (cpuHasAvx2); count a multiple
 // of 4. Built for the baseline (no AVX2 compiler), they run the two-body kernels instead.
 namespace integrate_w4 {
-void advanceRotations(const integrate_kernel::BodyFields& f, const int* bodies, int count,
-                      double h, double half_h);
-void finishRotations(const integrate_kernel::BodyFields& f, const int* bodies, int count);
+void stepPositions(const integrate_kernel::BodyFields& f, const int* bodies, int count, double h,
+                   double half_h);
 }  // namespace integrate_w4
 }  // namespace ragdoll_sim

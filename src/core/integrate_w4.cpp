@@ -12,13 +12,9 @@ using Lanes = integrate_kernel::Double4;
 using Lanes = integrate_kernel::Double2;
 #endif
 
-void advanceRotations(const integrate_kernel::BodyFields& f, const int* bodies, int count,
-                      double h, double half_h) {
-  integrate_kernel::advanceRotations<Lanes>(f, bodies, count, h, half_h);
-}
-
-void finishRotations(const integrate_kernel::BodyFields& f, const int* bodies, int count) {
-  integrate_kernel::finishRotations<Lanes>(f, bodies, count);
+void stepPositions(const integrate_kernel::BodyFields& f, const int* bodies, int count, double h,
+                   double half_h) {
+  integrate_kernel::stepPositions<Lanes>(f, bodies, count, h, half_h);
 }
 
 }  // namespace integrate_w4

@@ -56,14 +56,11 @@ void arrayStep(double h, int width, std::vector<BodyState>& states) {
   }
   const BodyFields f = bodyFields(solver, motions, rotations);
   if (width == 4) {
-    integrate_w4::advanceRotations(f, bodies.data(), n, h, 0.5 * h);
-    integrate_w4::finishRotations(f, bodies.data(), n);
+    integrate_w4::stepPositions(f, bodies.data(), n, h, 0.5 * h);
   } else if (width == 2) {
-    advanceRotations<Double2>(f, bodies.data(), n, h, 0.5 * h);
-    finishRotations<Double2>(f, bodies.data(), n);
+    stepPositions<Double2>(f, bodies.data(), n, h, 0.5 * h);
   } else {
-    advanceRotations<double>(f, bodies.data(), n, h, 0.5 * h);
-    finishRotations<double>(f, bodies.data(), n);
+    stepPositions<double>(f, bodies.data(), n, h, 0.5 * h);
   }
   for (int i = 0; i < n; ++i) {
     BodyState& b = states[i];
