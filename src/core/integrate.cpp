@@ -1,5 +1,7 @@
 // The per-body phases of the island solve: the solver body prepared at the step start, and the
 // velocities and positions advanced in each substep (semi-implicit Euler, island_solve.hpp).
+#include <algorithm>
+
 #include "integrate.hpp"
 #include "lane_width.hpp"
 #include "world_impl.hpp"
@@ -23,11 +25,18 @@ integrate_kernel::BodyFields bodyFields(std::vector<SolverBody>& solver,
   f.w = at(s.w.data(), &s);
   f.dp = at(s.dp.data(), &s);
   f.dq = at(s.dq.coeffs().data(), &s);
+  f.world_inv_inertia = at(s.inv_inertia.data(), &s);
   f.motion = (const char*)motions.data();
   f.motion_stride = sizeof(BodyMotion);
   f.inertia = at(m.inertia_local.data(), &m);
   f.inv_inertia = at(m.inv_inertia_local.data(), &m);
   f.q = at(m.q.coeffs().data(), &m);
+  f.force = at(m.force.data(), &m);
+  f.torque = at(m.torque.data(), &m);
+  f.gravity_scale = at(&m.gravity_scale, &m);
+  f.inv_mass = at(&m.inv_mass, &m);
+  f.linear_damping = at(&m.linear_damping, &m);
+  f.angular_damping = at(&m.angular_damping, &m);
   f.rotations = rotations[0].data();
   return f;
 }
@@ -51,7 +60,32 @@ void World::Impl::prepareSolverBody(int i) {
   s.inv_inertia = R * m.inv_inertia_local * R.transpose();
 }
 
+// Four bodies at a time in AVX lanes where the CPU has AVX2 (integrate_kernel.hpp), a chunk at a
+// time: the lanes find the few bodies that may need a clamp, which then run clampNorm. The rest
+// one at a time here (the same bits).
 void World::Impl::integrateVelocities(double h, int begin, int end) {
+  const double max_v = def.solver.max_linear_speed, max_w = def.solver.max_angular_speed;
+  if (cpuHasAvx2() && end - begin >= 4) {
+    constexpr int kChunk = 64;  // a multiple of 4
+    const integrate_kernel::BodyFields f = bodyFields(solver, motions, rotations);
+    const double max_v2 = max_v * max_v, max_w2 = max_w * max_w;
+    int clamp[kChunk];
+    for (; end - begin >= 4; begin += kChunk) {
+      const int* bodies = island_bodies.data() + begin;
+      const int n = std::min(kChunk, (end - begin) / 4 * 4);
+      const int clamped = integrate_w4::advanceVelocities(f, bodies, n, h, def.gravity.data(),
+                                                          max_v2, max_w2, clamp);
+      for (int j = 0; j < clamped; ++j) {
+        SolverBody& s = solver[bodies[clamp[j]]];
+        clampNorm(s.v, max_v);
+        clampNorm(s.w, max_w);
+      }
+      if (n < kChunk) {
+        begin += n;
+        break;
+      }
+    }
+  }
   for (int k = begin; k < end; ++k) {
     const int i = island_bodies[k];
     const BodyMotion& m = motions[i];
@@ -62,8 +96,8 @@ void World::Impl::integrateVelocities(double h, int begin, int end) {
     // Clamped per substep as well as at the step end (as Box2D v3 does): a torque at the
     // command cap on a light link otherwise spins it so fast within one step that the joints
     // fling their neighbours away.
-    clampNorm(s.v, def.solver.max_linear_speed);
-    clampNorm(s.w, def.solver.max_angular_speed);
+    clampNorm(s.v, max_v);
+    clampNorm(s.w, max_w);
   }
 }
 

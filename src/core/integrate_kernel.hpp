@@ -31,9 +31,10 @@ namespace integrate_kernel {
 // Plain data outside the per-ISA namespace: both builds of the kernels take the same type.
 struct BodyFields {
   char* solver;  // SolverBody array
-  long solver_stride, v, w, dp, dq;
+  long solver_stride, v, w, dp, dq, world_inv_inertia;
   const char* motion;  // BodyMotion array
-  long motion_stride, inertia, inv_inertia, q;
+  long motion_stride, inertia, inv_inertia, q, force, torque, gravity_scale, inv_mass,
+      linear_damping, angular_damping;
   double* rotations;  // 9 per body, column-major
 };
 
@@ -111,6 +112,30 @@ inline void rotationMatrix(const D c[4], D R[9]) {
   R[8] = one - (txx + tyy);
 }
 
+// A body's velocity step (integrateVelocities before the clamps): gravity, force and torque,
+// then damping: v = (v + h (s g + m^-1 f)) / (1 + h c), w = (w + h (I^-1 t)) / (1 + h c_w),
+// where Eigen evaluates h (I^-1 t) as (h I^-1) t.
+template <class D>
+inline void advanceVelocity(D h, const D gravity[3], D gravity_scale, D inv_mass, const D force[3],
+                            D linear_damping, D angular_damping, const D inv_inertia[9],
+                            const D torque[3], D v[3], D w[3]) {
+  const D one = D() + 1.0;
+  D a[3], h_inv_inertia[9], h_alpha[3];
+  for (int j = 0; j < 3; ++j) a[j] = gravity_scale * gravity[j] + inv_mass * force[j];
+  const D linear = one + h * linear_damping;
+  for (int j = 0; j < 3; ++j) v[j] = (v[j] + h * a[j]) / linear;
+  for (int j = 0; j < 9; ++j) h_inv_inertia[j] = h * inv_inertia[j];
+  mul(h_inv_inertia, torque, h_alpha);
+  const D angular = one + h * angular_damping;
+  for (int j = 0; j < 3; ++j) w[j] = (w[j] + h_alpha[j]) / angular;
+}
+
+// |x|^2 as Eigen's squaredNorm: the clamps' first test (clampNorm, fault_guard.hpp).
+template <class D>
+inline D squaredNorm(const D x[3]) {
+  return x[0] * x[0] + (x[1] * x[1] + x[2] * x[2]);
+}
+
 // The first half of a body's position step: dp, dq and R advance, and w is replaced by the world
 // angular momentum L taken with the old R (finishRotation turns it back with the new R).
 // half_h: 0.5 * h, rounded as the caller's scalar product.
@@ -143,6 +168,12 @@ inline const double* motionField(const BodyFields& f, int body, long offset) {
 }
 
 // The lanes of W bodies' arrays: out[j] = {p[0][j], ..., p[W-1][j]}, and back.
+inline double lane(double x, int) { return x; }
+template <class D>
+inline double lane(D x, int l) {
+  return x[l];
+}
+
 template <int N>
 inline void gather(const double* const p[1], double out[N]) {
   for (int j = 0; j < N; ++j) out[j] = p[0][j];
@@ -215,6 +246,49 @@ inline void stepPositions(const BodyFields& f, const int* bodies, int count, dou
   }
 }
 
+// advanceVelocity on bodies[0..count), W at a time as stepPositions; gravity: 3 doubles. The
+// indices k of the bodies whose v or w fails clampNorm's first test (|v|^2 <= max_v^2, the same
+// for w, NaN fails) go to clamp[], their number is returned: only those need clampNorm.
+template <class D>
+inline int advanceVelocities(const BodyFields& f, const int* bodies, int count, double h,
+                             const double* gravity, double max_v2, double max_w2, int* clamp) {
+  constexpr int W = sizeof(D) / sizeof(double);
+  const D hl = D() + h;
+  const D g[3] = {D() + gravity[0], D() + gravity[1], D() + gravity[2]};
+  int clamped = 0;
+  for (int k = 0; k < count; k += W) {
+    const double *force[W], *torque[W], *inv_inertia[W], *scalars[4][W];
+    double *v[W], *w[W];
+    for (int l = 0; l < W; ++l) {
+      const int b = bodies[k + l];
+      v[l] = solverField(f, b, f.v);
+      w[l] = solverField(f, b, f.w);
+      inv_inertia[l] = solverField(f, b, f.world_inv_inertia);
+      force[l] = motionField(f, b, f.force);
+      torque[l] = motionField(f, b, f.torque);
+      scalars[0][l] = motionField(f, b, f.gravity_scale);
+      scalars[1][l] = motionField(f, b, f.inv_mass);
+      scalars[2][l] = motionField(f, b, f.linear_damping);
+      scalars[3][l] = motionField(f, b, f.angular_damping);
+    }
+    D vl[3], wl[3], forcel[3], torquel[3], inv_inertial[9], sl[4][1];
+    gather<3>(v, vl);
+    gather<3>(w, wl);
+    gather<3>(force, forcel);
+    gather<3>(torque, torquel);
+    gather<9>(inv_inertia, inv_inertial);
+    for (int j = 0; j < 4; ++j) gather<1>(scalars[j], sl[j]);
+    advanceVelocity(hl, g, sl[0][0], sl[1][0], forcel, sl[2][0], sl[3][0], inv_inertial, torquel,
+                    vl, wl);
+    scatter<3>(vl, v);
+    scatter<3>(wl, w);
+    const D sv = squaredNorm(vl), sw = squaredNorm(wl);
+    for (int l = 0; l < W; ++l)
+      if (!(lane(sv, l) <= max_v2 && lane(sw, l) <= max_w2)) clamp[clamped++] = k + l;
+  }
+  return clamped;
+}
+
 }  // namespace RAGDOLL_SIM_INTEGRATE_ISA
 }  // namespace integrate_kernel
 
@@ -223,5 +297,7 @@ inline void stepPositions(const BodyFields& f, const int* bodies, int count, dou
 namespace integrate_w4 {
 void stepPositions(const integrate_kernel::BodyFields& f, const int* bodies, int count, double h,
                    double half_h);
+int advanceVelocities(const integrate_kernel::BodyFields& f, const int* bodies, int count, double h,
+                      const double* gravity, double max_v2, double max_w2, int* clamp);
 }  // namespace integrate_w4
 }  // namespace ragdoll_sim

@@ -17,5 +17,11 @@ void stepPositions(const integrate_kernel::BodyFields& f, const int* bodies, int
   integrate_kernel::stepPositions<Lanes>(f, bodies, count, h, half_h);
 }
 
+int advanceVelocities(const integrate_kernel::BodyFields& f, const int* bodies, int count, double h,
+                      const double* gravity, double max_v2, double max_w2, int* clamp) {
+  return integrate_kernel::advanceVelocities<Lanes>(f, bodies, count, h, gravity, max_v2, max_w2,
+                                                    clamp);
+}
+
 }  // namespace integrate_w4
 }  // namespace ragdoll_sim

@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "fault_guard.hpp"
 #include "integrate.hpp"
 #include "lane_width.hpp"
 #include "ragdoll_sim/math.hpp"
@@ -118,6 +119,71 @@ TEST(IntegrateKernel, OneTwoAndFourBodiesGiveTheEigenBits) {
                                                         << ", case " << n;
     }
   }
+}
+
+// integrateVelocities through the arrays, `width` bodies at a time, then clampNorm on the bodies
+// the lanes flag, against its Eigen code with clampNorm on every body.
+TEST(IntegrateKernel, VelocityStepGivesTheEigenBitsAtEachWidth) {
+  std::mt19937_64 rng(61);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const auto vec = [&] { return Vec3(u(rng), u(rng), u(rng)); };
+  std::vector<int> widths = {1, 2};
+  if (cpuHasAvx2()) widths.push_back(4);
+  const Vec3 gravity(0.0, 0.0, -9.81);
+  const double max_v = 8.0, max_w = 25.0;
+  int flagged = 0;
+  for (int n = 0; n < 5000; ++n) {
+    const double h = (n % 7 + 1) * 1.0 / 240.0;
+    std::vector<SolverBody> solver(4);
+    std::vector<BodyMotion> motions(4);
+    std::vector<Mat3> rotations(4);
+    for (int l = 0; l < 4; ++l) {
+      SolverBody& s = solver[l];
+      BodyMotion& m = motions[l];
+      s.v = 10.0 * vec();
+      s.w = 30.0 * vec();
+      if ((n + l) % 97 == 0) s.w.x() = std::nan("");
+      const Mat3 A = Mat3::NullaryExpr([&] { return u(rng); });
+      s.inv_inertia = (A * A.transpose()).inverse();
+      m.force = 100.0 * vec();
+      m.torque = (n + l) % 3 ? Vec3(10.0 * vec()) : Vec3::Zero();
+      m.gravity_scale = (n + l) % 4 ? 1.0 : u(rng);
+      m.inv_mass = 1.0 + u(rng);
+      m.linear_damping = (n + l) % 2 ? 0.0 : 1.0 + u(rng);
+      m.angular_damping = (n + l) % 5 ? 0.0 : 1.0 + u(rng);
+    }
+    std::vector<SolverBody> reference = solver;
+    for (int l = 0; l < 4; ++l) {
+      const BodyMotion& m = motions[l];
+      SolverBody& s = reference[l];
+      const Vec3 a = m.gravity_scale * gravity + m.inv_mass * m.force;
+      s.v = (s.v + h * a) / (1.0 + h * m.linear_damping);
+      s.w = (s.w + h * (s.inv_inertia * m.torque)) / (1.0 + h * m.angular_damping);
+      clampNorm(s.v, max_v);
+      clampNorm(s.w, max_w);
+    }
+    const int bodies[4] = {2, 0, 3, 1};
+    for (const int width : widths) {
+      std::vector<SolverBody> lanes = solver;
+      const BodyFields f = bodyFields(lanes, motions, rotations);
+      int clamp[4];
+      const double g[3] = {gravity.x(), gravity.y(), gravity.z()};
+      const double v2 = max_v * max_v, w2 = max_w * max_w;
+      const int count =
+          width == 4   ? integrate_w4::advanceVelocities(f, bodies, 4, h, g, v2, w2, clamp)
+          : width == 2 ? advanceVelocities<Double2>(f, bodies, 4, h, g, v2, w2, clamp)
+                       : advanceVelocities<double>(f, bodies, 4, h, g, v2, w2, clamp);
+      flagged += count;
+      for (int j = 0; j < count; ++j) {
+        clampNorm(lanes[bodies[clamp[j]]].v, max_v);
+        clampNorm(lanes[bodies[clamp[j]]].w, max_w);
+      }
+      for (int l = 0; l < 4; ++l)
+        ASSERT_TRUE(sameBits(lanes[l].v, reference[l].v) && sameBits(lanes[l].w, reference[l].w))
+            << "width " << width << ", body " << l << ", case " << n;
+    }
+  }
+  EXPECT_GT(flagged, 0);
 }
 
 }  // namespace
