@@ -68,25 +68,6 @@ StepContexts World::Impl::makeContexts(double dt) {
   return s;
 }
 
-// The solver body of body i at the step start: an awake body's velocities, inverse mass
-// and world inverse inertia, an identity state for the others.
-void World::Impl::prepareSolverBody(int i) {
-  const BodyMotion& m = motions[i];
-  SolverBody& s = solver[i];
-  if (!m.awake) {
-    s = SolverBody();
-    return;
-  }
-  const Mat3& R = rotations[i] = m.q.toRotationMatrix();
-  s.dp.setZero();
-  s.dq = Quat::Identity();
-  s.moved_sweep = 0;
-  s.v = m.v;
-  s.w = m.w;
-  s.inv_mass = m.inv_mass;
-  s.inv_inertia = R * m.inv_inertia_local * R.transpose();
-}
-
 // Solver bodies outside the islands (asleep, and the static ones that this step's joints and
 // contacts read: no other static one is read, so they cost nothing) here; an island's bodies,
 // joints and contacts are prepared by the thread that solves it, right before it does, so
@@ -114,50 +95,6 @@ void World::Impl::prepareIsland(const IslandRange& p, const StepContext& c) {
   if (def.solver.exact_joints)
     forIslands(p, [&](const IslandRange& q) { joint_tree.build(q, island_bodies, active_joints.data(), solver); });
   contact_solver.prepare(contacts, c, p.contact_begin, p.contact_end);
-}
-
-void World::Impl::integrateVelocities(double h, int begin, int end) {
-  for (int k = begin; k < end; ++k) {
-    const int i = island_bodies[k];
-    const BodyMotion& m = motions[i];
-    SolverBody& s = solver[i];
-    const Vec3 a = m.gravity_scale * def.gravity + m.inv_mass * m.force;
-    s.v = (s.v + h * a) / (1.0 + h * m.linear_damping);
-    s.w = (s.w + h * (s.inv_inertia * m.torque)) / (1.0 + h * m.angular_damping);
-    // Clamped per substep as well as at the step end (as Box2D v3 does): a torque at the
-    // command cap on a light link otherwise spins it so fast within one step that the joints
-    // fling their neighbours away.
-    clampNorm(s.v, def.solver.max_linear_speed);
-    clampNorm(s.w, def.solver.max_angular_speed);
-  }
-}
-
-// The rotation advances with w; then w is recomputed from the world angular momentum
-// L = R I R^T w, which free rotation conserves: w' = R' I^-1 R'^T L. This is the gyroscopic
-// term (precession, the middle-axis flip) and keeps L exact in free flight. Two loops: the
-// first parks L in w, the second turns it back; each body's chain (a square root and a division
-// in the middle) is then short enough for the core to overlap bodies.
-void World::Impl::integratePositions(double h, int begin, int end) {
-  for (int k = begin; k < end; ++k) {
-    const int i = island_bodies[k];
-    const BodyMotion& m = motions[i];
-    SolverBody& s = solver[i];
-    Mat3& R = rotations[i];
-    s.dp += h * s.v;
-    const Vec3 L = R * (m.inertia_local * (R.transpose() * s.w));
-    const Vec3 hw = 0.5 * h * s.w;
-    Quat dq = s.dq;
-    dq.coeffs() += (Quat(0, hw.x(), hw.y(), hw.z()) * s.dq).coeffs();
-    s.dq = dq.normalized();
-    R = (s.dq * m.q).toRotationMatrix();
-    s.w = L;  // parked
-  }
-  for (int k = begin; k < end; ++k) {
-    const int i = island_bodies[k];
-    SolverBody& s = solver[i];
-    const Mat3& R = rotations[i];
-    s.w = R * (motions[i].inv_inertia_local * (R.transpose() * s.w));
-  }
 }
 
 // The substep sequence of one island on this thread; touches only the island's bodies and

@@ -2,7 +2,8 @@
 // bases, the data each phase owns. Each phase's functions live in the phase's file:
 //   collide.cpp          collide (broadphase, narrowphase, manifold cache, carried pairs)
 //   island_schedule.cpp  buildIslands, partitionIslands, attachToSplitHalves
-//   island_solve.cpp     the solver bodies, the substep sequence, solveIslands
+//   island_solve.cpp     the substep sequence, solveIslands
+//   integrate.cpp        the solver bodies, the velocity and position steps (lanes: integrate_kernel.hpp)
 //   fault_guard.cpp      guardInputs, finishBody, resetFaulted, clearWarmStart
 //   sleep.cpp            markResting, updateSleep, World::setSleep
 //   world_create.cpp     the create and destroy API, breakJoints
@@ -208,7 +209,7 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
   // island_solve.cpp
   StepContexts makeContexts(double dt);
   class IslandPass;  // one island's substep sequence on this thread (island_solve.cpp)
-  void prepareSolverBody(int i);
+  void prepareSolverBody(int i);  // integrate.cpp
   void prepareOutsideBodies();
   void prepareIsland(const IslandRange& p, const StepContext& c);
   // f(each island of p) when p is several whole islands solved as one range, else f(p): the
@@ -218,8 +219,8 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
     if (p.island_end - p.island_begin < 2) return f(p);
     for (int k = p.island_begin; k < p.island_end; ++k) f(island_ranges[k]);
   }
-  void integrateVelocities(double h, int begin, int end);
-  void integratePositions(double h, int begin, int end);
+  void integrateVelocities(double h, int begin, int end);  // integrate.cpp
+  void integratePositions(double h, int begin, int end);   // integrate.cpp
   void solveIsland(const IslandRange& r, const StepContext& ctx);
   void restitute(int begin, int end, const StepContext& c);
   void finishIslandBodies(const IslandRange& p);
