@@ -38,6 +38,7 @@ void ContactBatch::build(std::vector<ContactConstraint>& cs, const StepContext& 
   const auto& bodies = *ctx.bodies;
   begin_ = begin;
   end_ = end;
+  substep_ = 0;
   scalar_.clear();
   wide_.clear();
   lane_of_.clear();
@@ -130,6 +131,7 @@ void ContactBatch::updateSeparations(std::vector<ContactConstraint>& cs, const S
 
 void ContactBatch::warmStart(std::vector<ContactConstraint>& cs, const StepContext& ctx,
                              bool positions_moved) {
+  ++substep_;
   if (blocks_.empty()) return;
   if (positions_moved) updateSeparations(cs, ctx);
   const LaneBodies view = laneBodies(ctx.bodies->data());
@@ -153,8 +155,17 @@ void ContactBatch::solve(std::vector<ContactConstraint>& cs, const StepContext& 
   p.use_bias = use_bias;
   const LaneBodies view = laneBodies(ctx.bodies->data());
   const int n = int(blocks_.size());
-  if (wide8(ctx.lanes)) kernel_w8::solveContactBlocks(blocks_.data(), n, view, p);
-  else kernel_w4::solveContactBlocks(blocks_.data(), n, view, p);
+  const auto sweep = [&](ContactBlock* first, int count) {
+    if (wide8(ctx.lanes)) kernel_w8::solveContactBlocks(first, count, view, p);
+    else kernel_w4::solveContactBlocks(first, count, view, p);
+  };
+  // The colours in reverse order: a block's colour-mates share no body, so this is the
+  // reversed colour order, the same bits at any width.
+  if (use_bias && substep_ % 2 == 0) {
+    for (int k = n - 1; k >= 0; --k) sweep(&blocks_[k], 1);
+    return;
+  }
+  sweep(blocks_.data(), n);
 }
 
 void ContactBatch::syncImpulses(std::vector<ContactConstraint>& cs) const {

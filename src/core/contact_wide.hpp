@@ -27,8 +27,13 @@ class ContactBatch {
   // The slots the scalar rows solve after the blocks, in slot order.
   const std::vector<int>& scalar() const { return scalar_; }
 
-  // positions_moved: the double separations are recomputed and copied into the lanes first.
+  // Once per substep, first. positions_moved: the double separations are recomputed and copied
+  // into the lanes first.
   void warmStart(std::vector<ContactConstraint>& cs, const StepContext& ctx, bool positions_moved);
+  // The biased sweep takes the colours forward in the odd substeps of the step and backward
+  // in the even ones (counted by warmStart): solved always in one order, the contacts of the
+  // colour solved last take the push-out, and down a stack every other contact sinks to the
+  // linear slop while its neighbours stay shallow.
   void solve(std::vector<ContactConstraint>& cs, const StepContext& ctx, bool use_bias,
              bool positions_moved);
   // The lanes' impulses (normal, tangents, largest normal increment) into the double
@@ -40,6 +45,7 @@ class ContactBatch {
   void fillLane(const ContactConstraint& cc, const std::vector<SolverBody>& bodies, int lane_slot);
 
   int begin_ = 0, end_ = -1;
+  int substep_ = 0;  // the warm starts since build: the substep, from 1
   std::vector<int> scalar_;
   std::vector<int> wide_;     // the slots in blocks
   std::vector<int> lane_of_;  // of wide_[i]: block * kRowBlock + lane

@@ -221,3 +221,19 @@ TEST(WidePoints, FastSpinningPairHoldsAnchorWithoutGainingEnergy) {
                 "end/start %.6f\n", lanes, int(exact), worst, e_max / e0, w.kineticEnergy() / e0);
   }
 }
+
+// A bob hanging from a fixed point comes to rest to far below float's resolution of its
+// velocity change per substep (g h): each impulse increment reaches the body as computed, not
+// rounded to the ulp of the accumulated impulse.
+TEST(WidePoints, HangingBobComesToRest) {
+  for (const int lanes : {4, 8}) {
+    World w(wideDef(lanes, 1));
+    std::vector<JointId> joints;
+    const std::vector<BodyId> bob = addChain(w, Vec3(0, 0, 2), {2.0}, -Vec3::UnitZ(), &joints);
+    for (int i = 0; i < 60; ++i) w.step(1.0 / 60.0);
+    const double v = w.bodyState(bob[0]).linear_velocity.norm();
+    EXPECT_LT(v, 1e-9) << "lanes " << lanes;
+    EXPECT_NEAR(w.jointForce(joints[0]), 2.0 * kG, 1e-6 * 2.0 * kG) << "lanes " << lanes;
+    std::printf("[ bob      ] lanes %d: speed %.2e m/s\n", lanes, v);
+  }
+}
