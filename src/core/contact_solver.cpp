@@ -52,7 +52,8 @@
 namespace ragdoll_sim {
 
 namespace {
-ContactRow makeRow(const SolverBody& A, const SolverBody& B, const Vec3& rA, const Vec3& rB,
+// Inlined: prepare builds three rows per point and the call would cost as much as the row.
+[[gnu::always_inline]] inline ContactRow makeRow(const SolverBody& A, const SolverBody& B, const Vec3& rA, const Vec3& rB,
                    const Vec3& d) {
   ContactRow r;
   r.angA = rA.cross(d);
@@ -104,7 +105,8 @@ void applyRolling(PairVelocity<kLiveA>& u, const ContactConstraint& cc, double l
   if (kLiveA) u.wA -= l0 * cc.roll_iA[0] + l1 * cc.roll_iA[1];
   u.wB += l0 * cc.roll_iB[0] + l1 * cc.roll_iB[1];
 }
-Vec3 relativeVelocity(const SolverBody& A, const SolverBody& B, const Vec3& rA, const Vec3& rB) {
+[[gnu::always_inline]] inline Vec3 relativeVelocity(const SolverBody& A, const SolverBody& B,
+                                                    const Vec3& rA, const Vec3& rB) {
   return B.v + B.w.cross(rB) - A.v - A.w.cross(rA);
 }
 }  // namespace
