@@ -45,10 +45,15 @@
 #include <algorithm>
 #include <cmath>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace ragdoll_sim {
 
 namespace {
-ContactRow makeRow(const SolverBody& A, const SolverBody& B, const Vec3& rA, const Vec3& rB,
+// Inlined: prepare builds three rows per point and the call would cost as much as the row.
+[[gnu::always_inline]] inline ContactRow makeRow(const SolverBody& A, const SolverBody& B, const Vec3& rA, const Vec3& rB,
                    const Vec3& d) {
   ContactRow r;
   r.angA = rA.cross(d);
@@ -100,7 +105,8 @@ void applyRolling(PairVelocity<kLiveA>& u, const ContactConstraint& cc, double l
   if (kLiveA) u.wA -= l0 * cc.roll_iA[0] + l1 * cc.roll_iA[1];
   u.wB += l0 * cc.roll_iB[0] + l1 * cc.roll_iB[1];
 }
-Vec3 relativeVelocity(const SolverBody& A, const SolverBody& B, const Vec3& rA, const Vec3& rB) {
+[[gnu::always_inline]] inline Vec3 relativeVelocity(const SolverBody& A, const SolverBody& B,
+                                                    const Vec3& rA, const Vec3& rB) {
   return B.v + B.w.cross(rB) - A.v - A.w.cross(rA);
 }
 }  // namespace
@@ -194,18 +200,46 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
       cc.roll_mass = inverseOrZero(K);
     }
   }
-  if (begin >= end) return;
-  if (ctx.lanes != 1) batches_[begin].build(constraints_, ctx, begin, end);
-  else batches_[begin].clear();  // so that no later call takes an older step's batch
+  if (begin >= end || ctx.lanes == 1) return;
+  ContactBatch& batch = takeBatch();
+  batch.build(constraints_, ctx, begin, end);
+  batch_at_[begin] = &batch;
+}
+
+void ContactSolver::resize(int threads) {
+  constraints_.resize(active_.size());
+  batch_at_.assign(active_.size(), nullptr);
+  if (int(pools_.size()) < threads) pools_.resize(threads);
+  for (BatchPool& p : pools_) p.used = 0;
+}
+
+int ContactSolver::batchCount() const {
+  int n = 0;
+  for (const BatchPool& p : pools_) n += int(p.batches.size());
+  return n;
+}
+
+ContactBatch& ContactSolver::takeBatch() {
+#ifdef _OPENMP
+  const int t = omp_get_thread_num();
+#else
+  const int t = 0;
+#endif
+  BatchPool& pool = pools_.at(t);
+  if (pool.used == int(pool.batches.size())) pool.batches.push_back(std::make_unique<ContactBatch>());
+  return *pool.batches[pool.used++];
 }
 
 ContactBatch* ContactSolver::batchOf(const StepContext& ctx, int begin, int end) {
-  if (ctx.lanes == 1 || begin >= end || !batches_[begin].holds(begin, end)) return nullptr;
-  return &batches_[begin];
+  if (ctx.lanes == 1 || begin >= end) return nullptr;
+  ContactBatch* batch = batch_at_[begin];
+  return batch && batch->holds(begin, end) ? batch : nullptr;
 }
 
 void ContactSolver::syncImpulses(int begin, int end) {
-  if (begin < end && batches_[begin].holds(begin, end)) batches_[begin].syncImpulses(constraints_);
+  if (begin >= end) return;
+  const ContactBatch* batch = batch_at_[begin];
+  if (batch && batch->holds(begin, end)) batch->syncImpulses(constraints_);
 }
 
 namespace {

@@ -1,6 +1,7 @@
 // Contact constraints for one step; see contact_solver.cpp for the math.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "contact.hpp"
@@ -65,11 +66,13 @@ class ContactSolver {
                                  const std::vector<BodyMotion>& motions);
   // One constraint slot per selected contact, in the selected order; then prepare fills the
   // slots [begin, end) (each on its own: ranges may be prepared on different threads).
-  void resize() {
-    constraints_.resize(active_.size());
-    if (batches_.size() < active_.size()) batches_.resize(active_.size());
-  }
+  // threads: the most threads that prepare ranges this step (each draws wide batches from its
+  // own pool).
+  void resize(int threads = 1);
   const std::vector<int>& active() const { return active_; }  // selectActive's contacts
+  // The wide batches held, all threads together: one per range that a thread prepared in a
+  // step (the most over the steps), whatever the number of contacts.
+  int batchCount() const;
   // With ctx.lanes != 1 it also builds the range's wide batch (contact_wide.hpp), which the
   // calls with the same range then solve before the scalar rest.
   void prepare(const std::vector<Contact>& contacts, const StepContext& ctx, int begin, int end);
@@ -100,8 +103,18 @@ class ContactSolver {
   // The lanes' impulses into the double constraints of [begin, end) (a no-op without a batch).
   void syncImpulses(int begin, int end);
 
+  // The wide batches of one thread, reused step after step in the order that thread prepares
+  // its ranges: a range's batch is then warm in the cache of the core that solves it, and no two
+  // threads write the same cache line.
+  struct alignas(64) BatchPool {
+    std::vector<std::unique_ptr<ContactBatch>> batches;
+    int used = 0;  // batches taken this step
+  };
+  ContactBatch& takeBatch();
+
   std::vector<ContactConstraint> constraints_;
-  std::vector<ContactBatch> batches_;  // the batch of a range at its first slot
+  std::vector<BatchPool> pools_;            // one per thread
+  std::vector<ContactBatch*> batch_at_;     // this step's batch of the range at its first slot
   std::vector<int> active_;  // contact index of each constraint
 };
 

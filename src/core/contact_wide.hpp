@@ -13,8 +13,8 @@ namespace ragdoll_sim {
 struct ContactConstraint;
 struct StepContext;
 
-// Built by prepare for the range [begin, end) and stored at its first slot, so ranges prepared
-// on different threads share nothing.
+// Built by prepare for the range [begin, end), from the pool of the thread that prepares it
+// (ContactSolver), so ranges prepared on different threads share nothing.
 class ContactBatch {
  public:
   // The wide blocks of constraints cs[begin, end) (already prepared in double): rigid ones

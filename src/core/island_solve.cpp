@@ -8,20 +8,13 @@
 
 namespace ragdoll_sim {
 
-namespace {
-// The most work (IslandRange::work) of the consecutive islands that a thread solves as one range
-// with lanes: enough for full lanes, little enough that the other thread still finds islands to
-// steal at the end of its run.
-constexpr int kLaneRangeWork = 512;
-
-// Appends island r to range c when it follows c directly in the body, joint and contact arrays,
-// takes the same substeps and keeps c within kLaneRangeWork; false (c unchanged) otherwise.
-// k: r's index in island_ranges.
-bool extendsRange(IslandRange& c, const IslandRange& r, int k) {
+// (island_solve.hpp)
+bool extendsRange(IslandRange& c, const IslandRange& r, int k, int left) {
   const bool follows = k == c.island_end && r.body_begin == c.body_end &&
                        r.joint_begin == c.joint_end && r.contact_begin == c.contact_end &&
                        r.resting == c.resting;
-  if (!follows || c.work() + r.work() > kLaneRangeWork) return false;
+  if (!follows || c.work() + r.work() > kLaneRangeWork || c.island_end - c.island_begin >= left)
+    return false;
   c.body_end = r.body_end;
   c.joint_end = r.joint_end;
   c.contact_end = r.contact_end;
@@ -29,6 +22,7 @@ bool extendsRange(IslandRange& c, const IslandRange& r, int k) {
   return true;
 }
 
+namespace {
 // This thread's number and the team's size in the enclosing parallel region ({0, 1} outside).
 std::pair<int, int> teamSlot() {
 #ifdef _OPENMP
@@ -361,7 +355,7 @@ void World::Impl::solveSplitIsland(const IslandRange& r, const StepContexts& ctx
 // Split islands one after another, each by the whole team; then the others, each thread its
 // run of islands first, then what is left of the others' (run_queue.hpp).
 void World::Impl::solveIslands(const StepContexts& ctx) {
-  contact_solver.resize();
+  contact_solver.resize(threadCount());
   joint_tree.reserve(int(bodies.size()), int(island_bodies.size()), int(active_joints.size()));
   point_lanes.reserve(int(active_joints.size()));
   if (track_contacts) contact_tracks.assign(contacts.size(), ContactTrack());
@@ -385,6 +379,9 @@ void World::Impl::solveIslands(const StepContexts& ctx) {
   const bool chunks = ctx.full.lanes != 1;
   run_queue.reset(island_runs);
   const auto solveRun = [&](int t) {
+    // Alone (no team, or a team of one) nobody steals: the ranges need not shrink.
+    const bool shared = teamSlot().second > 1;
+    const auto left = [&](int k) { return shared ? island_runs[t + 1] - k - 1 : count; };
     IslandRange chunk;
     bool open = false;
     const auto flush = [&] {
@@ -394,7 +391,7 @@ void World::Impl::solveIslands(const StepContexts& ctx) {
     for (int k; (k = run_queue.take(t)) >= 0;) {
       const IslandRange& r = island_ranges[k];
       if (r.split || r.attached) continue;
-      if (chunks && open && extendsRange(chunk, r, k)) continue;
+      if (chunks && open && extendsRange(chunk, r, k, left(k))) continue;
       flush();
       chunk = r;
       chunk.island_begin = k;

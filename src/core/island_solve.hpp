@@ -17,6 +17,7 @@
 
 #include "body.hpp"
 #include "contact_solver.hpp"
+#include "island_schedule.hpp"
 #include "joint_tree.hpp"
 #include "point_lanes.hpp"
 #include "solver_context.hpp"
@@ -26,6 +27,18 @@ namespace ragdoll_sim {
 
 // The step's two substep sequences: the full one, and the rest substeps of islands whose bodies
 // have all been slow for SleepDef::rest_time (full again when rest_mode is off).
+// With lanes, a thread solves consecutive whole islands of its run as one range (solveIslands):
+// the most work (IslandRange::work) of such a range, enough for full lanes.
+constexpr int kLaneRangeWork = 512;
+
+// Appends island r (index k in island_ranges) to range c when it follows c directly in the body,
+// joint and contact arrays, takes the same substeps, keeps c within kLaneRangeWork and leaves at
+// least as many islands untaken as c then holds (left: the islands of the run after r); false (c
+// unchanged) otherwise. A thread takes a range's islands before it solves any of them, so the
+// last rule shrinks the ranges towards the end of its run and leaves the other threads islands
+// to steal.
+bool extendsRange(IslandRange& c, const IslandRange& r, int k, int left);
+
 struct StepContexts {
   StepContext full, rest;
   bool rest_mode = false;

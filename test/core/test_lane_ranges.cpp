@@ -1,0 +1,69 @@
+// The ranges of islands a thread solves together with lanes (extendsRange, island_solve.hpp):
+// consecutive islands up to kLaneRangeWork, and, when other threads may steal, never more
+// islands than the run still leaves after them.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "island_solve.hpp"
+
+namespace ragdoll_sim {
+namespace {
+
+// Islands of `work` bodies each, back to back in the body array.
+std::vector<IslandRange> islands(int count, int work) {
+  std::vector<IslandRange> r(count);
+  for (int k = 0; k < count; ++k) {
+    r[k].body_begin = k * work;
+    r[k].body_end = (k + 1) * work;
+  }
+  return r;
+}
+
+// The sizes of the ranges that solveIslands' loop cuts a run [0, n) into; shared: other
+// threads may steal from its back.
+std::vector<int> rangeSizes(const std::vector<IslandRange>& rs, bool shared) {
+  std::vector<int> sizes;
+  const int n = int(rs.size());
+  IslandRange c;
+  bool open = false;
+  for (int k = 0; k < n; ++k) {
+    if (open && extendsRange(c, rs[k], k, shared ? n - k - 1 : n)) continue;
+    if (open) sizes.push_back(c.island_end - c.island_begin);
+    c = rs[k];
+    c.island_begin = k;
+    c.island_end = k + 1;
+    open = true;
+  }
+  if (open) sizes.push_back(c.island_end - c.island_begin);
+  return sizes;
+}
+
+TEST(LaneRanges, AloneTheRangesFillUpToTheWork) {
+  const int per = kLaneRangeWork / 8;  // 8 islands per full range
+  EXPECT_EQ(rangeSizes(islands(20, per), false), (std::vector<int>{8, 8, 4}));
+}
+
+// Shared, a thread holds at most half of what is left: the other thread, done with its own
+// run, still finds islands to steal at the end instead of waiting for a whole range.
+TEST(LaneRanges, SharedTheRangesShrinkTowardsTheEndOfTheRun) {
+  const int small = 4;
+  EXPECT_EQ(rangeSizes(islands(16, small), true), (std::vector<int>{8, 4, 2, 1, 1}));
+  const int per = kLaneRangeWork / 8;
+  EXPECT_EQ(rangeSizes(islands(40, per), true), (std::vector<int>{8, 8, 8, 8, 4, 2, 1, 1}));
+}
+
+TEST(LaneRanges, OnlyConsecutiveIslandsWithTheSameSubsteps) {
+  std::vector<IslandRange> rs = islands(4, 4);
+  rs[2].resting = true;  // rest substeps: not with the full ones
+  EXPECT_EQ(rangeSizes(rs, false), (std::vector<int>{2, 1, 1}));
+  rs = islands(4, 4);
+  rs[2].body_begin += 1;  // a gap in the bodies (an island solved elsewhere)
+  rs[2].body_end += 1;
+  rs[3].body_begin += 1;
+  rs[3].body_end += 1;
+  EXPECT_EQ(rangeSizes(rs, false), (std::vector<int>{2, 2}));
+}
+
+}  // namespace
+}  // namespace ragdoll_sim
