@@ -150,10 +150,7 @@ void Broadphase::testCandidates(const std::vector<Aabb>& aabbs, size_t begin, si
                                 std::vector<std::pair<int, int>>& pairs) const {
   for (size_t k = begin; k < end; ++k) {
     const auto [i, j] = candidates_[k];
-    const Aabb &a = aabbs[i], &b = aabbs[j];
-    if (a.lo.x() <= b.hi.x() && b.lo.x() <= a.hi.x() && a.lo.y() <= b.hi.y() &&
-        b.lo.y() <= a.hi.y() && a.lo.z() <= b.hi.z() && b.lo.z() <= a.hi.z())  // overlaps
-      addPair(pairs, i, j);
+    if (aabbs[i].overlaps(aabbs[j])) addPair(pairs, i, j);
   }
 }
 
@@ -175,11 +172,8 @@ bool Broadphase::sweepKept(const std::vector<Aabb>& aabbs,
     }
   } else {
     for (int id : bounded_) {
-      const Aabb &b = aabbs[id], &f = fat_[id];
-      if (f.lo.x() <= b.lo.x() && f.lo.y() <= b.lo.y() && f.lo.z() <= b.lo.z() &&
-          b.hi.x() <= f.hi.x() && b.hi.y() <= f.hi.y() && b.hi.z() <= f.hi.z())
-        continue;  // inside (a NaN bound is never inside)
-      if (!finite(b)) return false;
+      if (fat_[id].contains(aabbs[id])) continue;  // (a NaN bound is never inside)
+      if (!finite(aabbs[id])) return false;
       escaped_.push_back(id);
     }
     for (int id : escaped_) fat_[id] = fatBox(aabbs[id]);
@@ -202,13 +196,8 @@ bool Broadphase::sweepKept(const std::vector<Aabb>& aabbs,
                       candidates_.end());
     for (int s : escaped_) {
       const Aabb a = fat_[s];
-      for (int t : bounded_) {
-        if (t == s || (moved_[t] && t < s)) continue;
-        const Aabb& b = fat_[t];
-        if (a.lo.x() <= b.hi.x() && b.lo.x() <= a.hi.x() && a.lo.y() <= b.hi.y() &&
-            b.lo.y() <= a.hi.y() && a.lo.z() <= b.hi.z() && b.lo.z() <= a.hi.z())
-          candidates_.emplace_back(s, t);
-      }
+      for (int t : bounded_)
+        if (t != s && !(moved_[t] && t < s) && a.overlaps(fat_[t])) candidates_.emplace_back(s, t);
     }
     for (int id : escaped_) moved_[id] = 0;
   }

@@ -53,8 +53,8 @@ namespace ragdoll_sim {
 
 namespace {
 // Inlined: prepare builds three rows per point and the call would cost as much as the row.
-[[gnu::always_inline]] inline ContactRow makeRow(const SolverBody& A, const SolverBody& B, const Vec3& rA, const Vec3& rB,
-                   const Vec3& d) {
+[[gnu::always_inline]] inline ContactRow makeRow(const SolverBody& A, const SolverBody& B,
+                                                 const Vec3& rA, const Vec3& rB, const Vec3& d) {
   ContactRow r;
   r.angA = rA.cross(d);
   r.angB = rB.cross(d);

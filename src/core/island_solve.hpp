@@ -25,8 +25,6 @@
 
 namespace ragdoll_sim {
 
-// The step's two substep sequences: the full one, and the rest substeps of islands whose bodies
-// have all been slow for SleepDef::rest_time (full again when rest_mode is off).
 // With lanes, a thread solves consecutive whole islands of its run as one range (solveIslands):
 // the most work (IslandRange::work) of such a range, enough for full lanes.
 constexpr int kLaneRangeWork = 512;
@@ -39,6 +37,8 @@ constexpr int kLaneRangeWork = 512;
 // to steal.
 bool extendsRange(IslandRange& c, const IslandRange& r, int k, int left);
 
+// The step's two substep sequences: the full one, and the rest substeps of islands whose bodies
+// have all been slow for SleepDef::rest_time (full again when rest_mode is off).
 struct StepContexts {
   StepContext full, rest;
   bool rest_mode = false;

@@ -34,8 +34,15 @@ void collide(const Geometry& a, const Transform& xa, const Geometry& b, const Tr
 // World-space axis-aligned bounding box; planes are unbounded (see isUnbounded).
 struct Aabb {
   Vec3 lo, hi;
+  // Written out: the broadphase tests thousands of pairs per step and stops at the first axis.
   bool overlaps(const Aabb& o) const {
-    return (lo.array() <= o.hi.array()).all() && (o.lo.array() <= hi.array()).all();
+    return lo.x() <= o.hi.x() && o.lo.x() <= hi.x() && lo.y() <= o.hi.y() && o.lo.y() <= hi.y() &&
+           lo.z() <= o.hi.z() && o.lo.z() <= hi.z();
+  }
+  // o lies inside this box (false when a bound is NaN).
+  bool contains(const Aabb& o) const {
+    return lo.x() <= o.lo.x() && lo.y() <= o.lo.y() && lo.z() <= o.lo.z() && o.hi.x() <= hi.x() &&
+           o.hi.y() <= hi.y() && o.hi.z() <= hi.z();
   }
 };
 Aabb computeAabb(const Geometry& g, const Transform& x);
