@@ -12,9 +12,11 @@
 #     (round-robin, the engine order rotating from round to round), so all engines see the same
 #     machine load: scenes a, b, c (ours twice: sleeping off, the headline figure since the
 #     peers' benches do not sleep, and sleeping on, engine ragdoll_sim_sleep, right after it); the scaling scene g with N = $SCALING_NS ragdolls; then our
-#     own scenes p and s (no peer has them); then the scale of worlds: scenes f, w, v back to
-#     back (the bundled ragdoll on the plane, among 10 000 static boxes as bodies, as shapes of
-#     one body) and the load of generated worlds of dynamic primitives (scene l,
+#     own scenes p and s (no peer has them). Ours with the float lanes (--opt lanes=0, engine
+#     ragdoll_sim_lanes0, with its _sleep and _1thread runs) runs all of these as an engine of
+#     its own beside the default double rows (lanes=1). Then the scale of worlds: scenes f, w, v
+#     back to back (the bundled ragdoll on the plane, among 10 000 static boxes as bodies, as
+#     shapes of one body) and the load of generated worlds of dynamic primitives (scene l,
 #     bench_world_load, LOAD_RUNS).
 #  4. Raw result lines (plus round=R) go to bench/results_raw.txt, and scripts/bench_report.py
 #     turns them into bench/RESULTS.md and bench/scaling.png.
@@ -29,7 +31,8 @@
 #                            primitive; 0: every model its own, each parsed by SDFormat); "" skips
 #   SCALING_NS="1 4 16 64 256"   ragdoll counts for scene g ("" skips scaling)
 #   SCALING_STEPS=           steps for scene g (default: the scene's 3000)
-#   ENGINES="ragdoll_sim mujoco bullet ode"
+#   ENGINES="ragdoll_sim ragdoll_sim_lanes0 mujoco bullet ode"
+#                            ragdoll_sim_lanes0: ours with SolverSettings::lanes = 0 (float lanes)
 #   RUN_TIMEOUT=1800         seconds before one run is killed (and reported as failed)
 #   OWN_THREADS=$(nproc)     threads our solver uses (WorldDef::threads: islands in parallel,
 #                            same result for any count); the peers are single-threaded.
@@ -37,13 +40,15 @@
 #   BENCH_OUT=bench          folder for results_raw.txt, RESULTS.md, scaling.png
 #   SLEEP_ON=1               also run ours with sleeping on in scenes a, b, c (0 skips it);
 #                            ours runs a, b, c, g and p with sleeping off (--opt sleep=0)
-#   SCALING_1THREAD=1        also run our scene g on one thread (engine ragdoll_sim_1thread):
+#   SCALING_1THREAD=1        also run our scene g on one thread (ragdoll_sim_1thread and
+#                            ragdoll_sim_lanes0_1thread):
 #                            the cost per body-step of the algorithm alone, the same thread
 #                            count at every N (N = 1 is one island, which runs on one core)
 #   FLOPS=1                  0 skips the flop count (scripts/flops.sh, valgrind, ~5 min)
 #   FLOPS_OPTS=sleep=0       --opt of the flop count's runs (lanes=4: the wide solver's)
 #   ENSEMBLE="b c"           chaotic scenes that our bench also runs as ENSEMBLE_COPIES (32)
-#                            yaw-perturbed copies after the timed rounds (scripts/bench_ensemble.sh):
+#                            yaw-perturbed copies after the timed rounds (scripts/bench_ensemble.sh;
+#                            once per engine of ours, lanes=0 with --opt lanes=0):
 #                            at rest at 3 s and within each quality bar, counted over the copies
 #                            ("" skips it; the peers have no yaw option)
 set -euo pipefail
@@ -56,7 +61,7 @@ SCALE_SCENES="${SCALE_SCENES-f w v}"
 LOAD_RUNS="${LOAD_RUNS-3000:8 300:0}"
 SCALING_NS="${SCALING_NS-1 4 16 64 256}"
 SCALING_STEPS="${SCALING_STEPS:-}"
-ENGINES="${ENGINES:-ragdoll_sim mujoco bullet ode}"
+ENGINES="${ENGINES:-ragdoll_sim ragdoll_sim_lanes0 mujoco bullet ode}"
 RUN_TIMEOUT="${RUN_TIMEOUT:-1800}"
 BENCH_OUT="${BENCH_OUT:-$ROOT/bench}"
 OWN_THREADS="${OWN_THREADS:-$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)}"
@@ -85,7 +90,7 @@ declare -A PEER_LIBS=(
 )
 engines=()
 for e in $ENGINES; do
-  if [[ "$e" == ragdoll_sim ]]; then engines+=("$e"); continue; fi
+  if [[ "$e" == ragdoll_sim || "$e" == ragdoll_sim_lanes0 ]]; then engines+=("$e"); continue; fi
   if [[ -z "${PEER_LIBS[$e]+x}" ]]; then echo "bench: unknown engine $e" >&2; exit 2; fi
   echo "bench: building peer $e from $PEERS_DIR"
   # shellcheck disable=SC2086  # PEER_LIBS holds several words
@@ -125,21 +130,29 @@ done
 } >>"$RAW_TMP"
 
 # ---- 3. runs
+# engines of ours in ENGINES, and the --opt of each (bench_ragdoll prints engine=ragdoll_sim)
+declare -A OURS_OPTS=([ragdoll_sim]="" [ragdoll_sim_lanes0]="lanes=0")
+ours=()
+for e in "${engines[@]}"; do if [[ -n "${OURS_OPTS[$e]+x}" ]]; then ours+=("$e"); fi; done
 # run_one ROUND ENGINE SCENE [N]: one run; its line (with round=ROUND) or a "# FAILED" line.
+# An engine of ours is OURS[_sleep|_1thread]: sleeping on, or one thread.
 run_one() {
-  local r="$1" e="$2" s="$3" n="${4:-}" bin args=() out rc err
-  if [[ "$e" == ragdoll_sim* ]]; then bin="$BUILD/bench_ragdoll"
+  local r="$1" e="$2" s="$3" n="${4:-}" bin args=() out rc err base="" variant=""
+  if [[ "$e" == ragdoll_sim* ]]; then
+    bin="$BUILD/bench_ragdoll"
+    variant="${e##*_}"; [[ "$variant" == sleep || "$variant" == 1thread ]] || variant=""
+    base="${e%_"$variant"}"
   elif [[ "$s" == g ]]; then bin="$PEER_BUILD/scaling_$e"
   else bin="$PEER_BUILD/bench_$e"; fi
   args=("$s" --urdf "$URDF")
   if [[ "$s" == [fwv] ]]; then args=("$s" --urdf "$ROOT/urdf/ragdoll.urdf"); fi
-  if [[ "$e" == ragdoll_sim || "$e" == ragdoll_sim_sleep ]]; then args+=(--opt "threads=$OWN_THREADS"); fi
-  if [[ "$e" == ragdoll_sim_1thread ]]; then args+=(--opt "threads=1"); fi
-  # sleeping off where the peers run (they do not sleep) and in p; s is the sleep check
-  if [[ "$e" == ragdoll_sim || "$e" == ragdoll_sim_1thread ]] && [[ "$s" == [abcgp] ]]; then
-    args+=(--opt sleep=0)
+  if [[ -n "$base" ]]; then
+    if [[ -n "${OURS_OPTS[$base]}" ]]; then args+=(--opt "${OURS_OPTS[$base]}"); fi
+    if [[ "$variant" == 1thread ]]; then args+=(--opt threads=1); else args+=(--opt "threads=$OWN_THREADS"); fi
+    # sleeping off where the peers run (they do not sleep) and in p; s is the sleep check
+    if [[ "$variant" == sleep ]]; then args+=(--opt sleep=1)
+    elif [[ "$s" == [abcgp] ]]; then args+=(--opt sleep=0); fi
   fi
-  if [[ "$e" == ragdoll_sim_sleep ]]; then args+=(--opt sleep=1); fi
   # scene l: the load of a generated world (bench_world_load), N primitives, LOAD_SIZE sizes
   if [[ "$s" == l ]]; then bin="$BUILD/bench_world_load"; args=(l --objects "$n" --sizes "$LOAD_SIZE"); n=""; fi
   if [[ "$s" == g ]]; then
@@ -152,9 +165,7 @@ run_one() {
   { echo "### round=$r engine=$e scene=$s ${n:+ragdolls=$n }rc=$rc"; cat "$errf"; } >>"$LOG"
   local line
   line="$(grep -m1 '^engine=' <<<"$out" || true)"
-  if [[ "$e" == ragdoll_sim_1thread || "$e" == ragdoll_sim_sleep ]]; then
-    line="${line/#engine=ragdoll_sim /engine=$e }"
-  fi
+  if [[ "$e" == ragdoll_sim_* ]]; then line="${line/#engine=ragdoll_sim /engine=$e }"; fi
   if [[ "$rc" -eq 0 && -n "$line" ]]; then
     echo "$line round=$r" | tee -a "$RAW_TMP"
   else
@@ -178,34 +189,38 @@ for r in $(seq "$ROUNDS"); do
   for s in $SCENES; do
     for e in "${order[@]}"; do
       run_one "$r" "$e" "$s"
-      if [[ "$e" == ragdoll_sim && "${SLEEP_ON:-1}" != 0 ]]; then run_one "$r" ragdoll_sim_sleep "$s"; fi
+      if [[ -n "${OURS_OPTS[$e]+x}" && "${SLEEP_ON:-1}" != 0 ]]; then run_one "$r" "${e}_sleep" "$s"; fi
     done
   done
   for n in $SCALING_NS; do
     for e in "${order[@]}"; do run_one "$r" "$e" g "$n"; done
-    if [[ "${SCALING_1THREAD:-1}" != 0 && " ${engines[*]} " == *" ragdoll_sim "* ]]; then
-      run_one "$r" ragdoll_sim_1thread g "$n"
+    if [[ "${SCALING_1THREAD:-1}" != 0 ]]; then
+      for e in "${order[@]}"; do
+        if [[ -n "${OURS_OPTS[$e]+x}" ]]; then run_one "$r" "${e}_1thread" g "$n"; fi
+      done
     fi
   done
+  for s in $OWN_SCENES; do
+    for e in "${order[@]}"; do if [[ -n "${OURS_OPTS[$e]+x}" ]]; then run_one "$r" "$e" "$s"; fi; done
+  done
   if [[ " ${engines[*]} " == *" ragdoll_sim "* ]]; then
-    for s in $OWN_SCENES; do run_one "$r" ragdoll_sim "$s"; done
     for s in $SCALE_SCENES; do run_one "$r" ragdoll_sim "$s"; done
     for lr in $LOAD_RUNS; do LOAD_SIZE="${lr#*:}" run_one "$r" ragdoll_sim l "${lr%%:*}"; done
   fi
 done
 echo "# meta loadavg_end=$(cut -d' ' -f1-3 /proc/loadavg)" >>"$RAW_TMP"
 # ---- chaotic scenes as perturbed copies (after the timed rounds; ours only)
-if [[ " ${engines[*]} " == *" ragdoll_sim "* ]]; then
+for e in "${ours[@]}"; do
   for s in ${ENSEMBLE-b c}; do
-    echo "bench: scene $s as ${ENSEMBLE_COPIES:-32} yaw-perturbed copies"
+    echo "bench: scene $s as ${ENSEMBLE_COPIES:-32} yaw-perturbed copies ($e)"
     if line="$(COPIES="${ENSEMBLE_COPIES:-32}" BIN="$BUILD/bench_ragdoll" OWN_THREADS="$OWN_THREADS" \
-                 "$ROOT/scripts/bench_ensemble.sh" "$s" 2>>"$LOG" | grep '^ensemble ')"; then
+                 "$ROOT/scripts/bench_ensemble.sh" "$s" "${OURS_OPTS[$e]}" 2>>"$LOG" | grep '^ensemble ')"; then
       echo "# $line" >>"$RAW_TMP"
     else
-      echo "bench: ensemble of scene $s failed (see $LOG)" >&2
+      echo "bench: ensemble of scene $s ($e) failed (see $LOG)" >&2
     fi
   done
-fi
+done
 # ---- flop count (after the timed runs, so that it disturbs none of them)
 if [[ " ${engines[*]} " == *" ragdoll_sim "* && "${FLOPS:-1}" != 0 ]] && command -v valgrind >/dev/null; then
   echo "bench: counting flops per body-step (valgrind lackey, a few minutes)"
