@@ -16,10 +16,10 @@ import bench_flops_report  # flops per body-step and the peak
 import bench_raw  # the raw lines
 import bench_ratios  # ours / peers, sleep off and on; the issue's bars
 import bench_scale_report  # scenes f, w, v, l
-from bench_ratios import OURS, OURS_1T, OURS_SLEEP
+from bench_ratios import OURS, OURS_ALL, OURS_L0, OURS_L0_SLEEP, OURS_SLEEP, OURS_VARIANTS
 from bench_raw import fnum
 
-ENGINE_ORDER = [OURS, OURS_SLEEP, OURS_1T, "mujoco", "bullet", "ode"]
+ENGINE_ORDER = list(OURS_ALL) + ["mujoco", "bullet", "ode"]
 SCENE_ORDER = ["a", "b", "c", "g", "p", "s", "f", "w", "v"]
 SCENE_DESC = {
     "a": "1 ragdoll standing, pelvis at 1.5 m, 10 000 steps",
@@ -124,10 +124,10 @@ def build_groups(runs):
     return OrderedDict((k, Group(k, g[k])) for k in sorted(g, key=sort_key))
 
 
-def ratio(groups, scene, n, peer):
+def ratio(groups, scene, n, peer, ours=OURS):
     """Our speed / the peer's speed (steps/s): ratio of the medians, and min-max of the
     per-round ratios (both engines ran back to back in the same round)."""
-    ours, other = groups.get((OURS, scene, n)), groups.get((peer, scene, n))
+    ours, other = groups.get((ours, scene, n)), groups.get((peer, scene, n))
     if not ours or not other:
         return float("nan"), float("nan"), float("nan")
     med = ours.sps_med / other.sps_med
@@ -154,7 +154,7 @@ def report(meta, runs, failures, png_name):
     groups = build_groups(runs)
     engines = [e for e in ENGINE_ORDER if any(k[0] == e for k in groups)]
     engines += sorted({k[0] for k in groups} - set(engines))
-    peers = [e for e in engines if e not in (OURS, OURS_1T, OURS_SLEEP)]
+    peers = [e for e in engines if e not in OURS_ALL]
     names = {k[0]: g.engine_name for k, g in groups.items()}
     L = []
     L.append("# Benchmark results: ragdoll_sim vs MuJoCo, Bullet, ODE")
@@ -230,7 +230,8 @@ def report(meta, runs, failures, png_name):
         g_engines = [e for e in engines if any(k[0] == e and k[1] == "g" for k in groups)]
         for e in g_engines:
             header += ["%s µs/body-step" % names[e], "%s steps/s" % names[e]]
-        header += ["ours ÷ %s (steps/s)" % names[p] for p in peers if OURS in engines]
+        g_ours = [v for v in OURS_VARIANTS if v.off in engines]
+        header += ["%s ÷ %s (steps/s)" % (v.name, names[p]) for v in g_ours for p in peers]
         rows = []
         for n in ns:
             bodies = next((g.field("bodies") for (e, s, m), g in groups.items()
@@ -244,9 +245,9 @@ def report(meta, runs, failures, png_name):
                 else:
                     f = failure_for(failures, e, "g", n)
                     row += ["failed" if f else "-", "-"]
-            if OURS in engines:
+            for v in g_ours:
                 for p in peers:
-                    med, lo, hi = ratio(groups, "g", n, p)
+                    med, lo, hi = ratio(groups, "g", n, p, v.off)
                     row.append("-" if med != med else "%s (%s–%s)" % (
                         fmt_ratio(med), fmt_ratio(lo), fmt_ratio(hi)))
             rows.append(row)
@@ -260,11 +261,13 @@ def report(meta, runs, failures, png_name):
         rows.append(spread)
         L.append(md_table(header, rows))
         L.append("")
-        if OURS_1T in engines:
-            L.append("`%s` is ours with `threads=1`: islands run in parallel only from 32 awake "
+        ones = [v.one for v in OURS_VARIANTS if v.one in engines]
+        if ones:
+            L.append("%s ours with `threads=1`: islands run in parallel only from 32 awake "
                      "bodies (kParallelMin), so N = 1 (one 15-body island) always runs on one core "
                      "while larger N use all of them; on one thread every N gets the same, and the "
-                     "line shows the cost of the algorithm alone." % OURS_1T)
+                     "line shows the cost of the algorithm alone." % (
+                         " and ".join("`%s`" % e for e in ones) + (" are" if len(ones) > 1 else " is")))
             L.append("")
         L.append("The peers run scene g through `bench/peers_scaling/scaling_<engine>.cpp`: the "
                  "unmodified peer bench source from ../shared/peers with `make_scene`/`parse_args` "
@@ -275,7 +278,9 @@ def report(meta, runs, failures, png_name):
 
     # ---- our extras
     ours_groups = [(k, g) for k, g in groups.items() if k[0] == OURS]
-    extra_groups = [(k, g) for k, g in groups.items() if k[0] in (OURS, OURS_SLEEP)]
+    extra_label = {OURS: "", OURS_SLEEP: " (sleep on)", OURS_L0: " (lanes=0)",
+                   OURS_L0_SLEEP: " (lanes=0, sleep on)"}
+    extra_groups = [(k, g) for k, g in groups.items() if k[0] in extra_label]
     if extra_groups:
         L.append("## ragdoll_sim: extra fields")
         L.append("")
@@ -288,7 +293,7 @@ def report(meta, runs, failures, png_name):
         L.append("")
         rows = []
         for (e, s, n), g in extra_groups:
-            rows.append([scene_label(s, n) + (" (sleep on)" if e == OURS_SLEEP else "")] + [
+            rows.append([scene_label(s, n) + extra_label[e]] + [
                 "%.1f" % statistics.median(fnum(r.get(k)) for r in g.runs)
                 if k in OURS_EXTRA_MEDIAN else g.field(k) for k in OURS_EXTRA])
         L.append(md_table(["scene"] + OURS_EXTRA, rows))
@@ -307,12 +312,16 @@ def report(meta, runs, failures, png_name):
                  "itself) and counts the copies that meet each bar of the joints issue. The "
                  "peer benches have no yaw option. Awake body-steps (bodies awake after each "
                  "step, summed) are what sleeping left to solve: against the scene's own count "
-                 "(extra fields above) they show where the timed trajectory lies in the spread.")
+                 "(extra fields above) they show where the timed trajectory lies in the spread." +
+                 (" A scene with an option in brackets ran with that `--opt` (lanes=0: ours "
+                  "with the float lanes)." if any(e.get("opts", "-") != "-"
+                                                  for e in meta["ensembles"]) else ""))
         L.append("")
         rows = []
         for e in meta["ensembles"]:
             n = int(e.get("copies", "0"))
-            rows.append([e.get("scene", "?"), str(n),
+            opts = e.get("opts", "-")
+            rows.append([e.get("scene", "?") + ("" if opts == "-" else " (%s)" % opts), str(n),
                          "%s of %d (%s)" % (e.get("at_rest_3s", "?"), n, e.get("vmax_3s", "?")),
                          "%s of %d (max %s)" % (e.get("anchor_ok", "?"), n, e.get("max_anchor_err_m", "?")),
                          "%s of %d (max %s)" % (e.get("pen_ok", "?"), n, e.get("max_ground_pen_m", "?")),
@@ -353,6 +362,7 @@ def report(meta, runs, failures, png_name):
     L.append("```sh\nmake bench                      # ROUNDS=3, all scenes, scaling N = 1 4 16 64 256\n"
              "ROUNDS=5 make bench\n"
              "SCALING_NS=\"1 4 16\" OWN_SCENES= make bench   # quicker\n"
+             "ENGINES=\"ragdoll_sim mujoco bullet ode\" make bench   # without ours lanes=0\n"
              "/usr/bin/python3 scripts/bench_report.py bench/results_raw.txt --md bench/RESULTS.md "
              "--png bench/scaling.png   # report only\n"
              ".ws/bench/bench_ragdoll g --ragdolls 64 --urdf ../shared/peers/ragdoll15.urdf\n"
@@ -387,7 +397,7 @@ def plot(groups, engines, names, path, failures=()):
         label = names[e] + (" (failed at N=%s)" % ", ".join(map(str, failed)) if failed else "")
         ax.errorbar(xs, ys, yerr=[lo, hi], marker="o", capsize=3,
                     linewidth=2.5 if e.startswith(OURS) else 1.5,
-                    linestyle="--" if e == OURS_1T else "-", label=label)
+                    linestyle="--" if e.endswith("_1thread") else "-", label=label)
         any_line = True
     ax.set_xscale("log", base=2)
     ax.set_xlabel("ragdolls (15 bodies each)")

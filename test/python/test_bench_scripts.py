@@ -1,5 +1,6 @@
 """The benchmark's scripts on made-up inputs: bench_report.py's ratio table (sleeping off and on,
-the faster of Bullet and ODE), the issue's bars and the flop section; bench_compare_report.py's
+the faster of Bullet and ODE, ours with lanes=0 beside the default), the issue's bars and the flop
+section; bench_compare_report.py's
 table; bench_compare.sh with two fake binaries (alternation, options, thread counts). No timing,
 no engine: each test runs in well under a second.
 """
@@ -108,6 +109,49 @@ def test_flops_section(tmp_path):
     # scene b sleeping off only (the sleeping-on runs are left out)
     rows = [l for l in text.splitlines() if l.startswith("| b | 1000 |")]
     assert rows == ["| b | 1000 | 528000 | 0.53 | 0.53 % | 0.26 % |"]
+
+
+# Ours with the float lanes (lanes=0) beside the default engine: scene b 2000 / 2400 steps/s
+# sleeping off, 2200 / 2600 sleeping on; scene g on one thread 0.5 us per body-step at every N,
+# two threads 2x one thread at N = 16; and an ensemble of each engine.
+RAW_LANES0 = RAW + "\n".join([
+    line("ragdoll_sim_lanes0", "b", 2000, 1),
+    line("ragdoll_sim_lanes0_sleep", "b", 2200, 1, sleep=1),
+    line("ragdoll_sim_lanes0", "b", 2400, 2),
+    line("ragdoll_sim_lanes0_sleep", "b", 2600, 2, sleep=1),
+    line("ragdoll_sim_lanes0_1thread", "g", 1e6 / 0.5 / 60, 1, bodies=60, n=4),
+    line("ragdoll_sim_lanes0_1thread", "g", 1e6 / 0.5 / 240, 1, bodies=240, n=16),
+    line("ragdoll_sim_lanes0_1thread", "g", 1e6 / 0.5 / 960, 1, bodies=960, n=64),
+    line("ragdoll_sim_lanes0", "g", 2e6 / 0.5 / 240, 1, bodies=240, n=16),
+    "# ensemble scene=b opts=- copies=32 at_rest_3s=31 (vmax_3s <= 0.01) vmax_3s=0..0.02",
+    "# ensemble scene=b opts=lanes=0 copies=32 at_rest_3s=30 (vmax_3s <= 0.01) vmax_3s=0..0.03",
+]) + "\n"
+
+
+def test_lanes0_engine(tmp_path):
+    text = make_report(tmp_path, RAW_LANES0)
+    assert "ragdoll_sim_lanes0 (steps/s)" not in text and "÷ ragdoll_sim_lanes0" not in text
+    # the default engine's table is unchanged; lanes=0 gets one of its own below it
+    assert text.count("| scene | ours ÷ mujoco-2.2.2, sleep off | sleep on |") == 1
+    assert "| scene | ours lanes=0 ÷ mujoco-2.2.2, sleep off | sleep on |" in text
+    rows = [l for l in text.splitlines() if l.startswith("| b | ")]
+    assert [c.strip() for c in rows[0].strip("|").split("|")][1] == "8.80 (8.00–10.00)"
+    b = [c.strip() for c in rows[1].strip("|").split("|")]
+    # medians 2200 / 125 = 17.60 (20.00, 16.00); sleeping on 2400 / 125 = 19.20 (22.00, 17.33)
+    assert b[1:3] == ["17.60 (16.00–20.00)", "19.20 (17.33–22.00)"]
+    assert b[7] == "9.78 (9.60–10.00)"  # 2200 / 225; 10.00, 9.60
+    assert ("- b: ours lanes=0 ÷ mujoco-2.2.2 ≥ 8x: sleep off 17.60 (16.00–20.00), met; "
+            "sleep on 19.20 (17.33–22.00)") in text
+    assert "- b: ours ÷ mujoco-2.2.2 ≥ 8x: sleep off 8.80 (8.00–10.00), met" in text
+    assert ("- lanes=0, one thread, cost per body-step for N = 4, 16, 64: mean 0.500 µs, "
+            "largest deviation +0 % (N = 4); bar ±30 %: met") in text
+    assert "- lanes=0, 2 threads ÷ one thread, N = 16: 2.00 (2.00–2.00); bar ≥ 1.7x: met" in text
+    assert "- 2 threads ÷ one thread, N = 16: 1.80 (1.80–1.80)" in text
+    assert "| ours lanes=0 ÷ mujoco-2.2.2 (steps/s) |" in text
+    assert table_row(text, "b (lanes=0)")[1:3] == ["-", "0"]  # extra fields: substeps, sleep
+    assert table_row(text, "b (lanes=0, sleep on)")[2] == "1"
+    ens = [l for l in text.splitlines() if l.startswith("| b (lanes=0) | 32 | 30 of 32")]
+    assert ens and "| b | 32 | 31 of 32" in text
 
 
 COMPARE_RAW = "\n".join([
