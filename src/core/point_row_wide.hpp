@@ -43,10 +43,10 @@ struct PointRowParams {
 };
 
 // warmStartPointRows: each block's K^-1 from its anchors (and hinge axes), inverse inertias
-// and inverse masses, then its impulses applied to the bodies, blocks [0, count) in order (after the substep's
-// anchors and impulses are in the blocks). solvePointRows: one sweep over blocks [0, count) in
-// order. At 4 lanes (SSE2) or 8 lanes (AVX2: call it only when cpuHasAvx2()); both give the same
-// bits.
+// and inverse masses, then its impulses applied to the bodies, blocks [0, count) in order
+// (after the substep's anchors and impulses are in the blocks). solvePointRows: one sweep over
+// blocks [0, count) in order. At 4 lanes (SSE2) or 8 lanes (AVX2: call it only when
+// cpuHasAvx2()); both give the same bits.
 namespace kernel_w4 {
 void warmStartPointRows(PointRowBlock* blocks, int count, const LaneBodies& bodies);
 void solvePointRows(PointRowBlock* blocks, int count, const LaneBodies& bodies,
