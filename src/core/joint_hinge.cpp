@@ -37,15 +37,21 @@ void HingeJoint::warmStart(JointBase& j, SolverBody& A, SolverBody& B, const Ste
   if (first_substep || !axes.limitsOpen(A, B, ctx.h)) updateAngle(j, A, B, ctx);
   const bool current = !first_substep;
   axes.warmStart(A, B);
-  hinge_axis.updateMass(A, B, current);
-  hinge_axis.warmStart(A, B);
+  // The axis goes into the lanes with the anchor; there its K^-1 and warm start are the wide
+  // pass's (PointLanes::load).
+  if (!anchor.in_lanes) {
+    hinge_axis.updateMass(A, B, current);
+    hinge_axis.warmStart(A, B);
+  } else if (!current) {
+    hinge_axis.refresh(A, B);
+  }
   anchor.warmStart(j, A, B, ctx, current);
 }
 
 void HingeJoint::solve(JointBase& j, SolverBody& A, SolverBody& B, const StepContext& ctx,
                        bool use_bias) {
   axes.solve(A, B, ctx, use_bias);
-  hinge_axis.solve(A, B, ctx.joint_softness, use_bias);
+  if (!anchor.in_lanes) hinge_axis.solve(A, B, ctx.joint_softness, use_bias);
   anchor.solve(j, A, B, ctx, use_bias);
 }
 

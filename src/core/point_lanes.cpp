@@ -26,6 +26,20 @@ void putSymmetric(float (&field)[6][kRowBlock], int i, const Mat3& m) {
 void putVec(float (&field)[3][kRowBlock], int i, const Vec3& v) {
   for (int k = 0; k < 3; ++k) field[k][i] = float(v[k]);
 }
+void putPair(float (&field)[2][kRowBlock], int i, const Eigen::Vector2d& v) {
+  field[0][i] = float(v.x());
+  field[1][i] = float(v.y());
+}
+// A hinge's U and C into its lane (they change with the position state).
+void putAxis(PointRowBlock& blk, int i, const HingeAxisPart& h) {
+  putVec(blk.axis_u1, i, h.u1);
+  putVec(blk.axis_u2, i, h.u2);
+  putPair(blk.axis_error, i, h.C);
+}
+HingeAxisPart* hingeAxis(Joint& j) {
+  HingeJoint* h = std::get_if<HingeJoint>(&j.kind);
+  return h ? &h->hinge_axis : nullptr;
+}
 }  // namespace
 
 void PointLanes::reserve(int joints) {
@@ -59,8 +73,10 @@ void PointLanes::build(const IslandRange& p, Joint* const* js,
   thread_local LanePacking packing;
   thread_local std::vector<GraphEdge> edges;
   thread_local std::vector<AnchorPart*> members;
+  thread_local std::vector<HingeAxisPart*> axes;
   edges.clear();
   members.clear();
+  axes.clear();
   for (int k = p.joint_begin; k < p.joint_end; ++k) {
     Joint& j = *js[k];
     AnchorPart* anchor = j.anchor();
@@ -68,6 +84,7 @@ void PointLanes::build(const IslandRange& p, Joint* const* js,
     const bool da = movable(bodies[j.a]), db = movable(bodies[j.b]);
     if (!da && !db) continue;
     members.push_back(anchor);
+    axes.push_back(hingeAxis(j));
     edges.push_back({j.a, j.b, da, db});
   }
   if (members != R->anchors || !sameEdges(edges, R->edges)) {
@@ -87,7 +104,8 @@ void PointLanes::build(const IslandRange& p, Joint* const* js,
         blk.body_a[i] = blk.body_b[i] = -1;
         if (c < 0) continue;
         const GraphEdge& e = edges[c];
-        R->lanes.push_back({members[c], e.body_a, e.body_b, r, i});
+        R->lanes.push_back({members[c], axes[c], e.body_a, e.body_b, r, i});
+        if (axes[c]) blk.axis_rows = 1;
         // a body the rows must not write stays -1, with inertia 0 in its lane
         if (e.dynamic_a) blk.body_a[i] = e.body_a;
         if (e.dynamic_b) blk.body_b[i] = e.body_b;
@@ -99,7 +117,7 @@ void PointLanes::build(const IslandRange& p, Joint* const* js,
   for (Lane& l : R->lanes) {
     PointRowBlock& blk = R->blocks[l.block];
     const int i = l.lane;
-    l.anchor->in_lanes = true;
+    l.anchor->in_lanes = true;  // and a hinge's axis with it (HingeJoint)
     double inv_mass = 0.0;
     if (blk.body_a[i] >= 0) {
       putSymmetric(blk.ii_a, i, bodies[l.a].inv_inertia);
@@ -127,6 +145,9 @@ void PointLanes::load(const IslandRange& p, std::vector<SolverBody>& bodies,
     }
     putVec(blk.error, i, pt.error(bodies[l.a], bodies[l.b]));
     putVec(blk.impulse, i, pt.impulse);
+    if (!l.axis) continue;
+    if (anchors_moved) putAxis(blk, i, *l.axis);
+    putPair(blk.axis_impulse, i, l.axis->impulse);
   }
   const LaneBodies view = laneBodies(bodies.data());
   warmStartPointRows(ctx.lanes, R->blocks.data(), int(R->blocks.size()), view);
@@ -140,6 +161,7 @@ void PointLanes::refreshAnchors(const IslandRange& p) {
     const int i = l.lane;
     putVec(blk.r_a, i, l.anchor->point.rA);
     putVec(blk.r_b, i, l.anchor->point.rB);
+    if (l.axis) putAxis(blk, i, *l.axis);
   }
 }
 
@@ -160,6 +182,8 @@ void PointLanes::solve(const IslandRange& p, std::vector<SolverBody>& bodies,
     const PointRowBlock& blk = R->blocks[l.block];
     const int i = l.lane;
     for (int k = 0; k < 3; ++k) l.anchor->point.impulse[k] = double(blk.impulse[k][i]);
+    if (l.axis)
+      l.axis->impulse = {double(blk.axis_impulse[0][i]), double(blk.axis_impulse[1][i])};
   }
 }
 

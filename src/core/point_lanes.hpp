@@ -1,20 +1,22 @@
 // The wide pass over the joint anchors (SolverSettings::lanes 4 or 8): the rigid point parts
 // (part_point.hpp) of an island range's unbroken ball, hinge and fixed joints are solved in
-// float lanes (point_row_wide.hpp) after each joint sweep has solved the joints' other parts.
+// float lanes (point_row_wide.hpp) after each joint sweep has solved the joints' other parts;
+// a hinge's axis part (part_hinge_axis.hpp) goes into its anchor's lane and solves first there.
 //
 // Per step, the range's joints whose anchor is rigid and unbreakable (no spring, infinite
 // break force and torque: no such joint breaks within the step, so the batches stay valid)
 // are coloured in joint order (ConstraintGraph, FirstFit; no two of a colour share a dynamic
 // body) and packed colour by colour into blocks of kRowBlock lanes; the overflow set past the
 // colours stays in its joint's scalar solve (AnchorPart::in_lanes false). The bodies' world
-// inverse inertias and inverse masses go into the blocks once per step, the anchors once per
-// position state (the first substep's warm start, then after each position update). Each
-// substep the blocks take C and the impulse, and the kernel forms K^-1 from the anchors and
-// applies the warm start, colour by colour, in place of the joints' scalar ones. The kernels
-// read and write the double solver bodies themselves (the impulse reaches v through the double
-// inverse masses). After the substep's last joint sweep the impulses go back to
-// PointPart::impulse in double, so whatever reads them later (forces, breaks, the joint trees,
-// which add to them, the next warm start) sees them.
+// inverse inertias and inverse masses go into the blocks once per step, the anchors and the
+// hinge axes' U and C (formed in double, HingeAxisPart::refresh) once per position state (the
+// first substep's warm start, then after each position update). Each substep the blocks take
+// C and the impulses, and the kernel forms K^-1 from the anchors (and axes) and applies the
+// warm start, colour by colour, in place of the joints' scalar ones. The kernels read and write
+// the double solver bodies themselves (the impulse reaches v through the double inverse
+// masses). After the substep's last joint sweep the impulses go back to PointPart::impulse and
+// HingeAxisPart::impulse in double, so whatever reads them later (forces, breaks, the joint
+// trees, which add to them, the next warm start) sees them.
 //
 // Ranges are prepared and solved on different threads: each range keeps its own storage, found
 // by its first joint (ranges with joints have distinct first joints) and allocated by the thread
@@ -34,6 +36,7 @@ namespace ragdoll_sim {
 
 struct Joint;
 struct AnchorPart;
+struct HingeAxisPart;
 
 class PointLanes {
  public:
@@ -56,9 +59,10 @@ class PointLanes {
              bool use_bias, bool sync);
 
  private:
-  // A used lane: its joint's anchor and bodies, and where it sits.
+  // A used lane: its joint's anchor (and hinge axis, or null) and bodies, and where it sits.
   struct Lane {
     AnchorPart* anchor;
+    HingeAxisPart* axis;
     int a, b;
     int block, lane;
   };

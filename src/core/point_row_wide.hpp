@@ -1,5 +1,6 @@
-// The rigid point part of a joint anchor (part_point.hpp), solved for a block of joints at once
-// in float lanes (the derivation is at the top of point_row_wide.inc).
+// The rigid point part of a joint anchor (part_point.hpp), and a hinge's axis part
+// (part_hinge_axis.hpp) with it, solved for a block of joints at once in float lanes (the
+// derivations are at the top of point_row_wide.inc).
 // Plain records and declarations only: the AVX2 kernel file includes this header too (see
 // lanes.hpp for why it must hold no inline code).
 #pragma once
@@ -24,6 +25,12 @@ struct alignas(64) PointRowBlock {
   float error[3][kRowBlock];                       // C at the current position state
   float impulse[3][kRowBlock];                     // accumulated over the substep
   int32_t body_a[kRowBlock], body_b[kRowBlock];    // solver body index, -1: not movable
+  // A hinge's axis rows (0 in a lane without one: U = 0, so its K^-1 and impulse stay 0).
+  float axis_u1[3][kRowBlock], axis_u2[3][kRowBlock];  // U's columns (world)
+  float axis_k_inv[3][kRowBlock];                      // 2x2 K^-1 as xx, yy, xy
+  float axis_error[2][kRowBlock];                      // C
+  float axis_impulse[2][kRowBlock];                    // accumulated over the substep
+  int32_t axis_rows;                                   // nonzero: some lane holds a hinge
 };
 static_assert(sizeof(PointRowBlock) % 64 == 0, "a block is whole cache lines");
 
@@ -35,11 +42,11 @@ struct PointRowParams {
   bool use_bias = false;
 };
 
-// warmStartPointRows: each block's K^-1 from its anchors, inverse inertias and inverse masses,
-// then its impulse applied to the bodies, blocks [0, count) in order (after the substep's
-// anchors and impulses are in the blocks). solvePointRows: one sweep over blocks [0, count) in
-// order. At 4 lanes (SSE2) or 8 lanes (AVX2: call it only when cpuHasAvx2()); both give the same
-// bits.
+// warmStartPointRows: each block's K^-1 from its anchors (and hinge axes), inverse inertias
+// and inverse masses, then its impulses applied to the bodies, blocks [0, count) in order
+// (after the substep's anchors and impulses are in the blocks). solvePointRows: one sweep over
+// blocks [0, count) in order. At 4 lanes (SSE2) or 8 lanes (AVX2: call it only when
+// cpuHasAvx2()); both give the same bits.
 namespace kernel_w4 {
 void warmStartPointRows(PointRowBlock* blocks, int count, const LaneBodies& bodies);
 void solvePointRows(PointRowBlock* blocks, int count, const LaneBodies& bodies,
