@@ -270,7 +270,7 @@ TEST(Scene, BrokenJointsAreReportedByName) {
   EXPECT_EQ(b.parent_link, "pelvis");
   EXPECT_EQ(b.child_link, "torso");
   EXPECT_EQ(b.break_force, 1.0);
-  EXPECT_GT(b.force, 1.0);
+  EXPECT_GE(b.force, 1.0);  // it breaks when the anchor force reaches break_force
   scene.step();
   EXPECT_TRUE(scene.brokenJoints().empty());
   std::string e;
