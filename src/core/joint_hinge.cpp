@@ -2,7 +2,8 @@
 
 namespace ragdoll_sim {
 
-HingeJoint::HingeJoint(const HingeJointDef& def) : axis(def.axis.normalized()) {
+HingeJoint::HingeJoint(const HingeJointDef& def)
+    : axis(def.axis.normalized()), axis_in_a(def.frame_a.q * axis), axis_in_b(def.frame_b.q * axis) {
   axes.limits_enabled = def.enable_limit;
   axes.lower[0] = def.lower;
   axes.upper[0] = def.upper;
@@ -12,7 +13,7 @@ HingeJoint::HingeJoint(const HingeJointDef& def) : axis(def.axis.normalized()) {
 void HingeJoint::prepare(JointBase& j, const StepContext& ctx) {
   const auto& m = *ctx.motions;
   anchor.prepare(j, ctx);
-  hinge_axis.prepare(m[j.a], m[j.b], j.frame_a.q * axis, j.frame_b.q * axis);
+  hinge_axis.prepare(m[j.a], m[j.b], axis_in_a, axis_in_b);
 }
 
 void HingeJoint::updateAngle(const JointBase& j, const SolverBody& A, const SolverBody& B,

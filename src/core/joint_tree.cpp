@@ -67,16 +67,50 @@ void JointTree::reserve(int world_bodies, int island_bodies, int joints) {
     degree_.resize(island_bodies);
     adj_start_.resize(island_bodies);
     parent_edge_.resize(island_bodies);
+    body_key_.resize(island_bodies);
+    part_key_.resize(island_bodies);
   }
   if (int(edges_.size()) < joints) {
     edges_.resize(joints);
+    joint_key_.resize(joints);
     cand_.resize(joints);
     adj_.resize(2 * size_t(joints));
   }
 }
 
+// Every slot of p is compared (and rewritten when one differs): a slot another part's build
+// wrote since has that part's owner, and a later build of a part with the same body_begin
+// rewrote the bounds at body_begin.
+bool JointTree::keepsForest(const IslandRange& p, const std::vector<int>& island_bodies,
+                            Joint* const* js, const std::vector<SolverBody>& solver) {
+  const int b0 = p.body_begin;
+  PartKey& part = part_key_[b0];
+  bool same = part.body_end == p.body_end && part.joint_begin == p.joint_begin &&
+              part.joint_end == p.joint_end;
+  part = {p.body_end, p.joint_begin, p.joint_end};
+  for (int k = b0; k < p.body_end; ++k) {
+    const int b = island_bodies[k];
+    const bool moves = movable(solver[b]);
+    BodyKey& key = body_key_[k];
+    if (key.body == b && key.owner == b0 && key.moves == moves) continue;
+    same = false;
+    key = {b, b0, moves};
+  }
+  for (int k = p.joint_begin; k < p.joint_end; ++k) {
+    Joint& j = *js[k];
+    const bool edge = !j.broken && rigidAnchor(j);
+    JointKey& key = joint_key_[k];
+    if (key.joint == &j && key.a == j.a && key.b == j.b && key.owner == b0 && key.edge == edge)
+      continue;
+    same = false;
+    key = {&j, j.a, j.b, b0, edge};
+  }
+  return same;
+}
+
 void JointTree::build(const IslandRange& p, const std::vector<int>& island_bodies,
                       Joint* const* js, const std::vector<SolverBody>& solver) {
+  if (keepsForest(p, island_bodies, js, solver)) return;
   const int b0 = p.body_begin, b1 = p.body_end, j0 = p.joint_begin;
   edge_count_[b0] = 0;
   for (int k = b0; k < b1; ++k) {

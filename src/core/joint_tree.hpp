@@ -37,6 +37,9 @@
 //
 // The tree of an island part lies in its slices of the island's body and joint arrays, so the
 // halves of a split island (whole limbs, island_split.hpp) are solved at once on two threads.
+// The forest depends only on the part's bodies (and whether each moves) and its joints (their
+// bodies, and whether each is an unbroken rigid anchor): a part that finds those as its slices'
+// last build left them keeps that build's forest (most steps change no island).
 #pragma once
 
 #include <vector>
@@ -109,6 +112,28 @@ class JointTree {
   };
   std::vector<Candidate> cand_;
   std::vector<int> uf_, degree_, adj_start_, adj_, parent_edge_;
+
+  // The inputs of the last build that wrote each slot, and its part (owner: its body_begin;
+  // at the body_begin slot also its other bounds), to tell when a part may keep its forest.
+  struct BodyKey {
+    int body = -1, owner = -1;
+    bool moves = false;
+  };
+  struct JointKey {
+    const Joint* joint = nullptr;
+    int a = -1, b = -1, owner = -1;
+    bool edge = false;  // an unbroken rigid anchor
+  };
+  struct PartKey {
+    int body_end = -1, joint_begin = -1, joint_end = -1;
+  };
+  // True when part p's slices hold the forest of its bodies and joints as they are now;
+  // else records them as the inputs of the build that follows.
+  bool keepsForest(const IslandRange& p, const std::vector<int>& island_bodies, Joint* const* js,
+                   const std::vector<SolverBody>& solver);
+  std::vector<BodyKey> body_key_;    // by island_bodies slot
+  std::vector<JointKey> joint_key_;  // by joint slot
+  std::vector<PartKey> part_key_;    // at a part's body_begin
 };
 
 }  // namespace ragdoll_sim
