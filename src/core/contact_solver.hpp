@@ -73,6 +73,10 @@ class ContactSolver {
   // The wide batches held, all threads together: one per range that a thread prepared in a
   // step (the most over the steps), whatever the number of contacts.
   int batchCount() const;
+  // This step's wide batch of the range that starts at slot begin, else nullptr.
+  const ContactBatch* batchAt(int begin) const {
+    return begin < int(batch_at_.size()) ? batch_at_[begin] : nullptr;
+  }
   // With ctx.lanes != 1 it also builds the range's wide batch (contact_wide.hpp), which the
   // calls with the same range then solve before the scalar rest.
   void prepare(const std::vector<Contact>& contacts, const StepContext& ctx, int begin, int end);

@@ -26,6 +26,8 @@ class ContactBatch {
   void clear() { end_ = -1; }
   // The slots the scalar rows solve after the blocks, in slot order.
   const std::vector<int>& scalar() const { return scalar_; }
+  // The colours of the blocks (0 without any).
+  int colourCount() const { return wide_.empty() ? 0 : graph_.colourCount(); }
 
   // Once per substep, first. positions_moved: the double separations are recomputed and copied
   // into the lanes first.

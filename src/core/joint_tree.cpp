@@ -186,9 +186,9 @@ void JointTree::build(const IslandRange& p, const std::vector<int>& island_bodie
   edge_count_[b0] = out;
 }
 
-void JointTree::factor(const IslandRange& p, const std::vector<SolverBody>& solver,
+void JointTree::factor(const Tree& t, const std::vector<SolverBody>& solver,
                        const std::vector<int>& island_bodies) {
-  for (int idx = p.body_end - 1; idx >= p.body_begin; --idx) {
+  for (int idx = t.last - 1; idx >= t.first; --idx) {
     const int q = order_[idx];
     Node& node = nodes_[q];
     const SolverBody& body = solver[island_bodies[q]];
@@ -217,8 +217,8 @@ void JointTree::factor(const IslandRange& p, const std::vector<SolverBody>& solv
   }
 }
 
-void JointTree::solve(const IslandRange& p) {
-  for (int idx = p.body_end - 1; idx >= p.body_begin; --idx) {
+void JointTree::solve(const Tree& t) {
+  for (int idx = t.last - 1; idx >= t.first; --idx) {
     Node& node = nodes_[order_[idx]];
     node.z.setZero();
     node.e.setZero();
@@ -229,7 +229,7 @@ void JointTree::solve(const IslandRange& p) {
       node.z.noalias() += e.g.transpose() * (e.k_inv * e.y);
     }
   }
-  for (int idx = p.body_begin; idx < p.body_end; ++idx) {
+  for (int idx = t.first; idx < t.last; ++idx) {
     Node& node = nodes_[order_[idx]];
     Vec6 f = node.e;
     for (int k = node.end - 1; k >= node.first; --k) {
@@ -241,23 +241,48 @@ void JointTree::solve(const IslandRange& p) {
   }
 }
 
+// The trees of part p in turn: build writes each tree's bodies (its root, then the rest breadth
+// first) as one run of order_ and its edges as one run of edges_, so a tree ends where every
+// body its edges reach has been counted.
+template <class F>
+void JointTree::forTrees(const IslandRange& p, F&& f) {
+  for (int first = p.body_begin; first < p.body_end;) {
+    Tree t{first, first + 1, 0, 0};
+    for (int idx = first; idx < t.last; ++idx) {
+      const Node& node = nodes_[order_[idx]];
+      for (int k = node.first; k < node.end; ++k) t.last += edges_[k].child >= 0;
+    }
+    t.edge_begin = nodes_[order_[first]].first;
+    t.edge_end = nodes_[order_[t.last - 1]].end;
+    if (t.edge_end > t.edge_begin) f(t);
+    first = t.last;
+  }
+}
+
 // Each body's total generalised impulse from its edges' lambda (node e, reused after solve).
-void JointTree::gatherImpulses(const IslandRange& p) {
-  for (int k = p.body_begin; k < p.body_end; ++k) nodes_[k].e.setZero();
-  const int n = edgeCount(p);
-  for (int k = p.joint_begin; k < p.joint_begin + n; ++k) {
+void JointTree::gatherImpulses(const Tree& t) {
+  for (int idx = t.first; idx < t.last; ++idx) nodes_[order_[idx]].e.setZero();
+  for (int k = t.edge_begin; k < t.edge_end; ++k) {
     const Edge& e = edges_[k];
     nodes_[e.parent].e += e.s * leverImpulse(e.r_parent, e.lambda);
     if (e.child >= 0) nodes_[e.child].e -= e.s * leverImpulse(e.r_child, e.lambda);
   }
 }
 
+// Each tree stops on its own error, so a tree's bits do not depend on the other trees of its
+// part (nor on the islands that share its range).
 void JointTree::projectVelocities(const IslandRange& p, std::vector<SolverBody>& solver,
                                   const std::vector<int>& island_bodies, double h,
                                   double tolerance) {
-  const int n = edgeCount(p);
-  if (n == 0) return;
-  Edge* const edges = &edges_[p.joint_begin];
+  if (edgeCount(p) == 0) return;
+  forTrees(p, [&](const Tree& t) { projectTreeVelocities(t, solver, island_bodies, h, tolerance); });
+}
+
+void JointTree::projectTreeVelocities(const Tree& t, std::vector<SolverBody>& solver,
+                                      const std::vector<int>& island_bodies, double h,
+                                      double tolerance) {
+  Edge* const edges = &edges_[t.edge_begin];
+  const int n = t.edge_end - t.edge_begin;
   double worst = 0.0;
   for (int k = 0; k < n; ++k) {
     Edge& e = edges[k];
@@ -274,8 +299,8 @@ void JointTree::projectVelocities(const IslandRange& p, std::vector<SolverBody>&
   // break_force h is left out (it breaks after the substep, with what the sweeps gave it) and
   // the others are solved again without it.
   for (bool again = true; again;) {
-    factor(p, solver, island_bodies);
-    solve(p);
+    factor(t, solver, island_bodies);
+    solve(t);
     again = false;
     for (int k = 0; k < n; ++k) {
       Joint& j = *edges[k].joint;
@@ -286,27 +311,34 @@ void JointTree::projectVelocities(const IslandRange& p, std::vector<SolverBody>&
     }
   }
   for (int k = 0; k < n; ++k) rigidAnchor(*edges[k].joint)->impulse += edges[k].lambda;
-  gatherImpulses(p);
-  for (int k = p.body_begin; k < p.body_end; ++k) {
-    SolverBody& b = solver[island_bodies[k]];
-    const Vec6& f = nodes_[k].e;
+  gatherImpulses(t);
+  for (int idx = t.first; idx < t.last; ++idx) {
+    const int q = order_[idx];
+    SolverBody& b = solver[island_bodies[q]];
+    const Vec6& f = nodes_[q].e;
     b.v += b.inv_mass * f.head<3>();
     b.w += b.inv_inertia * f.tail<3>();
   }
 }
 
-// The bodies move by their summed position impulses at once: applied joint by joint, the
-// rotations of a body with many children would compose to second order in their sizes.
 void JointTree::projectPositions(const IslandRange& p, std::vector<SolverBody>& solver,
                                  const std::vector<int>& island_bodies, double slop,
                                  double max_correction) {
-  const int n = edgeCount(p);
-  if (n == 0) return;
-  Edge* const edges = &edges_[p.joint_begin];
+  if (edgeCount(p) == 0) return;
+  forTrees(p, [&](const Tree& t) {
+    projectTreePositions(t, solver, island_bodies, slop, max_correction);
+  });
+}
+
+// The bodies move by their summed position impulses at once: applied joint by joint, the
+// rotations of a body with many children would compose to second order in their sizes.
+void JointTree::projectTreePositions(const Tree& t, std::vector<SolverBody>& solver,
+                                     const std::vector<int>& island_bodies, double slop,
+                                     double max_correction) {
   for (int step = 0; step < kNewtonSteps; ++step) {
     bool any = false;
-    for (int k = 0; k < n; ++k) {
-      Edge& e = edges[k];
+    for (int k = t.edge_begin; k < t.edge_end; ++k) {
+      Edge& e = edges_[k];
       const Joint& j = *e.joint;
       const PointPart& pt = *rigidAnchor(*e.joint);
       const SolverBody &A = solver[j.a], &B = solver[j.b];
@@ -319,12 +351,13 @@ void JointTree::projectPositions(const IslandRange& p, std::vector<SolverBody>& 
       e.b = -C;
     }
     if (!any) return;
-    factor(p, solver, island_bodies);
-    solve(p);
-    gatherImpulses(p);
-    for (int k = p.body_begin; k < p.body_end; ++k) {
-      SolverBody& b = solver[island_bodies[k]];
-      const Vec6& f = nodes_[k].e;
+    factor(t, solver, island_bodies);
+    solve(t);
+    gatherImpulses(t);
+    for (int idx = t.first; idx < t.last; ++idx) {
+      const int q = order_[idx];
+      SolverBody& b = solver[island_bodies[q]];
+      const Vec6& f = nodes_[q].e;
       b.dp += b.inv_mass * f.head<3>();
       const Vec3 turn = b.inv_inertia * f.tail<3>();
       const double angle = turn.norm();

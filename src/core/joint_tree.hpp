@@ -61,12 +61,14 @@ class JointTree {
              const std::vector<SolverBody>& solver);
   // The point rows' velocities made exact at the anchors of the last refresh; the impulses
   // are added to the joints' accumulated ones (warm start, reports, breaks).
-  // Nothing is done when no anchor's relative velocity exceeds tolerance (m/s): the sweeps
-  // converged. A breakable anchor that would pass break_force h is left out and breaks.
+  // A tree is left as it is when none of its anchors' relative velocities exceeds tolerance
+  // (m/s): its sweeps converged. A breakable anchor that would pass break_force h is left out
+  // and breaks.
   void projectVelocities(const IslandRange& p, std::vector<SolverBody>& solver,
                          const std::vector<int>& island_bodies, double h, double tolerance);
-  // Newton steps on the anchors at the current deltas: the error beyond slop is removed (at
-  // most max_correction of it per joint and step).
+  // Newton steps on the anchors at the current deltas, tree by tree until a tree's anchors are
+  // within slop: the error beyond slop is removed (at most max_correction of it per joint and
+  // step).
   void projectPositions(const IslandRange& p, std::vector<SolverBody>& solver,
                         const std::vector<int>& island_bodies, double slop,
                         double max_correction);
@@ -91,12 +93,24 @@ class JointTree {
     int first = 0, end = 0;  // its child edges
   };
 
-  // Factorises part p's forest at its edges' levers (set by the caller).
-  void factor(const IslandRange& p, const std::vector<SolverBody>& solver,
+  // One tree of a part: its bodies order_[first, last), its edges edges_[edge_begin, edge_end).
+  struct Tree {
+    int first, last, edge_begin, edge_end;
+  };
+  // f(tree) for each tree of part p with an edge.
+  template <class F>
+  void forTrees(const IslandRange& p, F&& f);
+  void projectTreeVelocities(const Tree& t, std::vector<SolverBody>& solver,
+                             const std::vector<int>& island_bodies, double h, double tolerance);
+  void projectTreePositions(const Tree& t, std::vector<SolverBody>& solver,
+                            const std::vector<int>& island_bodies, double slop,
+                            double max_correction);
+  // Factorises tree t at its edges' levers (set by the caller).
+  void factor(const Tree& t, const std::vector<SolverBody>& solver,
               const std::vector<int>& island_bodies);
   // lambda for the edges' b.
-  void solve(const IslandRange& p);
-  void gatherImpulses(const IslandRange& p);
+  void solve(const Tree& t);
+  void gatherImpulses(const Tree& t);
   int edgeCount(const IslandRange& p) const { return edge_count_[p.body_begin]; }
 
   std::vector<int> slot_of_body_;  // world body -> island_bodies slot (valid in its part)

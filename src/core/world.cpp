@@ -132,30 +132,4 @@ std::vector<char> WorldInternals::boundedShapes(const World& world) {
   return out;
 }
 
-std::vector<IslandGraph> WorldInternals::islandGraphs(const World& world) {
-  const World::Impl& w = *world.impl_;
-  std::vector<int> local(w.bodies.size(), -1);
-  std::vector<IslandGraph> out;
-  const auto edge = [&](int a, int b) {
-    GraphEdge e;
-    e.dynamic_a = local[a] >= 0, e.dynamic_b = local[b] >= 0;
-    e.body_a = local[a], e.body_b = local[b];
-    return e;
-  };
-  for (const IslandRange& r : w.island_ranges) {
-    for (int k = r.body_begin; k < r.body_end; ++k) local[w.island_bodies[k]] = k - r.body_begin;
-    IslandGraph g;
-    g.bodies = r.body_end - r.body_begin;
-    for (int k = r.joint_begin; k < r.joint_end; ++k)
-      g.joints.push_back(edge(w.active_joints[k]->a, w.active_joints[k]->b));
-    for (int k = r.contact_begin; k < r.contact_end; ++k) {
-      const Contact& c = w.contacts[w.contact_solver.active()[k]];
-      g.contacts.push_back(edge(c.body_a, c.body_b));
-    }
-    for (int k = r.body_begin; k < r.body_end; ++k) local[w.island_bodies[k]] = -1;
-    out.push_back(std::move(g));
-  }
-  return out;
-}
-
 }  // namespace ragdoll_sim

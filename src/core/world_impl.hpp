@@ -213,7 +213,7 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
   void prepareOutsideBodies();
   void prepareIsland(const IslandRange& p, const StepContext& c);
   // f(each island of p) when p is several whole islands solved as one range, else f(p): the
-  // joint trees stop early by their range's largest error, so each island keeps its own range.
+  // joint trees are built and solved island by island.
   template <class F>
   void forIslands(const IslandRange& p, F&& f) const {
     if (p.island_end - p.island_begin < 2) return f(p);

@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "constants.hpp"
-#include "constraint_graph.hpp"
 #include "narrowphase.hpp"
 #include "ragdoll_sim/world.hpp"
 
@@ -29,14 +28,6 @@ struct WorldTuning {
 // "" or what is wrong with the first field ("manifold_cache_distance must be ...").
 std::string worldTuningError(const WorldTuning& tuning);
 
-// One awake island of the last step as the graph colouring sees it (constraint_graph.hpp): its
-// bodies numbered from 0 in the island's order, its contacts and its joints in the solver's
-// order; a body outside the island (static, asleep) is not dynamic.
-struct IslandGraph {
-  int bodies = 0;
-  std::vector<GraphEdge> contacts, joints;
-};
-
 struct WorldInternals {
   static const WorldTuning& tuning(const World& world);
   // Throws std::invalid_argument with worldTuningError's message, changing nothing.
@@ -50,8 +41,6 @@ struct WorldInternals {
   static std::vector<std::pair<int, int>> pairs(const World& world);
   static const std::vector<Aabb>& shapeBoxes(const World& world);
   static std::vector<char> boundedShapes(const World& world);
-  // The last step's awake islands, in the solver's order (the colouring's tests and figures).
-  static std::vector<IslandGraph> islandGraphs(const World& world);
 };
 
 }  // namespace ragdoll_sim

@@ -10,8 +10,6 @@
 #include <vector>
 
 #include "constraint_graph.hpp"
-#include "scene_util.hpp"
-#include "world_tuning.hpp"
 
 namespace ragdoll_sim {
 namespace {
@@ -316,31 +314,6 @@ TEST(LanePacking, LeavesTheOverflowOut) {
   pack.pack(g, 4);
   EXPECT_EQ(pack.recordCount(), 2);
   EXPECT_EQ(pack.usedLanes(), 2);
-}
-
-// The World's islands as the colouring sees them (WorldInternals::islandGraphs): a chain of
-// three boxes lying on the ground is one island of two joints and three ground contacts.
-TEST(ConstraintGraph, WorldIslandsAsGraphs) {
-  World w{WorldDef()};
-  test::addGround(w);
-  const Vec3 half(0.2, 0.1, 0.1);
-  std::vector<BodyId> boxes;
-  for (int k = 0; k < 3; ++k) boxes.push_back(test::addBox(w, half, 1.0, Vec3(0.45 * k, 0, 0.099)));
-  for (int k = 0; k < 2; ++k) test::chainLink(w, boxes[k], boxes[k + 1], half.x());
-  w.step(0.001);
-  const std::vector<IslandGraph> islands = WorldInternals::islandGraphs(w);
-  ASSERT_EQ(islands.size(), 1u);
-  const IslandGraph& g = islands[0];
-  EXPECT_EQ(g.bodies, 3);
-  ASSERT_EQ(g.joints.size(), 2u);
-  for (const GraphEdge& j : g.joints) EXPECT_TRUE(j.dynamic_a && j.dynamic_b);
-  ASSERT_EQ(g.contacts.size(), 3u);
-  for (const GraphEdge& c : g.contacts) EXPECT_NE(c.dynamic_a, c.dynamic_b);  // one end the ground
-  ConstraintGraph cg;
-  cg.colour(g.joints, g.bodies);
-  EXPECT_EQ(cg.colourCount(), 2);
-  cg.colour(g.contacts, g.bodies);
-  EXPECT_EQ(cg.colourCount(), 1);
 }
 
 }  // namespace

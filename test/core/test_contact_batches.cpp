@@ -1,7 +1,8 @@
 // The wide contact batches of ContactSolver (contact_solver.hpp): whatever ranges a step cuts at
 // its islands' boundaries, each range finds its own batch and the bits do not depend on the cut;
 // the batches are reused step after step, one per range a thread prepares, not one per contact;
-// the rows prepared straight into the lanes are the double rows rounded.
+// static bodies join no colour; the rows prepared straight into the lanes are the double rows
+// rounded.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -150,6 +151,18 @@ TEST(ContactBatches, EachRangeFindsItsBatchWhateverTheCut) {
     for (const auto& c : cuts) expectSameBits(whole, step(solver, c, lanes), "cut");
     EXPECT_LE(solver.batchCount(), kIslands);  // the most ranges of one step
   }
+}
+
+// Static bodies join no colour (ContactBatch::build counts only the movable ones): the pile's
+// twelve ground contacts share the ground, yet with the boxes' side contacts the six islands in
+// one range take two colours, and every contact is in the lanes.
+TEST(ContactBatches, TheGroundJoinsNoColour) {
+  ContactSolver solver;
+  step(solver, {0}, 4);
+  const ContactBatch* batch = solver.batchAt(0);
+  ASSERT_NE(batch, nullptr);
+  EXPECT_EQ(batch->colourCount(), 2);
+  EXPECT_TRUE(batch->scalar().empty());
 }
 
 // The wide path solves something: its bits differ from the double rows' (else the batches

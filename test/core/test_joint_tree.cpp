@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "joint_test_util.hpp"
+#include "joint_tree.hpp"
 
 using namespace ragdoll_sim;
 using namespace ragdoll_sim::test;
@@ -137,5 +138,84 @@ TEST(JointTree, SplitIslandSameOnOneAndTwoThreads) {
     const Transform x1 = worlds[0]->bodyPose(BodyId{b}), x2 = worlds[1]->bodyPose(BodyId{b});
     ASSERT_EQ(std::memcmp(x1.p.data(), x2.p.data(), sizeof(double) * 3), 0) << "body " << b;
     ASSERT_EQ(std::memcmp(x1.q.coeffs().data(), x2.q.coeffs().data(), sizeof(double) * 4), 0);
+  }
+}
+
+namespace {
+
+// Two chains of three 1 kg bodies on ball joints, as one part of an island (no contact or
+// joint between them): chain 0 bodies 0..2, joints 0, 1; chain 1 bodies 3..5, joints 2, 3.
+// Each joint's anchors are 0.25 m out along x from its bodies' centres.
+struct TwoChains {
+  std::vector<SolverBody> bodies = std::vector<SolverBody>(6);
+  std::vector<Joint> joints;
+  TwoChains(double error0, double error1) {
+    for (SolverBody& b : bodies) {
+      b.inv_mass = 1.0;
+      b.inv_inertia = Mat3::Identity() * 100.0;
+    }
+    for (int c = 0; c < 2; ++c)
+      for (int k = 0; k < 2; ++k) {
+        BallJointDef d;
+        d.body_a = BodyId{3 * c + k};
+        d.body_b = BodyId{3 * c + k + 1};
+        Joint j(d);
+        j.anchor()->point.rA = Vec3(0.25, 0, 0);
+        j.anchor()->point.rB = Vec3(-0.25, 0, 0);
+        joints.push_back(j);
+      }
+    // anchor velocity errors of about error0 (chain 0) and error1 (chain 1), m/s
+    for (int b = 0; b < 6; ++b) {
+      const double e = b < 3 ? error0 : error1;
+      bodies[b].v = e * Vec3(0.3 * b, -0.7 * (b % 2), 0.2);
+      bodies[b].w = e * Vec3(0.1, 0.4 * (b % 3), -0.5);
+    }
+  }
+  // Projects the velocities of the chains in `chains` (0, 1 or both) as one part.
+  void project(const std::vector<int>& chains, double tolerance) {
+    std::vector<int> island_bodies;
+    std::vector<Joint*> js;
+    for (const int c : chains) {
+      for (int k = 0; k < 3; ++k) island_bodies.push_back(3 * c + k);
+      for (int k = 0; k < 2; ++k) js.push_back(&joints[2 * c + k]);
+    }
+    IslandRange p;
+    p.body_end = int(island_bodies.size());
+    p.joint_end = int(js.size());
+    JointTree tree;
+    tree.reserve(int(bodies.size()), p.body_end, p.joint_end);
+    tree.build(p, island_bodies, js.data(), bodies);
+    tree.projectVelocities(p, bodies, island_bodies, 1e-3, tolerance);
+  }
+};
+
+bool sameBits(const SolverBody& x, const SolverBody& y) {
+  return std::memcmp(x.v.data(), y.v.data(), sizeof(double) * 3) == 0 &&
+         std::memcmp(x.w.data(), y.w.data(), sizeof(double) * 3) == 0;
+}
+
+}  // namespace
+
+// Each tree stops on its own error: a chain whose anchors are within the tolerance is left as
+// it is, whatever the other trees of its part, so its bodies have the bits they have alone
+// (an island's arithmetic does not depend on the islands that share its range), and a chain
+// far off is solved as it is alone.
+TEST(JointTree, EachTreeStopsOnItsOwnError) {
+  const double tolerance = 1e-3;
+  TwoChains both(1.0, 1e-5), alone0(1.0, 1e-5), alone1(1.0, 1e-5);
+  both.project({0, 1}, tolerance);
+  alone0.project({0}, tolerance);
+  alone1.project({1}, tolerance);
+  for (int b = 0; b < 3; ++b) EXPECT_TRUE(sameBits(both.bodies[b], alone0.bodies[b])) << b;
+  for (int b = 3; b < 6; ++b) {
+    EXPECT_TRUE(sameBits(both.bodies[b], alone1.bodies[b])) << b;
+    EXPECT_TRUE(sameBits(both.bodies[b], TwoChains(1.0, 1e-5).bodies[b])) << b;  // untouched
+  }
+  // chain 0 was solved: its anchors' relative velocities are gone
+  for (int k = 0; k < 2; ++k) {
+    const Joint& j = both.joints[k];
+    const SolverBody &A = both.bodies[j.a], &B = both.bodies[j.b];
+    const Vec3 rA(0.25, 0, 0), rB(-0.25, 0, 0);
+    EXPECT_LT((B.v + B.w.cross(rB) - A.v - A.w.cross(rA)).norm(), 1e-9) << k;
   }
 }
