@@ -10,7 +10,8 @@ namespace ragdoll_sim {
 
 struct AnchorPart {
   PointPart point;
-  // The sweeps leave the rigid point part to the wide pass (point_lanes.hpp), set per step.
+  // The sweeps leave the rigid point part, and a hinge's axis part with it, to the wide pass
+  // (point_lanes.hpp), set per step.
   bool in_lanes = false;
 
   void prepare(const JointBase& j, const StepContext& ctx) {
