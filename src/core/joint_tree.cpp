@@ -63,6 +63,8 @@ void JointTree::reserve(int world_bodies, int island_bodies, int joints) {
     nodes_.resize(island_bodies);
     order_.resize(island_bodies);
     edge_count_.resize(island_bodies);
+    trees_.resize(island_bodies);
+    tree_count_.resize(island_bodies);
     uf_.resize(island_bodies);
     degree_.resize(island_bodies);
     adj_start_.resize(island_bodies);
@@ -184,6 +186,7 @@ void JointTree::build(const IslandRange& p, const std::vector<int>& island_bodie
     }
   }
   edge_count_[b0] = out;
+  recordTrees(p);
 }
 
 void JointTree::factor(const Tree& t, const std::vector<SolverBody>& solver,
@@ -241,11 +244,11 @@ void JointTree::solve(const Tree& t) {
   }
 }
 
-// The trees of part p in turn: build writes each tree's bodies (its root, then the rest breadth
-// first) as one run of order_ and its edges as one run of edges_, so a tree ends where every
-// body its edges reach has been counted.
-template <class F>
-void JointTree::forTrees(const IslandRange& p, F&& f) {
+// Build writes each tree's bodies (its root, then the rest breadth first) as one run of order_
+// and its edges as one run of edges_, so a tree ends where every body its edges reach has been
+// counted; the trees with an edge are kept at the part's slots for the projections.
+void JointTree::recordTrees(const IslandRange& p) {
+  int count = 0;
   for (int first = p.body_begin; first < p.body_end;) {
     Tree t{first, first + 1, 0, 0};
     for (int idx = first; idx < t.last; ++idx) {
@@ -254,9 +257,16 @@ void JointTree::forTrees(const IslandRange& p, F&& f) {
     }
     t.edge_begin = nodes_[order_[first]].first;
     t.edge_end = nodes_[order_[t.last - 1]].end;
-    if (t.edge_end > t.edge_begin) f(t);
+    if (t.edge_end > t.edge_begin) trees_[p.body_begin + count++] = t;
     first = t.last;
   }
+  tree_count_[p.body_begin] = count;
+}
+
+template <class F>
+void JointTree::forTrees(const IslandRange& p, F&& f) {
+  const int b0 = p.body_begin;
+  for (int k = 0; k < tree_count_[b0]; ++k) f(trees_[b0 + k]);
 }
 
 // Each body's total generalised impulse from its edges' lambda (node e, reused after solve).

@@ -97,6 +97,8 @@ class JointTree {
   struct Tree {
     int first, last, edge_begin, edge_end;
   };
+  // After build: part p's trees with an edge into its slots of trees_.
+  void recordTrees(const IslandRange& p);
   // f(tree) for each tree of part p with an edge.
   template <class F>
   void forTrees(const IslandRange& p, F&& f);
@@ -117,6 +119,8 @@ class JointTree {
   std::vector<Node> nodes_;        // by island_bodies slot
   std::vector<int> order_;         // per part slice: body slots, parents before children
   std::vector<int> edge_count_;    // at the part's body_begin
+  std::vector<Tree> trees_;        // per part slice: its trees with an edge (recordTrees)
+  std::vector<int> tree_count_;    // at the part's body_begin
   std::vector<Edge> edges_;        // per part slice of the joint range: grouped by parent
   // scratch for build: candidate edges (a moving body's slot per side, else -1) per joint
   // slot, union-find and visited marks, adjacency (per body slot: its start in adj_, count)
