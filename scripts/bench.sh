@@ -88,9 +88,11 @@ declare -A PEER_LIBS=(
   [bullet]="-I/usr/include/bullet -lBulletDynamics -lBulletCollision -lLinearMath -lurdfdom_model"
   [ode]="-lode -lurdfdom_model"
 )
+# engines of ours in ENGINES, and the --opt of each (bench_ragdoll prints engine=ragdoll_sim)
+declare -A OURS_OPTS=([ragdoll_sim]="" [ragdoll_sim_lanes0]="lanes=0")
 engines=()
 for e in $ENGINES; do
-  if [[ "$e" == ragdoll_sim || "$e" == ragdoll_sim_lanes0 ]]; then engines+=("$e"); continue; fi
+  if [[ -n "${OURS_OPTS[$e]+x}" ]]; then engines+=("$e"); continue; fi
   if [[ -z "${PEER_LIBS[$e]+x}" ]]; then echo "bench: unknown engine $e" >&2; exit 2; fi
   echo "bench: building peer $e from $PEERS_DIR"
   # shellcheck disable=SC2086  # PEER_LIBS holds several words
@@ -130,8 +132,7 @@ done
 } >>"$RAW_TMP"
 
 # ---- 3. runs
-# engines of ours in ENGINES, and the --opt of each (bench_ragdoll prints engine=ragdoll_sim)
-declare -A OURS_OPTS=([ragdoll_sim]="" [ragdoll_sim_lanes0]="lanes=0")
+# engines of ours in ENGINES (OURS_OPTS above)
 ours=()
 for e in "${engines[@]}"; do if [[ -n "${OURS_OPTS[$e]+x}" ]]; then ours+=("$e"); fi; done
 # run_one ROUND ENGINE SCENE [N]: one run; its line (with round=ROUND) or a "# FAILED" line.
