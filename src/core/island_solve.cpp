@@ -200,7 +200,9 @@ class World::Impl::IslandPass {
   // A joint sweep: with lanes, every joint's other parts, then the rigid anchors' wide pass
   // (last: the substep's last joint sweep, after which the impulses are read).
   void solveJoints(const IslandRange& p, bool use_bias, bool last) {
-    joints(p, [&](Joint& j) { solveJoint(j, ctx, use_bias); });
+    joints(p, [&](Joint& j) {
+      if (!j.sweeps_in_lanes) solveJoint(j, ctx, use_bias);
+    });
     if (wide) w.point_lanes.solve(p, w.solver, ctx, use_bias, last);
   }
   template <class F>

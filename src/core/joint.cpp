@@ -6,6 +6,7 @@ namespace ragdoll_sim {
 
 void prepareJoint(Joint& j, const StepContext& ctx) {
   j.moved_sweep = 0;
+  j.sweeps_in_lanes = false;
   if (j.impulse_h != ctx.h) {
     j.scaleImpulses(warmStartScale(j.impulse_h, ctx.h));
     j.impulse_h = ctx.h;

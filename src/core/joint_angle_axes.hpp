@@ -18,6 +18,9 @@ namespace ragdoll_sim {
 template <int N>
 struct AngleAxes {
   bool limits_enabled = false;
+  // The sweeps leave the limit rows to the wide pass (point_lanes.hpp), set per step; only
+  // when no motor is active, so the lanes hold every row these axes have.
+  bool in_lanes = false;
   std::array<JointMotor, N> motors;
   std::array<double, N> lower{}, upper{};
   std::array<AngleMotorPart, N> motor_parts;
@@ -67,6 +70,7 @@ struct AngleAxes {
   }
 
   void warmStart(SolverBody& A, SolverBody& B) const {
+    if (in_lanes) return;
     for (int i = 0; i < count; ++i) {
       motor_parts[i].warmStart(A, B, rows[i]);
       if (limits_enabled) limits[i].warmStart(A, B, rows[i]);
@@ -74,6 +78,7 @@ struct AngleAxes {
   }
 
   void solve(SolverBody& A, SolverBody& B, const StepContext& ctx, bool use_bias) {
+    if (in_lanes) return;
     for (int i = 0; i < count; ++i) {
       const Vec3& row = rows[i];
       motor_parts[i].solve(A, B, row, k[i], angles[i], motors[i], ctx, use_bias);

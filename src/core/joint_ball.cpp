@@ -24,7 +24,10 @@ BallJoint::BallJoint(const BallJointDef& def) : euler(def.axes) {
   axes.motors = def.motors;
 }
 
-void BallJoint::prepare(JointBase& j, const StepContext& ctx) { anchor.prepare(j, ctx); }
+void BallJoint::prepare(JointBase& j, const StepContext& ctx) {
+  axes.in_lanes = false;
+  anchor.prepare(j, ctx);
+}
 
 void BallJoint::updateAngles(const JointBase& j, const SolverBody& A, const SolverBody& B,
                              const StepContext& ctx) {

@@ -18,6 +18,7 @@ struct JointBase {
   JointSpring spring;
   bool broken = false;
   bool overloaded = false;  // the anchor reached break_force in this substep
+  bool sweeps_in_lanes = false;  // every row the sweeps would solve is in the wide pass this step
   int moved_sweep = 0;  // the last position sweep of the step in which it moved a body
   double force = 0.0;  // N in the anchor during the last substep
   double torque = 0.0;  // N m in a fixed joint's rotation lock during the last substep

@@ -12,6 +12,7 @@ HingeJoint::HingeJoint(const HingeJointDef& def)
 
 void HingeJoint::prepare(JointBase& j, const StepContext& ctx) {
   const auto& m = *ctx.motions;
+  axes.in_lanes = false;
   anchor.prepare(j, ctx);
   hinge_axis.prepare(m[j.a], m[j.b], axis_in_a, axis_in_b);
 }

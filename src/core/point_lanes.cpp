@@ -1,5 +1,6 @@
 #include "point_lanes.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "joint.hpp"
@@ -40,6 +41,65 @@ HingeAxisPart* hingeAxis(Joint& j) {
   HingeJoint* h = std::get_if<HingeJoint>(&j.kind);
   return h ? &h->hinge_axis : nullptr;
 }
+
+// f(axes) for the joint's angle axes (a ball's Euler angles, a hinge's angle), if it has them.
+template <class F>
+void withAngleAxes(Joint& j, F&& f) {
+  if (BallJoint* b = std::get_if<BallJoint>(&j.kind)) f(b->axes);
+  else if (HingeJoint* h = std::get_if<HingeJoint>(&j.kind)) f(h->axes);
+}
+
+// Marks the axes in the lanes when the lanes can hold all their rows (limits, no active motor)
+// and returns how many limit rows they bring (0: none).
+template <int N>
+int takeLimits(AngleAxes<N>& ax) {
+  ax.in_lanes = ax.limits_enabled && !ax.motorsActive();
+  return ax.in_lanes ? N : 0;
+}
+
+// The axes' rows at the current position state into lane i, rows [0, rows): an angle without
+// a row this substep (count < N: a ball near gimbal lock) gets j = 0 and an open range.
+// Whether the lanes hold every row the joint's sweeps solve (the limits with the anchor; not
+// a swing-twist limit or a motor, which stay scalar).
+bool sweepsInLanes(const Joint& j) {
+  if (const BallJoint* b = std::get_if<BallJoint>(&j.kind))
+    return !b->swing_twist_limits && (b->axes.in_lanes || !b->axes.rowsNeeded());
+  if (const HingeJoint* h = std::get_if<HingeJoint>(&j.kind))
+    return h->axes.in_lanes || !h->axes.rowsNeeded();
+  return false;  // a fixed joint's rotation lock
+}
+
+template <int N>
+void putLimitErrors(PointRowBlock& blk, int i, const AngleAxes<N>& ax, int rows) {
+  // A bound further than this is open for good; it keeps C / h finite in float.
+  constexpr double kFarOpen = 1e6;
+  for (int r = 0; r < rows; ++r) {
+    const bool used = r < ax.count;
+    const double lower = used ? ax.angles[r] - ax.lower[r] : 1.0;
+    const double upper = used ? ax.upper[r] - ax.angles[r] : 1.0;
+    blk.limit_c[r][0][i] = float(std::min(lower, kFarOpen));
+    blk.limit_c[r][1][i] = float(std::min(upper, kFarOpen));
+  }
+}
+
+template <int N>
+void putLimits(PointRowBlock& blk, int i, const AngleAxes<N>& ax, int rows) {
+  putLimitErrors(blk, i, ax, rows);
+  for (int r = 0; r < rows; ++r) {
+    const bool used = r < ax.count;
+    putVec(blk.limit_j[r], i, used ? ax.rows[r] : Vec3::Zero());
+    blk.limit_impulse[r][0][i] = used ? float(ax.limits[r].lower_impulse) : 0.0f;
+    blk.limit_impulse[r][1][i] = used ? float(ax.limits[r].upper_impulse) : 0.0f;
+  }
+}
+
+template <int N>
+void takeLimitImpulses(const PointRowBlock& blk, int i, AngleAxes<N>& ax) {
+  for (int r = 0; r < ax.count; ++r) {
+    ax.limits[r].lower_impulse = double(blk.limit_impulse[r][0][i]);
+    ax.limits[r].upper_impulse = double(blk.limit_impulse[r][1][i]);
+  }
+}
 }  // namespace
 
 void PointLanes::reserve(int joints) {
@@ -74,9 +134,11 @@ void PointLanes::build(const IslandRange& p, Joint* const* js,
   thread_local std::vector<GraphEdge> edges;
   thread_local std::vector<AnchorPart*> members;
   thread_local std::vector<HingeAxisPart*> axes;
+  thread_local std::vector<Joint*> joints;
   edges.clear();
   members.clear();
   axes.clear();
+  joints.clear();
   for (int k = p.joint_begin; k < p.joint_end; ++k) {
     Joint& j = *js[k];
     AnchorPart* anchor = j.anchor();
@@ -85,6 +147,7 @@ void PointLanes::build(const IslandRange& p, Joint* const* js,
     if (!da && !db) continue;
     members.push_back(anchor);
     axes.push_back(hingeAxis(j));
+    joints.push_back(&j);
     edges.push_back({j.a, j.b, da, db});
   }
   if (members != R->anchors || !sameEdges(edges, R->edges)) {
@@ -104,7 +167,7 @@ void PointLanes::build(const IslandRange& p, Joint* const* js,
         blk.body_a[i] = blk.body_b[i] = -1;
         if (c < 0) continue;
         const GraphEdge& e = edges[c];
-        R->lanes.push_back({members[c], axes[c], e.body_a, e.body_b, r, i});
+        R->lanes.push_back({joints[c], members[c], axes[c], e.body_a, e.body_b, r, i, 0});
         if (axes[c]) blk.axis_rows = 1;
         // a body the rows must not write stays -1, with inertia 0 in its lane
         if (e.dynamic_a) blk.body_a[i] = e.body_a;
@@ -112,12 +175,16 @@ void PointLanes::build(const IslandRange& p, Joint* const* js,
       }
     }
   }
-  // The joints' flags and the bodies' world inverse inertias and inverse masses (new every
-  // step; a body the rows do not move counts as 0, as in pointMass).
+  // The joints' flags, their limit rows, and the bodies' world inverse inertias and inverse
+  // masses (new every step; a body the rows do not move counts as 0, as in pointMass).
+  for (PointRowBlock& blk : R->blocks) blk.limit_rows = 0;
   for (Lane& l : R->lanes) {
     PointRowBlock& blk = R->blocks[l.block];
     const int i = l.lane;
     l.anchor->in_lanes = true;  // and a hinge's axis with it (HingeJoint)
+    withAngleAxes(*l.joint, [&](auto& ax) { l.limit_rows = takeLimits(ax); });
+    l.joint->sweeps_in_lanes = sweepsInLanes(*l.joint);
+    blk.limit_rows = std::max(blk.limit_rows, l.limit_rows);
     double inv_mass = 0.0;
     if (blk.body_a[i] >= 0) {
       putSymmetric(blk.ii_a, i, bodies[l.a].inv_inertia);
@@ -145,6 +212,13 @@ void PointLanes::load(const IslandRange& p, std::vector<SolverBody>& bodies,
     }
     putVec(blk.error, i, pt.error(bodies[l.a], bodies[l.b]));
     putVec(blk.impulse, i, pt.impulse);
+    // every lane of a block with limit rows writes them: a lane without limits has j = 0
+    if (l.limit_rows) {
+      withAngleAxes(*l.joint, [&](auto& ax) { putLimits(blk, i, ax, blk.limit_rows); });
+    } else if (blk.limit_rows) {
+      static const AngleAxes<1> kNone;
+      putLimits(blk, i, kNone, blk.limit_rows);
+    }
     if (!l.axis) continue;
     if (anchors_moved) putAxis(blk, i, *l.axis);
     putPair(blk.axis_impulse, i, l.axis->impulse);
@@ -162,6 +236,9 @@ void PointLanes::refreshAnchors(const IslandRange& p) {
     putVec(blk.r_a, i, l.anchor->point.rA);
     putVec(blk.r_b, i, l.anchor->point.rB);
     if (l.axis) putAxis(blk, i, *l.axis);
+    // the angles advanced with the positions (AngleAxes::advance); the rows are kept
+    if (l.limit_rows)
+      withAngleAxes(*l.joint, [&](auto& ax) { putLimitErrors(blk, i, ax, blk.limit_rows); });
   }
 }
 
@@ -174,6 +251,7 @@ void PointLanes::solve(const IslandRange& p, std::vector<SolverBody>& bodies,
   params.bias_rate = float(s.bias_rate);
   params.mass_scale = float(s.mass_scale);
   params.impulse_scale = float(s.impulse_scale);
+  params.inv_h = float(ctx.inv_h);
   params.use_bias = use_bias;
   const LaneBodies view = laneBodies(bodies.data());
   solvePointRows(ctx.lanes, R->blocks.data(), int(R->blocks.size()), view, params);
@@ -182,6 +260,7 @@ void PointLanes::solve(const IslandRange& p, std::vector<SolverBody>& bodies,
     const PointRowBlock& blk = R->blocks[l.block];
     const int i = l.lane;
     for (int k = 0; k < 3; ++k) l.anchor->point.impulse[k] = double(blk.impulse[k][i]);
+    if (l.limit_rows) withAngleAxes(*l.joint, [&](auto& ax) { takeLimitImpulses(blk, i, ax); });
     if (l.axis)
       l.axis->impulse = {double(blk.axis_impulse[0][i]), double(blk.axis_impulse[1][i])};
   }

@@ -1,6 +1,6 @@
-// The rigid point part of a joint anchor (part_point.hpp), and a hinge's axis part
-// (part_hinge_axis.hpp) with it, solved for a block of joints at once in float lanes (the
-// derivations are at the top of point_row_wide.inc).
+// The rigid point part of a joint anchor (part_point.hpp), with a hinge's axis part
+// (part_hinge_axis.hpp) and the joint's angle limits (part_angle_limit.hpp), solved for a block
+// of joints at once in float lanes (the derivations are at the top of point_row_wide.inc).
 // Plain records and declarations only: the AVX2 kernel file includes this header too (see
 // lanes.hpp for why it must hold no inline code).
 #pragma once
@@ -11,6 +11,9 @@
 #include "normal_row_wide.hpp"
 
 namespace ragdoll_sim {
+
+// A ball joint's three Euler angles.
+constexpr int kLimitRows = 3;
 
 // One block of point parts, kRowBlock lanes whatever the width (normal_row_wide.hpp), structure
 // of arrays: field[i] belongs to lane i. Symmetric 3x3 matrices are stored as their six entries
@@ -30,7 +33,15 @@ struct alignas(64) PointRowBlock {
   float axis_k_inv[3][kRowBlock];                      // 2x2 K^-1 as xx, yy, xy
   float axis_error[2][kRowBlock];                      // C
   float axis_impulse[2][kRowBlock];                    // accumulated over the substep
-  int32_t axis_rows;                                   // nonzero: some lane holds a hinge
+  // The joint's angle limit rows (a ball's three Euler angles, a hinge's one), each a lower and
+  // an upper inequality row on the same j; a lane's unused rows have j = 0 and C open.
+  float limit_j[kLimitRows][3][kRowBlock];       // j (world): theta_dot = j . (wB - wA)
+  float limit_ij[kLimitRows][3][kRowBlock];      // (IA^-1 + IB^-1) j, formed by the warm start
+  float limit_k_inv[kLimitRows][kRowBlock];      // 1 / (j . (IA^-1 + IB^-1) j), or 0
+  float limit_c[kLimitRows][2][kRowBlock];       // theta - lower, upper - theta
+  float limit_impulse[kLimitRows][2][kRowBlock]; // lower, upper: accumulated, >= 0
+  int32_t limit_rows;                            // rows [0, limit_rows) hold some lane's limit
+  int32_t axis_rows;                             // nonzero: some lane holds a hinge
 };
 static_assert(sizeof(PointRowBlock) % 64 == 0, "a block is whole cache lines");
 
@@ -39,6 +50,7 @@ struct PointRowParams {
   float bias_rate = 0.0f;
   float mass_scale = 1.0f;
   float impulse_scale = 0.0f;
+  float inv_h = 0.0f;  // a limit row inside its range is speculative: bias C / h
   bool use_bias = false;
 };
 

@@ -1,7 +1,9 @@
 // Helpers shared by the joint tests (test_joint_*.cpp).
 #pragma once
 
+#include <algorithm>
 #include <limits>
+#include <tuple>
 #include <utility>
 
 #include "ragdoll_sim/world.hpp"
@@ -64,6 +66,46 @@ inline BodyId addBall(World& w, double mass, const Vec3& pos) {
   d.inertia = Mat3::Identity() * 0.01 * mass;
   return w.createBody(d);
 }
+
+// A static anchor and an arm (1 kg, COM 0.3 m out along x, inertia 0.01) at the origin,
+// started spinning at `spin`: {anchor, arm}.
+inline std::pair<BodyId, BodyId> addAnchoredArm(World& w, const Vec3& spin = Vec3::Zero()) {
+  BodyDef anchor_def;
+  anchor_def.type = BodyType::Static;
+  BodyDef arm;
+  arm.mass = 1.0;
+  arm.com = Vec3(0.3, 0.0, 0.0);
+  arm.inertia = Mat3::Identity() * 0.01;
+  arm.angular_velocity = spin;
+  const BodyId anchor = w.createBody(anchor_def);
+  return {anchor, w.createBody(arm)};
+}
+
+// The arm on its anchor through a ball joint with Euler limits (y-x-z, as a URDF chain),
+// started spinning at `spin`; steps it and returns the worst excess of an angle over its range.
+struct LimitedArm {
+  World w;
+  BallJointDef bj;
+  JointId joint;
+  LimitedArm(const WorldDef& wd, const Vec3& spin) : w(wd) {
+    std::tie(bj.body_a, bj.body_b) = addAnchoredArm(w, spin);
+    bj.axes = {Vec3::UnitY(), Vec3::UnitX(), Vec3::UnitZ()};
+    bj.enable_limits = true;
+    bj.lower = {-0.5, -0.3, -0.4};
+    bj.upper = {0.6, 0.3, 0.2};
+    joint = w.createBallJoint(bj);
+  }
+  double stepWorstExcess(int steps) {
+    double worst = 0.0;
+    for (int i = 0; i < steps; ++i) {
+      w.step(kDt);
+      const auto t = w.ballAngles(joint);
+      for (int k = 0; k < 3; ++k)
+        worst = std::max({worst, bj.lower[k] - t[k], t[k] - bj.upper[k]});
+    }
+    return worst;
+  }
+};
 
 }  // namespace test
 }  // namespace ragdoll_sim

@@ -5,50 +5,12 @@
 #include <cmath>
 
 #include "joint_angles.hpp"
+#include "joint_test_util.hpp"
 #include "ragdoll_sim/world.hpp"
 #include "scene_util.hpp"
 
 using namespace ragdoll_sim;
 using namespace ragdoll_sim::test;
-
-namespace {
-constexpr double kDt = 1e-3;
-
-// An arm (1 kg, COM 0.3 m out) on a static anchor through a ball joint with Euler limits
-// (y-x-z, as a URDF chain), started spinning at `spin`; steps it and returns the worst excess
-// of an angle over its range.
-struct LimitedArm {
-  World w;
-  BallJointDef bj;
-  JointId joint;
-  LimitedArm(const WorldDef& wd, const Vec3& spin) : w(wd) {
-    BodyDef anchor_def;
-    anchor_def.type = BodyType::Static;
-    BodyDef arm;
-    arm.mass = 1.0;
-    arm.com = Vec3(0.3, 0.0, 0.0);
-    arm.inertia = Mat3::Identity() * 0.01;
-    arm.angular_velocity = spin;
-    bj.body_a = w.createBody(anchor_def);
-    bj.body_b = w.createBody(arm);
-    bj.axes = {Vec3::UnitY(), Vec3::UnitX(), Vec3::UnitZ()};
-    bj.enable_limits = true;
-    bj.lower = {-0.5, -0.3, -0.4};
-    bj.upper = {0.6, 0.3, 0.2};
-    joint = w.createBallJoint(bj);
-  }
-  double stepWorstExcess(int steps) {
-    double worst = 0.0;
-    for (int i = 0; i < steps; ++i) {
-      w.step(kDt);
-      const auto t = w.ballAngles(joint);
-      for (int k = 0; k < 3; ++k)
-        worst = std::max({worst, bj.lower[k] - t[k], t[k] - bj.upper[k]});
-    }
-    return worst;
-  }
-};
-}  // namespace
 
 TEST(World, BallJointEulerLimitsHold) {
   LimitedArm arm(WorldDef(), Vec3(3.0, -2.0, 4.0));

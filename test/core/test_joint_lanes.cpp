@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
-#include <cstring>
 #include <random>
 #include <vector>
 
@@ -16,6 +15,7 @@
 #include "lane_width.hpp"
 #include "part_hinge_axis.hpp"
 #include "part_point.hpp"
+#include "point_row_test_util.hpp"
 #include "point_row_wide.hpp"
 #include "ragdoll_sim/state_hash.hpp"
 #include "ragdoll_sim/world.hpp"
@@ -112,26 +112,6 @@ PointRowBlock makeBlock(const KernelCase& k) {
   return b;
 }
 
-PointRowParams paramsOf(const Softness& s, bool use_bias) {
-  const Softness r = s.orRigid(use_bias);
-  PointRowParams p;
-  p.bias_rate = float(r.bias_rate);
-  p.mass_scale = float(r.mass_scale);
-  p.impulse_scale = float(r.impulse_scale);
-  p.use_bias = use_bias;
-  return p;
-}
-
-const Softness kSoft = Softness::make(60.0, 5.0, 1.0 / 960.0);
-
-// The warm start, a biased sweep and a relax sweep at lane width `width`.
-void runLanes(int width, PointRowBlock& b, std::vector<SolverBody>& bodies) {
-  const LaneBodies view = laneBodies(bodies.data());
-  warmStartPointRows(width, &b, 1, view);
-  for (const bool use_bias : {true, false})
-    solvePointRows(width, &b, 1, view, paramsOf(kSoft, use_bias));
-}
-
 // The same in double, each joint's axis before its anchor (HingeJoint's order).
 void runDouble(KernelCase& k) {
   for (int l = 0; l < kRowBlock; ++l) {
@@ -143,8 +123,8 @@ void runDouble(KernelCase& k) {
     k.points[l].updateMass(A, B, 0.0, true);
     k.points[l].warmStart(A, B);
     for (const bool use_bias : {true, false}) {
-      if (l < kHinges) k.axes[l].solve(A, B, kSoft, use_bias);
-      k.points[l].solve(A, B, kSoft, use_bias);
+      if (l < kHinges) k.axes[l].solve(A, B, kLaneSoft, use_bias);
+      k.points[l].solve(A, B, kLaneSoft, use_bias);
     }
   }
 }
@@ -223,18 +203,7 @@ TEST(JointLanes, HingeAxisKernelMatchesDoubleParts) {
     EXPECT_LT(worst, 2e-5) << "seed " << seed;
     EXPECT_GT(moved, 0.05) << "the sweeps changed the axis impulses (seed " << seed << ")";
     std::printf("[ kernel   ] seed %u: worst relative difference to double %.2e\n", seed, worst);
-    if (!cpuHasAvx2()) continue;
-    PointRowBlock b8 = makeBlock(makeCase(seed));
-    std::vector<SolverBody> f8 = start;
-    runLanes(8, b8, f8);
-    // the fields, not the padding after them
-    const size_t fields = offsetof(PointRowBlock, axis_rows) + sizeof b4.axis_rows;
-    EXPECT_EQ(std::memcmp(&b4, &b8, fields), 0) << "blocks, seed " << seed;
-    for (size_t i = 0; i < start.size(); ++i)
-      for (int c = 0; c < 3; ++c) {
-        EXPECT_EQ(f4[i].v[c], f8[i].v[c]);
-        EXPECT_EQ(f4[i].w[c], f8[i].w[c]);
-      }
+    if (cpuHasAvx2()) expectEightLanesSameBits(makeBlock(makeCase(seed)), start, b4, f4);
   }
 }
 
