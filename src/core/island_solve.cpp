@@ -131,7 +131,7 @@ class World::Impl::IslandPass {
       w.contact_solver.solve(ctx, true, p.contact_begin, p.contact_end, false);
       w.integratePositions(ctx.h, p.body_begin, p.body_end);
       joints(p, [&](Joint& j) { advanceJoint(j, ctx); });
-      if (wide) w.point_lanes.refreshAnchors(p);
+      if (wide) w.point_lanes.refreshAnchors(p, ctx);
     });
   }
 

@@ -18,8 +18,7 @@ namespace ragdoll_sim {
 template <int N>
 struct AngleAxes {
   bool limits_enabled = false;
-  // The sweeps leave the limit rows to the wide pass (point_lanes.hpp), set per step; only
-  // when no motor is active, so the lanes hold every row these axes have.
+  // The sweeps leave the motor and limit rows to the wide pass (point_lanes.hpp), set per step.
   bool in_lanes = false;
   std::array<JointMotor, N> motors;
   std::array<double, N> lower{}, upper{};

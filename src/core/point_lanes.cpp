@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "joint.hpp"
+#include "softness.hpp"
 
 namespace ragdoll_sim {
 
@@ -49,18 +50,16 @@ void withAngleAxes(Joint& j, F&& f) {
   else if (HingeJoint* h = std::get_if<HingeJoint>(&j.kind)) f(h->axes);
 }
 
-// Marks the axes in the lanes when the lanes can hold all their rows (limits, no active motor)
-// and returns how many limit rows they bring (0: none).
+// Marks the axes in the lanes when they have rows to solve (limits, a motor or damping) and
+// returns how many angle rows they bring (0: none).
 template <int N>
-int takeLimits(AngleAxes<N>& ax) {
-  ax.in_lanes = ax.limits_enabled && !ax.motorsActive();
+int takeAngles(AngleAxes<N>& ax) {
+  ax.in_lanes = ax.rowsNeeded();
   return ax.in_lanes ? N : 0;
 }
 
-// The axes' rows at the current position state into lane i, rows [0, rows): an angle without
-// a row this substep (count < N: a ball near gimbal lock) gets j = 0 and an open range.
-// Whether the lanes hold every row the joint's sweeps solve (the limits with the anchor; not
-// a swing-twist limit or a motor, which stay scalar).
+// Whether the lanes hold every row the joint's sweeps solve (the angles with the anchor; not
+// a swing-twist limit, which stays scalar).
 bool sweepsInLanes(const Joint& j) {
   if (const BallJoint* b = std::get_if<BallJoint>(&j.kind))
     return !b->swing_twist_limits && (b->axes.in_lanes || !b->axes.rowsNeeded());
@@ -69,35 +68,59 @@ bool sweepsInLanes(const Joint& j) {
   return false;  // a fixed joint's rotation lock
 }
 
+// What moves with the angles, rows [0, rows) of lane i: the limits' C and a position motor's
+// bias. An angle without a row this substep (count < N: a ball near gimbal lock), or without a
+// limit or a drive, gets an open range and no drive.
 template <int N>
-void putLimitErrors(PointRowBlock& blk, int i, const AngleAxes<N>& ax, int rows) {
+void putAngleErrors(PointRowBlock& blk, int i, const AngleAxes<N>& ax, int rows, double h) {
   // A bound further than this is open for good; it keeps C / h finite in float.
   constexpr double kFarOpen = 1e6;
   for (int r = 0; r < rows; ++r) {
     const bool used = r < ax.count;
-    const double lower = used ? ax.angles[r] - ax.lower[r] : 1.0;
-    const double upper = used ? ax.upper[r] - ax.angles[r] : 1.0;
+    const bool limit = used && ax.limits_enabled;
+    const double lower = limit ? ax.angles[r] - ax.lower[r] : 1.0;
+    const double upper = limit ? ax.upper[r] - ax.angles[r] : 1.0;
     blk.limit_c[r][0][i] = float(std::min(lower, kFarOpen));
     blk.limit_c[r][1][i] = float(std::min(upper, kFarOpen));
+    if (!blk.motor_rows) continue;
+    const JointMotor* m = used ? &ax.motors[r] : nullptr;
+    double bias = 0.0, mass_scale = 0.0, impulse_scale = 0.0;
+    if (m && m->enabled && m->hertz > 0.0) {
+      const Softness soft = Softness::make(m->hertz, m->damping_ratio, h);
+      bias = soft.bias_rate * (ax.angles[r] - m->target);
+      mass_scale = soft.mass_scale;
+      impulse_scale = soft.impulse_scale;
+    } else if (m && m->enabled) {
+      bias = -m->target_velocity;
+      mass_scale = 1.0;
+    }
+    blk.motor_bias[r][i] = float(bias);
+    blk.motor_mass_scale[r][i] = float(mass_scale);
+    blk.motor_impulse_scale[r][i] = float(impulse_scale);
+    blk.motor_max[r][i] = m && m->enabled ? float(m->max_torque * h) : 0.0f;
+    blk.motor_hc[r][i] = m && m->damping > 0.0 ? float(h * m->damping) : 0.0f;
   }
 }
 
+// Rows [0, rows) of lane i at the current position state: the above, j and the impulses.
 template <int N>
-void putLimits(PointRowBlock& blk, int i, const AngleAxes<N>& ax, int rows) {
-  putLimitErrors(blk, i, ax, rows);
+void putAngles(PointRowBlock& blk, int i, const AngleAxes<N>& ax, int rows, double h) {
+  putAngleErrors(blk, i, ax, rows, h);
   for (int r = 0; r < rows; ++r) {
     const bool used = r < ax.count;
-    putVec(blk.limit_j[r], i, used ? ax.rows[r] : Vec3::Zero());
+    putVec(blk.angle_j[r], i, used ? ax.rows[r] : Vec3::Zero());
     blk.limit_impulse[r][0][i] = used ? float(ax.limits[r].lower_impulse) : 0.0f;
     blk.limit_impulse[r][1][i] = used ? float(ax.limits[r].upper_impulse) : 0.0f;
+    if (blk.motor_rows) blk.motor_impulse[r][i] = used ? float(ax.motor_parts[r].impulse) : 0.0f;
   }
 }
 
 template <int N>
-void takeLimitImpulses(const PointRowBlock& blk, int i, AngleAxes<N>& ax) {
+void takeAngleImpulses(const PointRowBlock& blk, int i, AngleAxes<N>& ax) {
   for (int r = 0; r < ax.count; ++r) {
     ax.limits[r].lower_impulse = double(blk.limit_impulse[r][0][i]);
     ax.limits[r].upper_impulse = double(blk.limit_impulse[r][1][i]);
+    if (blk.motor_rows) ax.motor_parts[r].impulse = double(blk.motor_impulse[r][i]);
   }
 }
 }  // namespace
@@ -177,14 +200,17 @@ void PointLanes::build(const IslandRange& p, Joint* const* js,
   }
   // The joints' flags, their limit rows, and the bodies' world inverse inertias and inverse
   // masses (new every step; a body the rows do not move counts as 0, as in pointMass).
-  for (PointRowBlock& blk : R->blocks) blk.limit_rows = 0;
+  for (PointRowBlock& blk : R->blocks) blk.angle_rows = blk.motor_rows = 0;
   for (Lane& l : R->lanes) {
     PointRowBlock& blk = R->blocks[l.block];
     const int i = l.lane;
     l.anchor->in_lanes = true;  // and a hinge's axis with it (HingeJoint)
-    withAngleAxes(*l.joint, [&](auto& ax) { l.limit_rows = takeLimits(ax); });
+    withAngleAxes(*l.joint, [&](auto& ax) {
+      l.angle_rows = takeAngles(ax);
+      if (ax.motorsActive()) blk.motor_rows = 1;
+    });
     l.joint->sweeps_in_lanes = sweepsInLanes(*l.joint);
-    blk.limit_rows = std::max(blk.limit_rows, l.limit_rows);
+    blk.angle_rows = std::max(blk.angle_rows, l.angle_rows);
     double inv_mass = 0.0;
     if (blk.body_a[i] >= 0) {
       putSymmetric(blk.ii_a, i, bodies[l.a].inv_inertia);
@@ -213,11 +239,11 @@ void PointLanes::load(const IslandRange& p, std::vector<SolverBody>& bodies,
     putVec(blk.error, i, pt.error(bodies[l.a], bodies[l.b]));
     putVec(blk.impulse, i, pt.impulse);
     // every lane of a block with limit rows writes them: a lane without limits has j = 0
-    if (l.limit_rows) {
-      withAngleAxes(*l.joint, [&](auto& ax) { putLimits(blk, i, ax, blk.limit_rows); });
-    } else if (blk.limit_rows) {
+    if (l.angle_rows) {
+      withAngleAxes(*l.joint, [&](auto& ax) { putAngles(blk, i, ax, blk.angle_rows, ctx.h); });
+    } else if (blk.angle_rows) {
       static const AngleAxes<1> kNone;
-      putLimits(blk, i, kNone, blk.limit_rows);
+      putAngles(blk, i, kNone, blk.angle_rows, ctx.h);
     }
     if (!l.axis) continue;
     if (anchors_moved) putAxis(blk, i, *l.axis);
@@ -227,7 +253,7 @@ void PointLanes::load(const IslandRange& p, std::vector<SolverBody>& bodies,
   warmStartPointRows(ctx.lanes, R->blocks.data(), int(R->blocks.size()), view);
 }
 
-void PointLanes::refreshAnchors(const IslandRange& p) {
+void PointLanes::refreshAnchors(const IslandRange& p, const StepContext& ctx) {
   Range* R = rangeOf(p);
   if (!R) return;
   for (const Lane& l : R->lanes) {
@@ -237,8 +263,8 @@ void PointLanes::refreshAnchors(const IslandRange& p) {
     putVec(blk.r_b, i, l.anchor->point.rB);
     if (l.axis) putAxis(blk, i, *l.axis);
     // the angles advanced with the positions (AngleAxes::advance); the rows are kept
-    if (l.limit_rows)
-      withAngleAxes(*l.joint, [&](auto& ax) { putLimitErrors(blk, i, ax, blk.limit_rows); });
+    if (l.angle_rows)
+      withAngleAxes(*l.joint, [&](auto& ax) { putAngleErrors(blk, i, ax, blk.angle_rows, ctx.h); });
   }
 }
 
@@ -260,7 +286,7 @@ void PointLanes::solve(const IslandRange& p, std::vector<SolverBody>& bodies,
     const PointRowBlock& blk = R->blocks[l.block];
     const int i = l.lane;
     for (int k = 0; k < 3; ++k) l.anchor->point.impulse[k] = double(blk.impulse[k][i]);
-    if (l.limit_rows) withAngleAxes(*l.joint, [&](auto& ax) { takeLimitImpulses(blk, i, ax); });
+    if (l.angle_rows) withAngleAxes(*l.joint, [&](auto& ax) { takeAngleImpulses(blk, i, ax); });
     if (l.axis)
       l.axis->impulse = {double(blk.axis_impulse[0][i]), double(blk.axis_impulse[1][i])};
   }

@@ -1,9 +1,9 @@
 // The wide pass over the joint anchors (SolverSettings::lanes 4 or 8): the rigid point parts
 // (part_point.hpp) of an island range's unbroken ball, hinge and fixed joints are solved in
 // float lanes (point_row_wide.hpp) after each joint sweep has solved the joints' other parts;
-// a hinge's axis part (part_hinge_axis.hpp) and the angle limits of a ball or hinge without an
-// active motor (joint_angle_axes.hpp) go into the anchor's lane and solve first there: the
-// limits, the axis, the anchor, as the scalar joint orders them.
+// a hinge's axis part (part_hinge_axis.hpp) and the angle motors and limits of a ball or hinge
+// (joint_angle_axes.hpp) go into the anchor's lane and solve first there: the angles, the
+// axis, the anchor, as the scalar joint orders them.
 //
 // Per step, the range's joints whose anchor is rigid and unbreakable (no spring, infinite
 // break force and torque: no such joint breaks within the step, so the batches stay valid)
@@ -13,12 +13,12 @@
 // inverse inertias and inverse masses go into the blocks once per step, the anchors and the
 // hinge axes' U and C (formed in double, HingeAxisPart::refresh) once per position state (the
 // first substep's warm start, then after each position update). Each substep the blocks take
-// C and the impulses (and the limits' rows, angles and impulses, computed in double by the
-// joint's warm start), and the kernel forms K^-1 from the anchors (and axes) and applies the
+// C and the impulses (and the angles' rows, errors, motor terms and impulses, the angles
+// computed in double by the joint's warm start), and the kernel forms K^-1 from the anchors (and axes) and applies the
 // warm start, colour by colour, in place of the joints' scalar ones. The kernels read and write
 // the double solver bodies themselves (the impulse reaches v through the double inverse
 // masses). After the substep's last joint sweep the impulses go back to PointPart::impulse,
-// HingeAxisPart::impulse and the AngleLimitParts in double, so whatever reads them later
+// HingeAxisPart::impulse and the angle parts in double, so whatever reads them later
 // (forces, breaks, the joint trees, which add to them, the next warm start) sees them.
 //
 // Ranges are prepared and solved on different threads: each range keeps its own storage, found
@@ -54,8 +54,9 @@ class PointLanes {
   // refreshAnchors put after the last position update); then K^-1 and the warm start in lanes.
   void load(const IslandRange& p, std::vector<SolverBody>& bodies, const StepContext& ctx,
             bool anchors_moved);
-  // After the range's joints advanced: the refreshed anchors and the advanced limit angles.
-  void refreshAnchors(const IslandRange& p);
+  // After the range's joints advanced: the refreshed anchors and what moves with the advanced
+  // angles (limit errors, position motors' bias).
+  void refreshAnchors(const IslandRange& p, const StepContext& ctx);
   // One wide pass over the range's blocks, colour by colour; sync: the impulses back to the
   // joints (the substep's last joint sweep).
   void solve(const IslandRange& p, std::vector<SolverBody>& bodies, const StepContext& ctx,
@@ -69,7 +70,7 @@ class PointLanes {
     HingeAxisPart* axis;
     int a, b;
     int block, lane;
-    int limit_rows;  // the joint's angle limit rows in the lane this step (0: none)
+    int angle_rows;  // the joint's angle rows in the lane this step (0: none)
   };
   struct alignas(64) Range {  // its own cache lines (allocated by the thread that builds it)
     std::vector<Lane> lanes;

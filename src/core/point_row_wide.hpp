@@ -1,6 +1,6 @@
 // The rigid point part of a joint anchor (part_point.hpp), with a hinge's axis part
-// (part_hinge_axis.hpp) and the joint's angle limits (part_angle_limit.hpp), solved for a block
-// of joints at once in float lanes (the derivations are at the top of point_row_wide.inc).
+// (part_hinge_axis.hpp) and the joint's angle motors and limits (joint_angle_axes.hpp), solved
+// for a block of joints at once in float lanes (derivations at the top of point_row_wide.inc).
 // Plain records and declarations only: the AVX2 kernel file includes this header too (see
 // lanes.hpp for why it must hold no inline code).
 #pragma once
@@ -13,7 +13,7 @@
 namespace ragdoll_sim {
 
 // A ball joint's three Euler angles.
-constexpr int kLimitRows = 3;
+constexpr int kAngleRows = 3;
 
 // One block of point parts, kRowBlock lanes whatever the width (normal_row_wide.hpp), structure
 // of arrays: field[i] belongs to lane i. Symmetric 3x3 matrices are stored as their six entries
@@ -33,15 +33,27 @@ struct alignas(64) PointRowBlock {
   float axis_k_inv[3][kRowBlock];                      // 2x2 K^-1 as xx, yy, xy
   float axis_error[2][kRowBlock];                      // C
   float axis_impulse[2][kRowBlock];                    // accumulated over the substep
-  // The joint's angle limit rows (a ball's three Euler angles, a hinge's one), each a lower and
-  // an upper inequality row on the same j; a lane's unused rows have j = 0 and C open.
-  float limit_j[kLimitRows][3][kRowBlock];       // j (world): theta_dot = j . (wB - wA)
-  float limit_ij[kLimitRows][3][kRowBlock];      // (IA^-1 + IB^-1) j, formed by the warm start
-  float limit_k_inv[kLimitRows][kRowBlock];      // 1 / (j . (IA^-1 + IB^-1) j), or 0
-  float limit_c[kLimitRows][2][kRowBlock];       // theta - lower, upper - theta
-  float limit_impulse[kLimitRows][2][kRowBlock]; // lower, upper: accumulated, >= 0
-  int32_t limit_rows;                            // rows [0, limit_rows) hold some lane's limit
-  int32_t axis_rows;                             // nonzero: some lane holds a hinge
+  // The joint's angle rows (a ball's three Euler angles, a hinge's one): per angle a motor, then
+  // a lower and an upper limit row, all on the same j; a lane's unused rows have j = 0, C open
+  // and no motor.
+  float angle_j[kAngleRows][3][kRowBlock];         // j (world): theta_dot = j . (wB - wA)
+  float angle_ij[kAngleRows][3][kRowBlock];        // (IA^-1 + IB^-1) j, formed by the warm start
+  float angle_k_inv[kAngleRows][kRowBlock];        // 1 / (j . (IA^-1 + IB^-1) j), or 0
+  float limit_c[kAngleRows][2][kRowBlock];         // theta - lower, upper - theta (open: > 0)
+  float limit_impulse[kAngleRows][2][kRowBlock];   // lower, upper: accumulated, >= 0
+  // The motor (part_angle_motor.hpp): lambda = -mass_scale (x + bias) / k - impulse_scale acc,
+  // clamped to +-max; position target: the motor softness's scales and bias_rate (theta -
+  // target); velocity target: 1, 0 and -target_velocity; no drive: all 0.
+  float motor_bias[kAngleRows][kRowBlock];
+  float motor_mass_scale[kAngleRows][kRowBlock];
+  float motor_impulse_scale[kAngleRows][kRowBlock];
+  float motor_max[kAngleRows][kRowBlock];          // max_torque h
+  float motor_hc[kAngleRows][kRowBlock];           // h c of the viscous damping c (0: none)
+  float motor_damp_mass[kAngleRows][kRowBlock];    // 1 / (k + 1 / (h c)), formed by the warm start
+  float motor_impulse[kAngleRows][kRowBlock];      // the drive's, accumulated
+  int32_t angle_rows;                              // rows [0, angle_rows) hold some lane's angle
+  int32_t motor_rows;                              // nonzero: some lane has a motor or damping
+  int32_t axis_rows;                               // nonzero: some lane holds a hinge
 };
 static_assert(sizeof(PointRowBlock) % 64 == 0, "a block is whole cache lines");
 

@@ -68,7 +68,7 @@ LimitCase makeCase(unsigned seed) {
 
 PointRowBlock makeBlock(const LimitCase& k) {
   PointRowBlock b{};
-  b.limit_rows = 3;
+  b.angle_rows = 3;
   for (int l = 0; l < kRowBlock; ++l) {
     const SolverBody &A = k.bodies[2 * l], &B = k.bodies[2 * l + 1];
     b.body_a[l] = 2 * l, b.body_b[l] = 2 * l + 1;
@@ -77,7 +77,7 @@ PointRowBlock makeBlock(const LimitCase& k) {
     for (int c = 0; c < 6; ++c) b.ii_a[c][l] = float(ea[c]), b.ii_b[c][l] = float(eb[c]);
     for (int r = 0; r < 3; ++r) {
       const bool used = l < kUsed;
-      for (int c = 0; c < 3; ++c) b.limit_j[r][c][l] = used ? float(k.rows[l][r][c]) : 0.0f;
+      for (int c = 0; c < 3; ++c) b.angle_j[r][c][l] = used ? float(k.rows[l][r][c]) : 0.0f;
       b.limit_c[r][0][l] = used ? float(k.lower_c[l][r]) : 1.0f;
       b.limit_c[r][1][l] = used ? float(k.upper_c[l][r]) : 1.0f;
       b.limit_impulse[r][0][l] = used ? float(k.parts[l][r].lower_impulse) : 0.0f;
