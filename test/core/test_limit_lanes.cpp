@@ -138,6 +138,7 @@ struct HingeArm {
 TEST(LimitLanes, KernelMatchesDoubleParts) {
   for (const unsigned seed : {1u, 2u, 3u}) {
     LimitCase d = makeCase(seed);
+    const LimitCase before = d;
     const std::vector<SolverBody> start = d.bodies;
     PointRowBlock b4 = makeBlock(d);
     std::vector<SolverBody> f4 = start;
@@ -152,7 +153,7 @@ TEST(LimitLanes, KernelMatchesDoubleParts) {
           continue;
         }
         const AngleLimitPart& p = d.parts[l][r];
-        const AngleLimitPart& p0 = makeCase(seed).parts[l][r];
+        const AngleLimitPart& p0 = before.parts[l][r];
         worst = std::max({worst, std::abs(b4.limit_impulse[r][0][l] - p.lower_impulse),
                           std::abs(b4.limit_impulse[r][1][l] - p.upper_impulse)});
         moved = std::max({moved, std::abs(p.lower_impulse - p0.lower_impulse),
