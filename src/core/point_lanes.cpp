@@ -58,14 +58,11 @@ int takeAngles(AngleAxes<N>& ax) {
   return ax.in_lanes ? N : 0;
 }
 
-// Whether the lanes hold every row the joint's sweeps solve (the angles with the anchor; not
-// a swing-twist limit, which stays scalar).
+// Whether a lane's joint leaves nothing to the sweeps: a ball or hinge brings every angle row
+// it has (takeAngles); a swing-twist limit and a fixed joint's rotation lock stay scalar.
 bool sweepsInLanes(const Joint& j) {
-  if (const BallJoint* b = std::get_if<BallJoint>(&j.kind))
-    return !b->swing_twist_limits && (b->axes.in_lanes || !b->axes.rowsNeeded());
-  if (const HingeJoint* h = std::get_if<HingeJoint>(&j.kind))
-    return h->axes.in_lanes || !h->axes.rowsNeeded();
-  return false;  // a fixed joint's rotation lock
+  if (const BallJoint* b = std::get_if<BallJoint>(&j.kind)) return !b->swing_twist_limits;
+  return std::holds_alternative<HingeJoint>(j.kind);
 }
 
 // What moves with the angles, rows [0, rows) of lane i: the limits' C and a position motor's
@@ -238,7 +235,7 @@ void PointLanes::load(const IslandRange& p, std::vector<SolverBody>& bodies,
     }
     putVec(blk.error, i, pt.error(bodies[l.a], bodies[l.b]));
     putVec(blk.impulse, i, pt.impulse);
-    // every lane of a block with limit rows writes them: a lane without limits has j = 0
+    // every lane of a block with angle rows writes them: a lane without any has j = 0
     if (l.angle_rows) {
       withAngleAxes(*l.joint, [&](auto& ax) { putAngles(blk, i, ax, blk.angle_rows, ctx.h); });
     } else if (blk.angle_rows) {
@@ -264,7 +261,8 @@ void PointLanes::refreshAnchors(const IslandRange& p, const StepContext& ctx) {
     if (l.axis) putAxis(blk, i, *l.axis);
     // the angles advanced with the positions (AngleAxes::advance); the rows are kept
     if (l.angle_rows)
-      withAngleAxes(*l.joint, [&](auto& ax) { putAngleErrors(blk, i, ax, blk.angle_rows, ctx.h); });
+      withAngleAxes(*l.joint,
+                    [&](auto& ax) { putAngleErrors(blk, i, ax, blk.angle_rows, ctx.h); });
   }
 }
 

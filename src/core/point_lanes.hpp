@@ -14,12 +14,13 @@
 // hinge axes' U and C (formed in double, HingeAxisPart::refresh) once per position state (the
 // first substep's warm start, then after each position update). Each substep the blocks take
 // C and the impulses (and the angles' rows, errors, motor terms and impulses, the angles
-// computed in double by the joint's warm start), and the kernel forms K^-1 from the anchors (and axes) and applies the
-// warm start, colour by colour, in place of the joints' scalar ones. The kernels read and write
-// the double solver bodies themselves (the impulse reaches v through the double inverse
-// masses). After the substep's last joint sweep the impulses go back to PointPart::impulse,
-// HingeAxisPart::impulse and the angle parts in double, so whatever reads them later
-// (forces, breaks, the joint trees, which add to them, the next warm start) sees them.
+// computed in double by the joint's warm start), and the kernel forms K^-1 from the anchors
+// (and axes) and applies the warm start, colour by colour, in place of the joints' scalar ones.
+// The kernels read and write the double solver bodies themselves (the impulse reaches v
+// through the double inverse masses). After the substep's last joint sweep the impulses go
+// back to PointPart::impulse, HingeAxisPart::impulse and the angle parts in double, so whatever
+// reads them later (forces, breaks, the joint trees, which add to them, the next warm start)
+// sees them.
 //
 // Ranges are prepared and solved on different threads: each range keeps its own storage, found
 // by its first joint (ranges with joints have distinct first joints) and allocated by the thread

@@ -35,13 +35,15 @@ inline PointRowParams laneParams(bool use_bias) {
 inline void runLanes(int width, PointRowBlock& b, std::vector<SolverBody>& bodies) {
   const LaneBodies view = laneBodies(bodies.data());
   warmStartPointRows(width, &b, 1, view);
-  for (const bool use_bias : {true, false}) solvePointRows(width, &b, 1, view, laneParams(use_bias));
+  for (const bool use_bias : {true, false})
+    solvePointRows(width, &b, 1, view, laneParams(use_bias));
 }
 
 // b4 / f4: a block and bodies after runLanes(4, ...); the same at 8 lanes from `block` and
 // `start` must give the same block fields and velocities bit for bit.
-inline void expectEightLanesSameBits(const PointRowBlock& block, const std::vector<SolverBody>& start,
-                                     const PointRowBlock& b4, const std::vector<SolverBody>& f4) {
+inline void expectEightLanesSameBits(const PointRowBlock& block,
+                                     const std::vector<SolverBody>& start, const PointRowBlock& b4,
+                                     const std::vector<SolverBody>& f4) {
   PointRowBlock b8 = block;
   std::vector<SolverBody> f8 = start;
   runLanes(8, b8, f8);
