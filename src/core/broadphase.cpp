@@ -5,6 +5,11 @@
 #include <type_traits>
 
 namespace ragdoll_sim {
+namespace {
+
+bool finite(const Aabb& b) { return b.lo.allFinite() && b.hi.allFinite(); }
+
+}  // namespace
 
 void Broadphase::addPair(std::vector<std::pair<int, int>>& pairs, int i, int j) const {
   const int a = std::min(i, j), b = std::max(i, j);
@@ -56,7 +61,10 @@ void Broadphase::sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int
   // Keep the previous order, drop stale or unbounded ids, append new ones. seen_ is all 0
   // between calls (cleared through bounded_), so that a call costs nothing per shape left out.
   seen_.resize(aabbs.size(), 0);
-  for (int id : bounded_) seen_[id] = 1;  // 1: bounded, 2: bounded and already in the order
+  // 1: bounded, 2: bounded and already in the order. A box with a NaN bound overlaps nothing
+  // and stays out: its NaN key would leave the order unsorted, and the sweep would miss pairs.
+  for (int id : bounded_)
+    if (!aabbs[id].lo.hasNaN() && !aabbs[id].hi.hasNaN()) seen_[id] = 1;
   size_t kept = 0;
   for (int id : order_)
     if (id < int(seen_.size()) && seen_[id] == 1) {
@@ -160,7 +168,6 @@ bool Broadphase::sweepKept(const std::vector<Aabb>& aabbs,
     const double grow = kFatRatio * (b.hi - b.lo).maxCoeff();
     return Aabb{b.lo - Vec3::Constant(grow), b.hi + Vec3::Constant(grow)};
   };
-  const auto finite = [](const Aabb& b) { return b.lo.allFinite() && b.hi.allFinite(); };
   fat_.resize(aabbs.size());
   moved_.resize(aabbs.size(), 0);
   escaped_.clear();
@@ -238,7 +245,6 @@ void Broadphase::insert(int proxy, const int cell[3]) {
 
 void Broadphase::grid(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs) {
   order_.clear();  // the sweep starts afresh if the shapes drop below kGridMin
-  const auto finite = [](const Aabb& b) { return b.lo.allFinite() && b.hi.allFinite(); };
   double side_sum = 0.0;
   int finite_count = 0;
   for (int i : bounded_)
