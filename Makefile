@@ -4,9 +4,10 @@ export PATH := /usr/bin:$(PATH)
 .NOTPARALLEL:
 .PHONY: deps build run test bench bench_compare fuzz clean
 
-# clang and its libFuzzer / sanitizer runtimes: `make test` runs the fuzz targets briefly, and
-# `make fuzz` for FUZZ_SECONDS each (the sanitizer build of `make test` uses gcc's runtimes).
-FUZZ_DEBS := clang-14 libclang-rt-14-dev
+# clang, its libFuzzer / sanitizer runtimes and OpenMP: the ASan + UBSan build of the ROS-free
+# gtests and the fuzz targets (`make test` runs the fuzz targets briefly, `make fuzz` for
+# FUZZ_SECONDS each).
+FUZZ_DEBS := clang-14 libclang-rt-14-dev libomp-14-dev
 
 # The Python module (pybind11), ragdoll_batch and its Dask fan-out, plots and their tests;
 # iproute2 for the test that runs workers in network namespaces.

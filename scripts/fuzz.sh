@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (test/fuzz: fuzz_urdf, fuzz_commands, fuzz_world; clang, ASan +
-# UBSan) in .ws/fuzz and runs each in turn. Prints each target's executions and any crash; exits
-# non-zero on a crash (the input is saved as .ws/fuzz/artifacts/<target>-crash-*).
+# UBSan) in .ws/asan (build_asan in env.sh, shared with sanitize.sh) and runs each in turn.
+# Prints each target's executions and any crash; exits non-zero on a crash (the input is saved
+# as .ws/fuzz/artifacts/<target>-crash-*).
 #   fuzz.sh                      FUZZ_SECONDS (60) per target, random seed; what it finds new is
 #                                kept in .ws/fuzz/corpus/<target> for the next run (make fuzz)
 #   fuzz.sh --runs N --junit DIR every seed input, then up to N executions in all from seed 1
@@ -21,22 +22,10 @@ while [[ $# -gt 0 ]]; do
     *) echo "usage: fuzz.sh [--runs N] [--junit DIR]"; exit 2 ;;
   esac
 done
-BUILD="$WS/fuzz/build"
-CXX_BIN="$(command -v clang++-14 || command -v clang++)" || { echo "fuzz: no clang++"; exit 1; }
-SAN="-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all"
+BUILD="$ASAN_BUILD"
 mkdir -p "$WS/fuzz/artifacts"
 [[ -n "$JUNIT" ]] && mkdir -p "$JUNIT"
-# -gline-tables-only: all a crash's backtrace needs (files and lines), at less compile time than -g.
-if ! cmake -S "$ROOT" -B "$BUILD" -DCMAKE_CXX_COMPILER="$CXX_BIN" -DRAGDOLL_SIM_CORE_ONLY=ON \
-      -DRAGDOLL_SIM_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-      -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only" \
-      -DCMAKE_CXX_FLAGS="$SAN" -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
-      >"$WS/fuzz/cmake.log" 2>&1 ||
-   ! cmake --build "$BUILD" -j2 --target fuzz_urdf fuzz_commands fuzz_world >"$WS/fuzz/build.log" 2>&1; then
-  echo "fuzz: build failed (see $WS/fuzz/cmake.log, $WS/fuzz/build.log):"
-  tail -n 30 "$WS/fuzz/build.log" 2>/dev/null
-  exit 1
-fi
+build_asan fuzz_urdf fuzz_commands fuzz_world || exit 1
 
 seeds() {  # target -> SEEDS (array of corpus folders, read only)
   SEEDS=("$ROOT/test/fuzz/corpus/$1")

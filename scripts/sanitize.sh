@@ -1,36 +1,24 @@
 #!/usr/bin/env bash
 # The ROS-free gtests (test_core, test_urdf, test_world_file, test_scene; ragdoll_check too, which
-# test_urdf and test_world_file run)
-# built with AddressSanitizer + UndefinedBehaviorSanitizer (gcc's runtimes, OpenMP on) in
-# .ws/sanitize, and run: each binary in gtest shards (2 per core), SANITIZE_JOBS (default: the
-# cores) shards at a time. Usage: sanitize.sh RESULTS_DIR. Each shard writes its gtest JUnit
-# report there; a run that a sanitizer ends (no report, or one without the failure) gets a
-# failing case <binary>.sanitizer with the report's tail, so that scripts/test.sh counts it.
-# Exits non-zero when a build fails or any run fails.
+# test_urdf and test_world_file run) built with AddressSanitizer + UndefinedBehaviorSanitizer
+# (clang, OpenMP on) in .ws/asan (build_asan in env.sh), and run: each binary in gtest shards
+# (2 per core), SANITIZE_JOBS (default: the cores) shards at a time. Usage: sanitize.sh
+# RESULTS_DIR. Each shard writes its gtest JUnit report there; a run that a sanitizer ends (no
+# report, or one without the failure) gets a failing case <binary>.sanitizer with the report's
+# tail, so that scripts/test.sh counts it. Exits non-zero when a build fails or any run fails.
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
 RESULTS="${1:?usage: sanitize.sh RESULTS_DIR}"
-BUILD="$WS/sanitize"
-SAN="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all"
+BUILD="$ASAN_BUILD"
 JOBS="${SANITIZE_JOBS:-$(nproc)}"
 mkdir -p "$RESULTS"
-
-# -O2: the solver (Eigen) at near-Release speed under ASan; -g1: the reports' backtraces keep
-# their files and lines, without the full debug info that is a large share of the compile time.
-if ! cmake -S "$ROOT" -B "$BUILD" -DRAGDOLL_SIM_CORE_ONLY=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-      -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1" -DCMAKE_CXX_FLAGS="$SAN" \
-      -DCMAKE_EXE_LINKER_FLAGS="$SAN" -DCMAKE_SHARED_LINKER_FLAGS="$SAN" >"$BUILD.cmake.log" 2>&1 ||
-   ! cmake --build "$BUILD" -j2 --target test_core test_urdf test_world_file test_scene ragdoll_check \
-      >"$BUILD.build.log" 2>&1; then
-  echo "sanitize: build failed (see $BUILD.cmake.log, $BUILD.build.log):"
-  tail -n 30 "$BUILD.build.log" 2>/dev/null
-  exit 1
-fi
+build_asan test_core test_urdf test_world_file test_scene ragdoll_check || exit 1
 
 # A distinct exit code (not ragdoll_check's 0..3) so that a report inside ragdoll_check, which
 # test_urdf runs, fails the test that runs it; leaks are checked at exit.
 export ASAN_OPTIONS="exitcode=66:detect_leaks=1:halt_on_error=1:print_summary=1"
 export UBSAN_OPTIONS="exitcode=66:halt_on_error=1:print_stacktrace=1"
+export LSAN_OPTIONS="suppressions=$ROOT/scripts/lsan.supp"
 # The longest simulations (test/test_scale.hpp) at a tenth of their steps: ASan + UBSan run the
 # solver about ten times slower.
 export RAGDOLL_SIM_TEST_SCALE="${RAGDOLL_SIM_TEST_SCALE:-0.1}"

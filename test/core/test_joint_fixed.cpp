@@ -139,7 +139,7 @@ TEST(FixedJoint, BreaksWhenRisingLoadPassesLimit) {
   const double limit = 1.5 * weight;
   const auto [bob, j] = hangOnWeld(w, m, Vec3(0.2, 0.0, -0.3), limit);
   const auto [broke_at, last_force] =
-      pullUntilBroken(w, bob, j, k, [&] { return w.jointForce(j); });
+      pullUntilBroken(w, bob, j, k, [&, j = j] { return w.jointForce(j); });
   const double expected = 0.5 * weight / k;
   ASSERT_GT(broke_at, 0.0);
   EXPECT_NEAR(broke_at, expected, 2 * kDt);
@@ -171,7 +171,7 @@ TEST(FixedJoint, BreaksWhenTorquePassesLimit) {
   const double limit = 1.5 * weight * d;
   const auto [bob, j] = hangOnWeld(w, m, Vec3(d, 0.0, 0.0), inf, limit);
   const auto [broke_at, last_torque] =
-      pullUntilBroken(w, bob, j, k, [&] { return w.jointTorque(j); });
+      pullUntilBroken(w, bob, j, k, [&, j = j] { return w.jointTorque(j); });
   const double expected = 0.5 * weight / k;
   ASSERT_GT(broke_at, 0.0);
   EXPECT_NEAR(broke_at, expected, 0.1 * expected);
