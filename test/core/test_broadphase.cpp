@@ -190,6 +190,22 @@ TEST(Broadphase, NonFiniteBoxesPairWithNothing) {
   }
 }
 
+// A NaN sweep key between two boxes that overlap must not hide their pair: sorted with the NaN
+// in place, the keys run 0, 2, NaN, 0.5, and box 0's sweep would stop at box 1 (key 2 > its
+// hi 1) before it reached box 3.
+TEST(Broadphase, NanKeyHidesNoPairOfFiniteBoxes) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<Aabb> boxes = {{Vec3(0, 0, 0), Vec3(1, 1, 1)},
+                             {Vec3(2, 0, 0), Vec3(3, 1, 1)},
+                             {Vec3(nan, 0, 0), Vec3(1, 1, 1)},
+                             {Vec3(0.5, 0, 0), Vec3(1.5, 1, 1)}};
+  const std::vector<char> unbounded(boxes.size(), 0);
+  Broadphase bp;
+  Pairs pairs;
+  bp.findPairs(boxes, unbounded, {}, 0.0, pairs);
+  EXPECT_EQ(pairs, Pairs({{0, 3}}));
+}
+
 // Groups of every kind: empty, one key, a few in random order, a large one in random order (a
 // static box under many bodies: std::sort), a large ascending one (a plane's), and the last
 // shape index as first shape.
