@@ -11,16 +11,17 @@ build_bench_ragdoll() {
   cmake --build "$1" -j2 --target bench_ragdoll >/dev/null
 }
 
-# build_asan TARGET...: the ROS-free libraries, gtests and libFuzzer targets built with clang,
-# ASan and UBSan in $ASAN_BUILD, one build for sanitize.sh and fuzz.sh (clang compiles it in a
-# third of gcc's time). Every file carries libFuzzer's edge counters, which the gtests link
-# without the fuzzer driver; not its comparison hooks (trace-cmp), which double the solver's
-# run time. Logs: $ASAN_BUILD.cmake.log, $ASAN_BUILD.build.log.
+# build_asan TARGET...: the ROS-free libraries, gtests and libFuzzer targets built with clang
+# (much quicker to compile here than gcc), ASan and UBSan in $ASAN_BUILD, one build for
+# sanitize.sh and fuzz.sh. Every file carries libFuzzer's edge counters, which the gtests link
+# without the fuzzer driver, but not its comparison hooks (trace-cmp), which slow the solver's
+# gtests far more. Logs: $ASAN_BUILD.cmake.log, $ASAN_BUILD.build.log.
 ASAN_BUILD="$WS/asan"
 build_asan() {
   local cxx san="-fsanitize=address,undefined -fsanitize-coverage=inline-8bit-counters,pc-table"
   cxx="$(command -v clang++-14 || command -v clang++)" || { echo "asan build: no clang++"; return 1; }
-  # -gline-tables-only: all a report's backtrace needs (files and lines), at less compile time.
+  # -O2: the solver near Release speed under ASan; -gline-tables-only: all a report's backtrace
+  # needs (files and lines), at less compile time.
   if ! cmake -S "$ROOT" -B "$ASAN_BUILD" -DCMAKE_CXX_COMPILER="$cxx" -DRAGDOLL_SIM_CORE_ONLY=ON \
         -DRAGDOLL_SIM_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo \
         -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -gline-tables-only" \
