@@ -14,6 +14,12 @@
 #include "ragdoll_sim/shape.hpp"
 #include "ragdoll_sim/world_reports.hpp"
 
+// SolverSettings::lanes' default; a build may set it (CMake RAGDOLL_SIM_DEFAULT_LANES) to run
+// the whole test suite on the other path.
+#ifndef RAGDOLL_SIM_DEFAULT_LANES
+#define RAGDOLL_SIM_DEFAULT_LANES 1
+#endif
+
 namespace ragdoll_sim {
 
 // Sleeping and the rest substeps: read at every step, so World::setSleep changes them while the
@@ -90,7 +96,7 @@ struct SolverSettings {
   // constraints at once (docs/physics.md, the wide solver): 1 solves every row alone in double
   // (the reference); 0 takes the widest the CPU runs (8 with AVX2, else 4; the environment
   // variable RAGDOLL_SIM_LANES=4|8 forces one), 4 or 8 force a width. 4 and 8 give the same bits.
-  int lanes = 1;
+  int lanes = RAGDOLL_SIM_DEFAULT_LANES;
 };
 
 // "" when the settings can be used, else what is wrong with the first field that cannot, named
