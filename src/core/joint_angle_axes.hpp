@@ -68,7 +68,7 @@ struct AngleAxes {
     return true;
   }
 
-  void warmStart(SolverBody& A, SolverBody& B) const {
+  void warmStart(SolverBody& A, SolverBody& B) {
     if (in_lanes) return;
     for (int i = 0; i < count; ++i) {
       motor_parts[i].warmStart(A, B, rows[i]);
@@ -80,7 +80,7 @@ struct AngleAxes {
     if (in_lanes) return;
     for (int i = 0; i < count; ++i) {
       const Vec3& row = rows[i];
-      motor_parts[i].solve(A, B, row, k[i], angles[i], motors[i], ctx, use_bias);
+      motor_parts[i].solve(A, B, row, k[i], angles[i], motors[i], ctx);
       if (limits_enabled)
         limits[i].solve(A, B, row, k[i], angles[i], lower[i], upper[i], ctx, use_bias);
     }

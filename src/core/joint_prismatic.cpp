@@ -30,7 +30,7 @@ void PrismaticJoint::solve(JointBase& j, SolverBody& A, SolverBody& B, const Ste
   const SliderPose p = slider.at(A, B);
   const LinearRow row(p.axis, p.leverA(), p.rB, A, B);
   const double s = p.position();
-  linear_motor.solve(A, B, row, s, motor, ctx, use_bias);
+  linear_motor.solve(A, B, row, s, motor, ctx);
   if (limit_enabled) linear_limit.solve(A, B, row, s, lower, upper, ctx, use_bias);
   angle_lock.solve(A, B, ctx.joint_softness, use_bias);
   const double max_impulse = j.spring.break_force * ctx.h;

@@ -5,7 +5,7 @@
 //     (hinge axis, angle motors and limits, swing-twist limits, rotation locks) as a couple,
 //     linear rows (anchor, prismatic line, motor and limit) at B's anchor, so the torque about
 //     B's anchor is the angular rows' alone.
-//   - Viscous motor damping is applied implicitly and kept in no accumulator: its torque is
+//   - Viscous motor damping's impulse is kept for its substep's sweeps only: its torque is
 //     -c theta_dot at the bodies' current velocities (what the implicit step leaves, to first
 //     order). A spring anchor's force is likewise -k x - c v at the current poses.
 //   - Ball joints: the effort of Euler axis i is the torque on B projected on the world axis of

@@ -16,8 +16,14 @@
 //     lambda = -mass_scale m_eff (Cdot + bias_rate C) - impulse_scale lambda_acc;
 //   velocity target (hertz = 0): lambda = -m_eff (Cdot - target_velocity);
 //   the accumulated impulse is clamped to +-max_torque h (a motor has finite strength);
-//   viscous damping c (force -c Cdot), implicit over the substep, biased pass only:
-//     lambda = -Cdot / (1/m_eff + 1/(h c)).
+//   viscous damping c (force -c Cdot), implicit over the substep: the soft row Cdot -> 0 with
+//   gamma = 1 / (h c) and mu the damping impulse accumulated over the substep's sweeps (reset at
+//   the warm start, never carried over),
+//     lambda = -(Cdot + gamma mu) / (1/m_eff + gamma),  mu += lambda,
+//   whose fixed point mu = -h c Cdot' (Cdot' the substep's final rate) is implicit Euler of the
+//   damper. It is solved in every joint sweep, so the damper and the rows it couples with settle
+//   together in any row order; a damper applied once, in the biased sweep, was partly undone by
+//   the relax sweeps, and a stiff one then fed energy into a closed loop.
 #pragma once
 
 #include <algorithm>
@@ -102,10 +108,15 @@ void solveInequalityRow(SolverBody& A, SolverBody& B, const Row& row, double C, 
 
 template <class Row>
 void solveMotorRow(SolverBody& A, SolverBody& B, const Row& row, double position,
-                   const JointMotor& motor, double& acc, const StepContext& ctx, bool use_bias) {
+                   const JointMotor& motor, double& acc, double& damping_acc,
+                   const StepContext& ctx) {
   if (!(row.k > 1e-300)) return;
-  if (motor.damping > 0.0 && use_bias)
-    row.apply(A, B, -row.rate(A, B) / (row.k + 1.0 / (ctx.h * motor.damping)));
+  if (motor.damping > 0.0) {
+    const double gamma = 1.0 / (ctx.h * motor.damping);
+    const double lambda = -(row.rate(A, B) + gamma * damping_acc) / (row.k + gamma);
+    damping_acc += lambda;
+    row.apply(A, B, lambda);
+  }
   if (!motor.enabled) return;
   const double m = 1.0 / row.k, rate = row.rate(A, B);
   double lambda;

@@ -49,7 +49,11 @@ struct alignas(64) PointRowBlock {
   float motor_impulse_scale[kAngleRows][kRowBlock];
   float motor_max[kAngleRows][kRowBlock];          // max_torque h
   float motor_hc[kAngleRows][kRowBlock];           // h c of the viscous damping c (0: none)
-  float motor_damp_mass[kAngleRows][kRowBlock];    // 1 / (k + 1 / (h c)), formed by the warm start
+  // The damping (solveMotorRow): lambda = -(x h c + mu) / (k h c + 1), mu its impulse over the
+  // substep's sweeps, as -(x damp_mass + mu damp_keep); both formed by the warm start, mu reset.
+  float motor_damp_mass[kAngleRows][kRowBlock];    // h c / (k h c + 1)
+  float motor_damp_keep[kAngleRows][kRowBlock];    // 1 / (k h c + 1)
+  float motor_damp_impulse[kAngleRows][kRowBlock];
   float motor_impulse[kAngleRows][kRowBlock];      // the drive's, accumulated
   int32_t angle_rows;                              // rows [0, angle_rows) hold some lane's angle
   int32_t motor_rows;                              // nonzero: some lane has a motor or damping
