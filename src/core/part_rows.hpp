@@ -22,8 +22,7 @@
 //     lambda = -(Cdot + gamma mu) / (1/m_eff + gamma),  mu += lambda,
 //   whose fixed point mu = -h c Cdot' (Cdot' the substep's final rate) is implicit Euler of the
 //   damper. It is solved in every joint sweep, so the damper and the rows it couples with settle
-//   together in any row order; a damper applied once, in the biased sweep, was partly undone by
-//   the relax sweeps, and a stiff one then fed energy into a closed loop.
+//   together in any row order.
 #pragma once
 
 #include <algorithm>

@@ -50,9 +50,8 @@ struct alignas(64) PointRowBlock {
   float motor_max[kAngleRows][kRowBlock];          // max_torque h
   float motor_hc[kAngleRows][kRowBlock];           // h c of the viscous damping c (0: none)
   // The damping (solveMotorRow): lambda = -(x h c + mu) / (k h c + 1), mu its impulse over the
-  // substep's sweeps, as -(x damp_mass + mu damp_keep); both formed by the warm start, mu reset.
-  float motor_damp_mass[kAngleRows][kRowBlock];    // h c / (k h c + 1)
-  float motor_damp_keep[kAngleRows][kRowBlock];    // 1 / (k h c + 1)
+  // substep's sweeps; the warm start forms the divisor's inverse and resets mu.
+  float motor_damp_scale[kAngleRows][kRowBlock];   // 1 / (k h c + 1)
   float motor_damp_impulse[kAngleRows][kRowBlock];
   float motor_impulse[kAngleRows][kRowBlock];      // the drive's, accumulated
   int32_t angle_rows;                              // rows [0, angle_rows) hold some lane's angle

@@ -91,8 +91,7 @@ TEST(FixedBase, CompoundPendulumPeriod) {
 
 // The bundled ragdoll with its arms raised, its hands tied to a pinned bar by ball joints (the
 // World's API): it swings under the bar, stays attached and comes to rest there, with the joints
-// solved alone in double and in lanes (a closed loop of damped joints, whose damping once fed
-// energy in with the lanes' row order).
+// solved alone in double and in lanes (a closed loop of damped joints: the two row orders).
 class HungFromBar : public ::testing::TestWithParam<int> {};  // SolverSettings::lanes
 
 TEST_P(HungFromBar, RagdollComesToRest) {
