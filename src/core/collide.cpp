@@ -7,6 +7,7 @@
 #include "constants.hpp"
 #include "gjk.hpp"
 #include "group_by.hpp"
+#include "parallel_for.hpp"
 #include "world_impl.hpp"
 
 namespace ragdoll_sim {
@@ -70,15 +71,14 @@ void World::Impl::collide(double dt) {
   };
   // Boxes of the dynamic bodies' shapes in parallel (each shape its own slot).
   const int moving = int(moving_shapes.size());
-#pragma omp parallel for schedule(static) num_threads(threadCount()) if (moving >= kParallelMin)
-  for (int k = 0; k < moving; ++k) {
+  parallelFor(moving, threadCount(), [&](int k) {
     const int s = moving_shapes[k];
     const BodyMotion& m = motions[shapes[s].body];
     frozen[s] = carry && !m.awake && aabb_kept[s];
-    if (!m.awake && aabb_kept[s]) continue;
+    if (!m.awake && aabb_kept[s]) return;
     aabb_kept[s] = !m.awake;
     computeBox(s);
-  }
+  });
   // Static boxes and their tree only after a static shape was added, removed or moved.
   const bool static_rebuilt = static_dirty;
   if (static_dirty) {
@@ -188,8 +188,7 @@ void World::Impl::collide(double dt) {
     const BodyMotion& m = motions[b];
     return m.v.norm() + m.extent * m.w.norm() <= cache_speed;
   };
-#pragma omp parallel for schedule(static) num_threads(threadCount()) if (count >= kParallelMin)
-  for (int i = 0; i < count; ++i) {
+  parallelFor(count, threadCount(), [&](int i) {
     Contact& c = next_contacts[i];
     ManifoldCache& cache = next_manifold_caches[i];
     const int o = old_contact[i];
@@ -199,7 +198,7 @@ void World::Impl::collide(double dt) {
     if (o >= 0 && asleep) {  // the manifold and impulses stay as they were
       c = contacts[o];
       cache = manifold_caches[o];
-      continue;
+      return;
     }
     // The pair is collided in a frame at the centre of its (first) dynamic body: the
     // manifold's points are relative to it (Contact::origin).
@@ -217,7 +216,7 @@ void World::Impl::collide(double dt) {
         cache.apply(shapeDef(sa).geometry, xa, shapeDef(sb).geometry, xb, c.manifold);
         c.sep_axis = c.manifold.normal;
       }
-      continue;
+      return;
     }
     c = Contact();
     c.key = pair_keys[i];
@@ -227,7 +226,7 @@ void World::Impl::collide(double dt) {
     c.body_b = bb;
     c.origin = origin;
     cache.valid = false;
-    if (asleep) continue;
+    if (asleep) return;
     const ShapeDef &da = shapeDef(sa), &db = shapeDef(sb);
     if (o >= 0 && contacts[o].sep_valid) {
       const np::ConvexCore ca{&da.geometry, xa}, cb{&db.geometry, xb};
@@ -237,7 +236,7 @@ void World::Impl::collide(double dt) {
         c.sep_axis = n;
         c.sep_valid = true;
         c.manifold.count = 0;
-        continue;
+        return;
       }
     }
     // Last step's normal of the pair (kept as sep_axis) starts GJK near its answer.
@@ -249,7 +248,7 @@ void World::Impl::collide(double dt) {
     c.sep_axis = c.manifold.normal;
     applyPairMaterial(c, da, db);
     matchImpulses(o >= 0 ? contacts[o] : Contact(), c);
-  }
+  });
   manifold_caches.swap(next_manifold_caches);
   contacts.swap(next_contacts);
   contact_keys.swap(pair_keys);

@@ -403,8 +403,9 @@ void World::Impl::solveIslands(const StepContexts& ctx) {
     flush();
     for (int k; (k = run_queue.steal(t)) >= 0;) solveOne(k);
   };
-  // (no runs when every island is split or goes along with a split one's half)
-  if (run_work > 0 && count > 1 && int(island_bodies.size()) >= kParallelMin) {
+  // (no runs when every island is split or goes along with a split one's half; one thread enters
+  // no region: parallel_for.hpp says why)
+  if (run_work > 0 && count > 1 && threadCount() > 1 && int(island_bodies.size()) >= kParallelMin) {
 #ifdef _OPENMP
 #pragma omp parallel num_threads(threadCount())
     solveRun(omp_get_thread_num());
