@@ -14,8 +14,8 @@
 # Settings (environment):
 #   ROUNDS=5             rounds (also the third argument)
 #   SCENES="b c p g1"    bench_ragdoll scenes; gN is scene g with N ragdolls (g1: one awake ragdoll)
-#   THREADS="1 2"        --opt threads=T; scene g with fewer than 3 ragdolls runs at the first
-#                        count only (under 32 bodies: islands that small never run in parallel)
+#   THREADS="1 2"        --opt threads=T; scene g with fewer than 4 ragdolls runs at the first
+#                        count only (under 48 bodies: islands that small never run in parallel)
 #   STEPS=               --steps for every run (default: each scene's own)
 #   OPTS=                --opt for both binaries, k=v,... (hash=1: the table says whether both
 #                        binaries end every run on the same state hash)
@@ -91,7 +91,7 @@ for r in $(seq "$ROUNDS"); do
       exit 2
     fi
     for t in $THREADS; do
-      if [[ "$label" == g* ]] && ((${label:1} < 3)) && [[ "$t" != "${counts[0]}" ]]; then continue; fi
+      if [[ "$label" == g* ]] && ((${label:1} < 4)) && [[ "$t" != "${counts[0]}" ]]; then continue; fi
       for side in "${pair[@]}"; do run_one "$r" "$side" "$label" "$t"; done
     done
   done

@@ -168,7 +168,7 @@ def report(meta, runs, failures, png_name):
                      ("nproc", "nproc"), ("cpu", "CPU (/proc/cpuinfo)"),
                      ("compiler", "g++"),
                      ("flags_ours", "flags of ours"), ("flags_peers", "flags of the peers"),
-                     ("rounds", "rounds"), ("own_threads", "threads of ours (WorldDef::threads; islands in parallel once 32 bodies are awake (kParallelMin, world.cpp); the peers are single-threaded)"), ("omp_num_threads", "OMP_NUM_THREADS"),
+                     ("rounds", "rounds"), ("own_threads", "threads of ours (WorldDef::threads; islands in parallel once 48 bodies are awake (kParallelMin, constants.hpp); the peers are single-threaded)"), ("omp_num_threads", "OMP_NUM_THREADS"),
                      ("engines", "engines"),
                      ("loadavg_start", "load average at start"),
                      ("loadavg_end", "load average at end"), ("total_s", "run time (s)")]:
@@ -263,7 +263,7 @@ def report(meta, runs, failures, png_name):
         L.append("")
         ones = [v.one for v in OURS_VARIANTS if v.one in engines]
         if ones:
-            L.append("%s ours with `threads=1`: islands run in parallel only from 32 awake "
+            L.append("%s ours with `threads=1`: islands run in parallel only from 48 awake "
                      "bodies (kParallelMin), so N = 1 (one 15-body island) always runs on one core "
                      "while larger N use all of them; on one thread every N gets the same, and the "
                      "line shows the cost of the algorithm alone." % (

@@ -6,7 +6,7 @@ namespace ragdoll_sim {
 
 // Below this many pairs / awake bodies a step is too short to gain from waking other threads:
 // the fork-join costs more than the work it would share.
-constexpr int kParallelMin = 32;
+constexpr int kParallelMin = 48;
 
 // An island with at least this many awake bodies, and more than half the awake work (bodies,
 // joints, contacts), is split in two (island_split.hpp). A smaller share needs no split: the
