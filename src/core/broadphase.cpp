@@ -20,28 +20,27 @@ void Broadphase::addPair(std::vector<std::pair<int, int>>& pairs, int i, int j) 
 void Broadphase::findPairs(const std::vector<Aabb>& aabbs, const std::vector<char>& unbounded,
                            const std::vector<PlaneProxy>& planes, double margin,
                            std::vector<std::pair<int, int>>& pairs, Filter accept,
-                           int threads, const std::vector<char>* frozen) {
+                           const std::vector<char>* frozen) {
   ids_scratch_.clear();
   for (int i = 0; i < int(aabbs.size()); ++i)
     if (!unbounded[i]) ids_scratch_.push_back(i);
-  findPairs(ids_scratch_, aabbs, planes, margin, pairs, accept, threads, frozen);
+  findPairs(ids_scratch_, aabbs, planes, margin, pairs, accept, frozen);
 }
 
 void Broadphase::findPairs(const std::vector<int>& bounded, const std::vector<Aabb>& aabbs,
                            const std::vector<PlaneProxy>& planes, double margin,
                            std::vector<std::pair<int, int>>& pairs, Filter accept,
-                           int threads, const std::vector<char>* frozen) {
+                           const std::vector<char>* frozen) {
   accept_ = accept;
   frozen_ = frozen;
   pairs.clear();
   bounded_.assign(bounded.begin(), bounded.end());
-  const int sweep_threads = int(bounded_.size()) >= kParallelMin ? std::max(1, threads) : 1;
   if (int(bounded_.size()) >= kGridMin) {
     kept_valid_ = false;
     grid(aabbs, pairs);
-  } else if (!sweepKept(aabbs, pairs, sweep_threads)) {
+  } else if (!sweepKept(aabbs, pairs)) {
     kept_valid_ = false;
-    sweep(aabbs, pairs, sweep_threads);
+    sweep(aabbs, pairs);
   }
 
   for (const PlaneProxy& p : planes) {
@@ -57,7 +56,7 @@ void Broadphase::findPairs(const std::vector<int>& bounded, const std::vector<Aa
 }
 
 void Broadphase::sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs,
-                       int threads, bool raw) {
+                       bool raw) {
   // Keep the previous order, drop stale or unbounded ids, append new ones. seen_ is all 0
   // between calls (cleared through bounded_), so that a call costs nothing per shape left out.
   seen_.resize(aabbs.size(), 0);
@@ -116,54 +115,28 @@ void Broadphase::sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int
     const Aabb& b = aabbs[order_[k]];
     bounds_[k] = {b.hi[ax], b.lo[ax1], b.hi[ax1], b.lo[ax2], b.hi[ax2]};
   }
-  // Slice t of the sweep order: the boxes [m t / T, m (t + 1) / T) against those after them.
-  // Returns the candidates it looked at.
-  const auto slice = [&](int t, int slices, std::vector<std::pair<int, int>>& out) {
-    const size_t end = m * size_t(t + 1) / size_t(slices);
-    size_t work = 0;
-    for (size_t i = m * size_t(t) / size_t(slices); i < end; ++i) {
-      const SweepBounds a = bounds_[i];
-      const double lo = key_[i];
-      size_t j = i + 1;
-      for (; j < m; ++j) {
-        if (key_[j] > a.hi) break;
-        const SweepBounds& b = bounds_[j];
-        if (lo <= b.hi && b.lo_u <= a.hi_u && a.lo_u <= b.hi_u && b.lo_w <= a.hi_w &&
-            a.lo_w <= b.hi_w) {  // Aabb::overlaps
-          if (raw) out.emplace_back(order_[i], order_[j]);
-          else addPair(out, order_[i], order_[j]);
-        }
-      }
-      work += j - i - 1;
-    }
-    return work;
-  };
-  if (threads <= 1) {
-    sweep_work_ = slice(0, 1, pairs);
-    return;
-  }
-  slice_pairs_.resize(threads);
+  // Each box against those after it in the sweep order; sweep_work_: the candidates looked at.
   size_t work = 0;
-#pragma omp parallel for schedule(static, 1) num_threads(threads) reduction(+ : work)
-  for (int t = 0; t < threads; ++t) {
-    slice_pairs_[t].clear();
-    work += slice(t, threads, slice_pairs_[t]);
+  for (size_t i = 0; i < m; ++i) {
+    const SweepBounds a = bounds_[i];
+    const double lo = key_[i];
+    size_t j = i + 1;
+    for (; j < m; ++j) {
+      if (key_[j] > a.hi) break;
+      const SweepBounds& b = bounds_[j];
+      if (lo <= b.hi && b.lo_u <= a.hi_u && a.lo_u <= b.hi_u && b.lo_w <= a.hi_w &&
+          a.lo_w <= b.hi_w) {  // Aabb::overlaps
+        if (raw) pairs.emplace_back(order_[i], order_[j]);
+        else addPair(pairs, order_[i], order_[j]);
+      }
+    }
+    work += j - i - 1;
   }
   sweep_work_ = work;
-  for (int t = 0; t < threads; ++t)
-    pairs.insert(pairs.end(), slice_pairs_[t].begin(), slice_pairs_[t].end());
-}
-
-void Broadphase::testCandidates(const std::vector<Aabb>& aabbs, size_t begin, size_t end,
-                                std::vector<std::pair<int, int>>& pairs) const {
-  for (size_t k = begin; k < end; ++k) {
-    const auto [i, j] = candidates_[k];
-    if (aabbs[i].overlaps(aabbs[j])) addPair(pairs, i, j);
-  }
 }
 
 bool Broadphase::sweepKept(const std::vector<Aabb>& aabbs,
-                           std::vector<std::pair<int, int>>& pairs, int threads) {
+                           std::vector<std::pair<int, int>>& pairs) {
   const auto fatBox = [](const Aabb& b) {
     const double grow = kFatRatio * (b.hi - b.lo).maxCoeff();
     return Aabb{b.lo - Vec3::Constant(grow), b.hi + Vec3::Constant(grow)};
@@ -189,7 +162,7 @@ bool Broadphase::sweepKept(const std::vector<Aabb>& aabbs,
   if (rebuild || k * m > sweep_work_) {
     // Many boxes left (or nothing is kept): the whole sweep over the fat boxes.
     candidates_.clear();
-    sweep(fat_, candidates_, threads, true);
+    sweep(fat_, candidates_, true);
     kept_bounded_ = bounded_;
     kept_valid_ = true;
   } else if (k > 0) {
@@ -208,21 +181,9 @@ bool Broadphase::sweepKept(const std::vector<Aabb>& aabbs,
     }
     for (int id : escaped_) moved_[id] = 0;
   }
-  // The exact boxes of the candidates, sliced over threads as the sweep is.
-  const size_t c = candidates_.size();
-  if (threads <= 1) {
-    testCandidates(aabbs, 0, c, pairs);
-    return true;
-  }
-  slice_pairs_.resize(threads);
-#pragma omp parallel for schedule(static, 1) num_threads(threads)
-  for (int t = 0; t < threads; ++t) {
-    slice_pairs_[t].clear();
-    testCandidates(aabbs, c * size_t(t) / size_t(threads), c * size_t(t + 1) / size_t(threads),
-                   slice_pairs_[t]);
-  }
-  for (int t = 0; t < threads; ++t)
-    pairs.insert(pairs.end(), slice_pairs_[t].begin(), slice_pairs_[t].end());
+  // The exact boxes of the candidates.
+  for (const auto& [i, j] : candidates_)
+    if (aabbs[i].overlaps(aabbs[j])) addPair(pairs, i, j);
   return true;
 }
 

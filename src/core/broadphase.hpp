@@ -40,7 +40,7 @@ struct PlaneProxy {
 class Broadphase {
  public:
   // accept(i, j), i < j: whether an overlapping pair is kept (the world drops the pairs it
-  // never collides before they are stored); it may be called from several threads at once.
+  // never collides before they are stored).
   // A reference to the caller's callable, valid for the one findPairs call, so that each
   // overlapping pair costs one indirect call and no std::function overhead.
   class Filter {
@@ -62,41 +62,33 @@ class Broadphase {
     bool (*call_)(const void*, int, int) = nullptr;
   };
 
-  // aabbs[i] is shape i's box (ignored when unbounded[i]); pairs get (i, j) with i < j. The
-  // sweep's pair loop runs on up to `threads` threads (from kParallelMin bounded shapes), each
-  // over a slice of the sweep order; the slices' pairs are joined in order, so the list is the
-  // same for any thread count.
+  // aabbs[i] is shape i's box (ignored when unbounded[i]); pairs get (i, j) with i < j. One
+  // thread: a step's sweep costs less than starting a parallel region on the sizes it serves
+  // (the grid takes over from kGridMin shapes).
   // frozen (optional, one flag per shape, planes included): pairs of two frozen shapes are
   // left out, unfiltered (the world carries them over from the last step: their boxes and
   // planes have not changed since).
   void findPairs(const std::vector<Aabb>& aabbs, const std::vector<char>& unbounded,
                  const std::vector<PlaneProxy>& planes, double margin,
                  std::vector<std::pair<int, int>>& pairs, Filter accept = nullptr,
-                 int threads = 1, const std::vector<char>* frozen = nullptr);
+                 const std::vector<char>* frozen = nullptr);
   // The same over the bounded shapes `bounded` (ascending ids) alone: the others' boxes are
   // not read, so shapes kept elsewhere (static ones: static_tree.hpp) cost nothing here.
   void findPairs(const std::vector<int>& bounded, const std::vector<Aabb>& aabbs,
                  const std::vector<PlaneProxy>& planes, double margin,
                  std::vector<std::pair<int, int>>& pairs, Filter accept = nullptr,
-                 int threads = 1, const std::vector<char>* frozen = nullptr);
+                 const std::vector<char>* frozen = nullptr);
 
   static constexpr int kGridMin = 768;  // bounded shapes from which the grid is used
-  // Bounded shapes from which the sweep is split over threads; below it the fork costs more
-  // than the pair loop it would share.
-  static constexpr int kParallelMin = 64;
 
  private:
   // Sweep and prune over boxes; raw: every overlapping pair (no filter, no frozen test) into
   // pairs, else through addPair.
   void sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs,
-             int threads, bool raw = false);
+             bool raw = false);
   // The sweep's pairs through the kept candidates (fat boxes); false when a box is not finite
   // (then the plain sweep runs, as the fat boxes cannot bound it).
-  bool sweepKept(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs,
-                 int threads);
-  // Exact boxes of the kept candidates [begin, end) through addPair.
-  void testCandidates(const std::vector<Aabb>& aabbs, size_t begin, size_t end,
-                      std::vector<std::pair<int, int>>& pairs) const;
+  bool sweepKept(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs);
   void grid(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs);
   // Appends (min, max) of i and j when accept_ takes it.
   void addPair(std::vector<std::pair<int, int>>& pairs, int i, int j) const;
@@ -108,7 +100,6 @@ class Broadphase {
   Filter accept_;  // this call's filter (empty: keep all)
   const std::vector<char>* frozen_ = nullptr;  // this call's frozen shapes (null: none)
   bool bothFrozen(int i, int j) const { return frozen_ && (*frozen_)[i] && (*frozen_)[j]; }
-  std::vector<std::vector<std::pair<int, int>>> slice_pairs_;  // per thread of the sweep
 
   // sweep and prune
   static constexpr double kSwitchRatio = 1.5;  // another axis must spread this much more

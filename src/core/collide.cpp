@@ -1,6 +1,5 @@
 // The collide phase: broadphase pairs -> narrowphase manifolds at the poses of the step start
-// (boxes, the sweep's pair loop with the pair filter, and the pairs in parallel). Data:
-// collide.hpp.
+// (the boxes and the pairs in parallel). Data: collide.hpp.
 #include <algorithm>
 #include <cmath>
 
@@ -104,8 +103,8 @@ void World::Impl::collide(double dt) {
                 last->offset == planes.back().offset;
   }
   // Keep pairs between different bodies, at least one dynamic, not disabled (checked inside
-  // the broadphase, on its threads); sort by key to merge with last step's contacts (also
-  // sorted by key). The keys are sorted, not the contacts (a Contact is ~400 bytes).
+  // the broadphase); sort by key to merge with last step's contacts (also sorted by key). The
+  // keys are sorted, not the contacts (a Contact is ~400 bytes).
   // A pair of two frozen shapes (boxes and planes as in the last step, which sleeping bodies
   // and static ones keep) overlaps now iff it did then, and the filter has not changed since
   // (pairs_dirty): such pairs are carried over from the last step's keys instead of found and
@@ -126,7 +125,7 @@ void World::Impl::collide(double dt) {
     const int ba = shapes[sa].body, bb = shapes[sb].body;
     return ba != bb && (isDynamic(ba) || isDynamic(bb)) && !neverCollide(ba, bb);
   };
-  broadphase.findPairs(moving_shapes, aabbs, planes, spec, pairs, accept, threadCount(),
+  broadphase.findPairs(moving_shapes, aabbs, planes, spec, pairs, accept,
                        carry_now ? &frozen : nullptr);
   // The static shapes: each dynamic shape's box queries their tree (a sleeping one only when
   // the tree changed: its other pairs are carried), and a plane of a dynamic body (rare) tests

@@ -1,8 +1,8 @@
 // The broadphase's pairs are exactly the brute-force overlaps, for both of its methods (sweep
 // and prune below Broadphase::kGridMin bounded shapes, hash grid from it), over steps in which
-// the boxes move (the sweep keeps its order between calls) and shapes come and go; the sweep
-// split over threads gives the same list, and a filter drops exactly the pairs it rejects; the
-// sweep's kept candidates give the same pairs as a fresh sweep.
+// the boxes move (the sweep keeps its order between calls) and shapes come and go; a filter
+// drops exactly the pairs it rejects; the sweep's kept candidates give the same pairs as a fresh
+// sweep.
 // The world's sort of the pairs' keys (group_by.hpp) gives std::sort's order.
 #include <gtest/gtest.h>
 
@@ -73,11 +73,10 @@ TEST_P(BroadphaseExact, PairsEqualBruteForceWhileBoxesMove) {
   unbounded[3] = 1;  // a plane's slot: its box is ignored
   const std::vector<PlaneProxy> planes = {{3, Vec3::UnitZ(), -0.2}};
   std::normal_distribution<double> step(0.0, 0.05);
-  // bp on one thread; sliced on three (the same list, in the same order); filtered on two,
-  // with a filter that drops a third of the pairs.
-  Broadphase bp, sliced, filtered;
+  // bp unfiltered; filtered with a filter that drops a third of the pairs.
+  Broadphase bp, filtered;
   const auto keep = [](int i, int j) { return (i + j) % 3 != 0; };
-  Pairs pairs, sliced_pairs, filtered_pairs;
+  Pairs pairs, filtered_pairs;
   size_t total = 0;
   int grid_calls = 0;
   for (int call = 0; call < 6; ++call) {
@@ -85,9 +84,7 @@ TEST_P(BroadphaseExact, PairsEqualBruteForceWhileBoxesMove) {
     std::vector<char> ub(unbounded.begin(), unbounded.begin() + boxes.size());
     grid_calls += int(std::count(ub.begin(), ub.end(), 0)) >= Broadphase::kGridMin;
     bp.findPairs(boxes, ub, planes, 0.01, pairs);
-    sliced.findPairs(boxes, ub, planes, 0.01, sliced_pairs, nullptr, 3);
-    filtered.findPairs(boxes, ub, planes, 0.01, filtered_pairs, keep, 2);
-    ASSERT_EQ(sliced_pairs, pairs) << "call " << call;
+    filtered.findPairs(boxes, ub, planes, 0.01, filtered_pairs, keep);
     for (const auto& [i, j] : pairs) ASSERT_LT(i, j);
     std::sort(pairs.begin(), pairs.end());
     std::sort(filtered_pairs.begin(), filtered_pairs.end());
@@ -115,8 +112,7 @@ INSTANTIATE_TEST_SUITE_P(SweepAndGrid, BroadphaseExact,
 // The sweep keeps its candidates between calls (fat boxes): over many calls in which most boxes
 // barely move or change size (kept candidates), a few jump (their candidates found again) and
 // now and then all of them move (the whole sweep again), the pairs stay the brute-force ones,
-// the same list on one and on three threads, and with a filter and frozen shapes the same as a
-// fresh broadphase's.
+// and with a filter and frozen shapes the same as a fresh broadphase's.
 TEST(Broadphase, KeptCandidatesEqualBruteForce) {
   const int n = 400;
   std::mt19937 rng(23);
@@ -127,16 +123,14 @@ TEST(Broadphase, KeptCandidatesEqualBruteForce) {
   std::vector<char> frozen(n, 0);
   for (int i = 0; i < n; i += 3) frozen[i] = 1;
   const auto keep = [](int i, int j) { return (i + j) % 5 != 0; };
-  Broadphase bp, sliced, filtered;
-  Pairs pairs, sliced_pairs, filtered_pairs, fresh_pairs;
+  Broadphase bp, filtered;
+  Pairs pairs, filtered_pairs, fresh_pairs;
   size_t total = 0;
   for (int call = 0; call < 80; ++call) {
     bp.findPairs(boxes, unbounded, {}, 0.0, pairs);
-    sliced.findPairs(boxes, unbounded, {}, 0.0, sliced_pairs, nullptr, 3);
-    filtered.findPairs(boxes, unbounded, {}, 0.0, filtered_pairs, keep, 2, &frozen);
+    filtered.findPairs(boxes, unbounded, {}, 0.0, filtered_pairs, keep, &frozen);
     Broadphase fresh;
-    fresh.findPairs(boxes, unbounded, {}, 0.0, fresh_pairs, keep, 1, &frozen);
-    ASSERT_EQ(sliced_pairs, pairs) << "call " << call;
+    fresh.findPairs(boxes, unbounded, {}, 0.0, fresh_pairs, keep, &frozen);
     std::sort(pairs.begin(), pairs.end());
     ASSERT_EQ(pairs, bruteForce(boxes, unbounded, {}, 0.0)) << "call " << call;
     std::sort(filtered_pairs.begin(), filtered_pairs.end());
