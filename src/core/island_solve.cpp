@@ -330,8 +330,7 @@ void World::Impl::finishIslandBodies(const IslandRange& p) {
 // A split island by the whole team (two threads at most: it has two halves): each thread
 // prepares a half, then a group of the boundary contacts (their bodies are in both halves).
 void World::Impl::solveSplitIsland(const IslandRange& r, const StepContexts& ctx) {
-#pragma omp parallel num_threads(std::min(2, threadCount()))
-  {
+  const auto team = [&] {
     const auto [t, nt] = teamSlot();
     const StepContext& c = ctx.of(r.resting);  // for the halves and the attached islands too
     // half k and the islands attached to it (attachToSplitHalves)
@@ -351,6 +350,13 @@ void World::Impl::solveSplitIsland(const IslandRange& r, const StepContexts& ctx
     team_barrier.wait(t, nt);
     for (int k = t; k < 2; k += nt)
       withHalf(k, [&](const IslandRange& p) { finishIslandBodies(p); });
+  };
+  // One thread takes both halves in turn, outside a region (parallel_for.hpp says why).
+  if (threadCount() > 1) {
+#pragma omp parallel num_threads(2)
+    team();
+  } else {
+    team();
   }
 }
 
@@ -405,7 +411,8 @@ void World::Impl::solveIslands(const StepContexts& ctx) {
   };
   // (no runs when every island is split or goes along with a split one's half; one thread enters
   // no region: parallel_for.hpp says why)
-  if (run_work > 0 && count > 1 && threadCount() > 1 && int(island_bodies.size()) >= kParallelMin) {
+  const bool team = threadCount() > 1 && int(island_bodies.size()) >= kParallelMin;
+  if (run_work > 0 && count > 1 && team) {
 #ifdef _OPENMP
 #pragma omp parallel num_threads(threadCount())
     solveRun(omp_get_thread_num());

@@ -6,8 +6,8 @@
 namespace ragdoll_sim {
 
 // f(i) for i in [0, n): split over `threads` threads from kParallelMin items; below that, or with
-// one thread, on the caller's thread without entering OpenMP, whose region costs microseconds
-// even for a team of one (a one-ragdoll step takes about 25).
+// one thread, on the caller's thread without entering OpenMP, whose region costs microseconds even
+// for a team of one: a good part of a small world's whole step.
 template <class F>
 void parallelFor(int n, int threads, F&& f) {
   if (threads <= 1 || n < kParallelMin) {
