@@ -7,6 +7,7 @@
 #include <cstring>
 #include <memory>
 
+#include "constants.hpp"
 #include "scene_util.hpp"
 
 using namespace ragdoll_sim;
@@ -19,6 +20,7 @@ namespace {
 // every other chain bounces (restitution, applied per island after its substeps).
 struct Chains {
   static constexpr int kChains = 9;
+  static_assert(kChains * (kChains + 3) / 2 >= kParallelMin, "the runs must go to threads");
   std::unique_ptr<World> world;
   std::vector<BodyId> boxes;
 
