@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <utility>
 
-#include "constants.hpp"
+#include "parallel_for.hpp"
 #include "world_impl.hpp"
 
 namespace ragdoll_sim {
@@ -409,9 +409,8 @@ void World::Impl::solveIslands(const StepContexts& ctx) {
     flush();
     for (int k; (k = run_queue.steal(t)) >= 0;) solveOne(k);
   };
-  // (no runs when every island is split or goes along with a split one's half; one thread enters
-  // no region: parallel_for.hpp says why)
-  const bool team = threadCount() > 1 && int(island_bodies.size()) >= kParallelMin;
+  // (no runs when every island is split or goes along with a split one's half)
+  const bool team = splitOverThreads(int(island_bodies.size()), threadCount());
   if (run_work > 0 && count > 1 && team) {
 #ifdef _OPENMP
 #pragma omp parallel num_threads(threadCount())
