@@ -161,21 +161,23 @@ void World::Impl::collide(double dt) {
                merged_keys.begin());
     pair_keys.swap(merged_keys);
   }
-  // Sized only: every contact is reset in the parallel loop below (a Contact is ~400 bytes, too
-  // many to construct serially).
-  next_contacts.resize(pair_keys.size());
-  next_manifold_caches.resize(pair_keys.size());
-
-  // Merge with last step's contacts (both sorted by key), then run the narrowphase on each
-  // pair independently (in parallel; each writes only its own contact).
-  old_contact.assign(pair_keys.size(), -1);
-  size_t old = 0;
-  const size_t old_count = contact_keys.size();  // contacts[k].key: 8 bytes apart, not ~400
-  for (size_t i = 0; i < pair_keys.size(); ++i) {
-    while (old < old_count && contact_keys[old] < pair_keys[i]) ++old;
-    if (old < old_count && contact_keys[old] == pair_keys[i]) old_contact[i] = int(old);
+  // When the pairs are last step's (a scene at rest), each contact is updated where it is;
+  // otherwise the pairs go to new arrays and are merged with last step's contacts (both sorted
+  // by key). A Contact is ~400 bytes: copying every one each step costs more than its update.
+  const bool in_place = pair_keys == contact_keys;
+  const int count = int(pair_keys.size());
+  if (!in_place) {
+    // Sized only: every contact is set in the parallel loop below.
+    next_contacts.resize(pair_keys.size());
+    next_manifold_caches.resize(pair_keys.size());
+    old_contact.assign(pair_keys.size(), -1);
+    size_t old = 0;
+    const size_t old_count = contact_keys.size();  // contacts[k].key: 8 bytes apart, not ~400
+    for (size_t i = 0; i < pair_keys.size(); ++i) {
+      while (old < old_count && contact_keys[old] < pair_keys[i]) ++old;
+      if (old < old_count && contact_keys[old] == pair_keys[i]) old_contact[i] = int(old);
+    }
   }
-  const int count = int(next_contacts.size());
   // Manifold cache (manifold_cache.hpp): a feature a kept manifold lacks is at least
   // (speculative - cache distance) away, so both bodies must move less than that in the step,
   // (|v| + extent |w|) dt, for it not to be reached unseen. (Separated pairs need no such
@@ -187,16 +189,22 @@ void World::Impl::collide(double dt) {
     const BodyMotion& m = motions[b];
     return m.v.norm() + m.extent * m.w.norm() <= cache_speed;
   };
+  // The narrowphase on each pair independently (in parallel; each writes only its own
+  // contact). c may be the old contact itself (in_place): it is read before it is reset.
   parallelFor(count, threadCount(), [&](int i) {
-    Contact& c = next_contacts[i];
-    ManifoldCache& cache = next_manifold_caches[i];
-    const int o = old_contact[i];
+    const int o = in_place ? i : old_contact[i];
+    Contact& c = in_place ? contacts[i] : next_contacts[i];
+    ManifoldCache& cache = in_place ? manifold_caches[i] : next_manifold_caches[i];
+    const auto keep = [&] {  // the old contact and cache, as they were
+      if (in_place) return;
+      c = contacts[o];
+      cache = manifold_caches[o];
+    };
     const int sa = int(pair_keys[i] >> 32), sb = int(uint32_t(pair_keys[i]));
     const int ba = shapes[sa].body, bb = shapes[sb].body;
     const bool asleep = !motions[ba].awake && !motions[bb].awake;
     if (o >= 0 && asleep) {  // the manifold and impulses stay as they were
-      c = contacts[o];
-      cache = manifold_caches[o];
+      keep();
       return;
     }
     // The pair is collided in a frame at the centre of its (first) dynamic body: the
@@ -208,8 +216,7 @@ void World::Impl::collide(double dt) {
     if (o >= 0 && manifold_caches[o].valid &&
         (manifold_caches[o].separated() || (slow(ba) && slow(bb))) &&
         manifold_caches[o].holds(xa, xb, cache_distance)) {
-      c = contacts[o];
-      cache = manifold_caches[o];
+      keep();
       if (!cache.separated()) {
         c.origin = origin;
         cache.apply(shapeDef(sa).geometry, xa, shapeDef(sb).geometry, xb, c.manifold);
@@ -217,6 +224,11 @@ void World::Impl::collide(double dt) {
       }
       return;
     }
+    // What the new contact carries over from the old one (copied first when they are one).
+    Contact saved;
+    const Contact* last = &saved;
+    if (o >= 0 && in_place) saved = c;
+    else if (o >= 0) last = &contacts[o];
     c = Contact();
     c.key = pair_keys[i];
     c.shape_a = sa;
@@ -227,9 +239,9 @@ void World::Impl::collide(double dt) {
     cache.valid = false;
     if (asleep) return;
     const ShapeDef &da = shapeDef(sa), &db = shapeDef(sb);
-    if (o >= 0 && contacts[o].sep_valid) {
+    if (last->sep_valid) {
       const np::ConvexCore ca{&da.geometry, xa}, cb{&db.geometry, xb};
-      const Vec3& n = contacts[o].sep_axis;
+      const Vec3& n = last->sep_axis;
       const double gap = n.dot(cb.support(-n)) - cb.radius() - n.dot(ca.support(n)) - ca.radius();
       if (gap > spec) {
         c.sep_axis = n;
@@ -239,15 +251,16 @@ void World::Impl::collide(double dt) {
       }
     }
     // Last step's normal of the pair (kept as sep_axis) starts GJK near its answer.
-    const Vec3* guess = o >= 0 ? &contacts[o].sep_axis : nullptr;
+    const Vec3* guess = o >= 0 ? &last->sep_axis : nullptr;
     ragdoll_sim::collide(da.geometry, xa, db.geometry, xb, spec, c.manifold, guess);
     cache.store(c.manifold, da.geometry, xa, db.geometry, xb, spec, cache_on);
     // Cache the normal of a separated pair as its axis (not for planes: they are cheap).
     c.sep_valid = c.manifold.count == 0 && !unbounded[sa] && !unbounded[sb];
     c.sep_axis = c.manifold.normal;
     applyPairMaterial(c, da, db);
-    matchImpulses(o >= 0 ? contacts[o] : Contact(), c);
+    matchImpulses(*last, c);
   });
+  if (in_place) return;
   manifold_caches.swap(next_manifold_caches);
   contacts.swap(next_contacts);
   contact_keys.swap(pair_keys);
