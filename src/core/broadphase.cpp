@@ -35,12 +35,10 @@ void Broadphase::findPairs(const std::vector<int>& bounded, const std::vector<Aa
   frozen_ = frozen;
   pairs.clear();
   bounded_.assign(bounded.begin(), bounded.end());
-  if (int(bounded_.size()) >= kGridMin) {
+  if (!keptPairs(aabbs, pairs)) {
     kept_valid_ = false;
-    grid(aabbs, pairs);
-  } else if (!sweepKept(aabbs, pairs)) {
-    kept_valid_ = false;
-    sweep(aabbs, pairs);
+    if (useGrid()) grid(aabbs, pairs);
+    else sweep(aabbs, pairs);
   }
 
   for (const PlaneProxy& p : planes) {
@@ -115,7 +113,7 @@ void Broadphase::sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int
     const Aabb& b = aabbs[order_[k]];
     bounds_[k] = {b.hi[ax], b.lo[ax1], b.hi[ax1], b.lo[ax2], b.hi[ax2]};
   }
-  // Each box against those after it in the sweep order; sweep_work_: the candidates looked at.
+  // Each box against those after it in the sweep order; find_work_: the candidates looked at.
   size_t work = 0;
   for (size_t i = 0; i < m; ++i) {
     const SweepBounds a = bounds_[i];
@@ -132,10 +130,10 @@ void Broadphase::sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int
     }
     work += j - i - 1;
   }
-  sweep_work_ = work;
+  find_work_ = work;
 }
 
-bool Broadphase::sweepKept(const std::vector<Aabb>& aabbs,
+bool Broadphase::keptPairs(const std::vector<Aabb>& aabbs,
                            std::vector<std::pair<int, int>>& pairs) {
   const auto fatBox = [](const Aabb& b) {
     const double grow = kFatRatio * (b.hi - b.lo).maxCoeff();
@@ -159,10 +157,11 @@ bool Broadphase::sweepKept(const std::vector<Aabb>& aabbs,
     for (int id : escaped_) fat_[id] = fatBox(aabbs[id]);
   }
   const size_t m = bounded_.size(), k = escaped_.size();
-  if (rebuild || k * m > sweep_work_) {
-    // Many boxes left (or nothing is kept): the whole sweep over the fat boxes.
+  if (rebuild || k * m > find_work_) {
+    // Many boxes left (or nothing is kept): the whole sweep or grid over the fat boxes.
     candidates_.clear();
-    sweep(fat_, candidates_, true);
+    if (useGrid()) grid(fat_, candidates_, true);
+    else sweep(fat_, candidates_, true);
     kept_bounded_ = bounded_;
     kept_valid_ = true;
   } else if (k > 0) {
@@ -204,7 +203,8 @@ void Broadphase::insert(int proxy, const int cell[3]) {
   slot.head = int(next_.size()) - 1;
 }
 
-void Broadphase::grid(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs) {
+void Broadphase::grid(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs,
+                      bool raw) {
   order_.clear();  // the sweep starts afresh if the shapes drop below kGridMin
   double side_sum = 0.0;
   int finite_count = 0;
@@ -252,6 +252,11 @@ void Broadphase::grid(const std::vector<Aabb>& aabbs, std::vector<std::pair<int,
         for (c[2] = r.lo[2]; c[2] <= r.hi[2]; ++c[2]) insert(i, c);
   }
 
+  const auto emit = [&](int i, int j) {
+    if (raw) pairs.emplace_back(std::min(i, j), std::max(i, j));
+    else addPair(pairs, i, j);
+  };
+  size_t work = 0;
   // Two instances of the loop, so that the frozen test stays out of this tight loop where
   // nothing is frozen.
   const auto cellPairs = [&](auto with_frozen) {
@@ -260,6 +265,7 @@ void Broadphase::grid(const std::vector<Aabb>& aabbs, std::vector<std::pair<int,
       cell_ids_.clear();
       for (int e = slot.head; e >= 0; e = next_[e]) cell_ids_.push_back(entry_proxy_[e]);
       const size_t m = cell_ids_.size();
+      work += m * (m - 1) / 2;
       for (size_t x = 0; x < m; ++x) {
         const int i = cell_ids_[x];
         const CellRange& ri = range_[i];
@@ -277,12 +283,12 @@ void Broadphase::grid(const std::vector<Aabb>& aabbs, std::vector<std::pair<int,
               std::max(ri.lo[1], rj.lo[1]) != slot.cell[1] ||
               std::max(ri.lo[2], rj.lo[2]) != slot.cell[2])
             continue;
-          if (aabbs[i].overlaps(aabbs[j])) addPair(pairs, i, j);
+          if (aabbs[i].overlaps(aabbs[j])) emit(i, j);
         }
       }
     }
   };
-  if (frozen_) cellPairs(std::true_type());
+  if (frozen_ && !raw) cellPairs(std::true_type());
   else cellPairs(std::false_type());
   for (int s : used_) table_[s].head = -1;
 
@@ -290,12 +296,14 @@ void Broadphase::grid(const std::vector<Aabb>& aabbs, std::vector<std::pair<int,
   for (size_t k = 0; k < large_.size(); ++k) {
     const int i = large_[k];
     for (int j : gridded_)
-      if (aabbs[i].overlaps(aabbs[j])) addPair(pairs, i, j);
+      if (aabbs[i].overlaps(aabbs[j])) emit(i, j);
     for (size_t l = k + 1; l < large_.size(); ++l) {
       const int j = large_[l];
-      if (aabbs[i].overlaps(aabbs[j])) addPair(pairs, i, j);
+      if (aabbs[i].overlaps(aabbs[j])) emit(i, j);
     }
+    work += gridded_.size() + large_.size() - k - 1;
   }
+  find_work_ = work;
 }
 
 }  // namespace ragdoll_sim

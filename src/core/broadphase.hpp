@@ -5,7 +5,7 @@
 //     spread most along; the proxies' order is kept between steps and re-sorted by insertion
 //     sort, near linear when bodies move little per step. Its candidates grow with the length
 //     of a row of bodies along the axis, so it scales poorly to many spread-out ragdolls.
-//   uniform hash grid (from kGridMin shapes), rebuilt every step: cell side twice the mean
+//   uniform hash grid (from kGridMin shapes), built afresh at each call: cell side twice the mean
 //     largest box side; each box goes into every cell it overlaps, and a pair is reported only
 //     in the cell that holds the low corner of its overlap ((max lo_a, lo_b) per axis: inside
 //     both boxes, so every overlapping pair is found, and once). Its work grows with the
@@ -13,12 +13,12 @@
 //     than the sweep, hence the switch by shape count.
 //     Boxes longer than kMaxSpan cells (a pit's walls) or not finite are tested against every
 //     box instead.
-// The sweep runs over kept fat boxes (each shape's box grown by kFatRatio of its largest side,
+// Either runs over kept fat boxes (each shape's box grown by kFatRatio of its largest side,
 // kept while the box stays inside it), and its candidates (the pairs whose fat boxes overlap)
 // are kept between calls: a box inside its fat box cannot overlap a box whose fat box it does
 // not overlap, so each call tests only the kept candidates against the exact boxes. When a few
 // boxes left their fat boxes, only their candidates are found again (against every fat box);
-// when many did, the whole sweep runs again over the fat boxes.
+// when many did, the whole sweep or grid runs again over the fat boxes.
 #pragma once
 
 #include <cstddef>
@@ -86,10 +86,13 @@ class Broadphase {
   // pairs, else through addPair.
   void sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs,
              bool raw = false);
-  // The sweep's pairs through the kept candidates (fat boxes); false when a box is not finite
-  // (then the plain sweep runs, as the fat boxes cannot bound it).
-  bool sweepKept(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs);
-  void grid(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs);
+  // The pairs through the kept candidates (fat boxes); false when a box is not finite (then the
+  // plain sweep or grid runs, as the fat boxes cannot bound it).
+  bool keptPairs(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs);
+  bool useGrid() const { return int(bounded_.size()) >= kGridMin; }
+  // The hash grid over boxes; raw as for sweep.
+  void grid(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs,
+            bool raw = false);
   // Appends (min, max) of i and j when accept_ takes it.
   void addPair(std::vector<std::pair<int, int>>& pairs, int i, int j) const;
   void insert(int proxy, const int cell[3]);
@@ -111,7 +114,7 @@ class Broadphase {
   std::vector<char> seen_;
   std::vector<double> key_;          // lo on the sweep axis, in sweep order
   std::vector<SweepBounds> bounds_;  // in sweep order
-  size_t sweep_work_ = 0;            // candidates the last sweep looked at
+  size_t find_work_ = 0;  // candidates the last whole sweep or grid looked at
 
   // kept candidates
   static constexpr double kFatRatio = 0.2;  // fat margin per side over the box's largest side

@@ -1,8 +1,8 @@
 // The broadphase's pairs are exactly the brute-force overlaps, for both of its methods (sweep
 // and prune below Broadphase::kGridMin bounded shapes, hash grid from it), over steps in which
 // the boxes move (the sweep keeps its order between calls) and shapes come and go; a filter
-// drops exactly the pairs it rejects; the sweep's kept candidates give the same pairs as a fresh
-// sweep.
+// drops exactly the pairs it rejects; the kept candidates (of the sweep and of the grid) give the
+// same pairs as a fresh broadphase.
 // The world's sort of the pairs' keys (group_by.hpp) gives std::sort's order.
 #include <gtest/gtest.h>
 
@@ -109,12 +109,13 @@ INSTANTIATE_TEST_SUITE_P(SweepAndGrid, BroadphaseExact,
                          // kGridMin + 4: the grid, then the sweep once 7 shapes are gone.
                          ::testing::Values(40, 500, Broadphase::kGridMin + 4, 3000));
 
-// The sweep keeps its candidates between calls (fat boxes): over many calls in which most boxes
-// barely move or change size (kept candidates), a few jump (their candidates found again) and
-// now and then all of them move (the whole sweep again), the pairs stay the brute-force ones,
-// and with a filter and frozen shapes the same as a fresh broadphase's.
-TEST(Broadphase, KeptCandidatesEqualBruteForce) {
-  const int n = 400;
+// The sweep and the grid keep their candidates between calls (fat boxes): over many calls in
+// which most boxes barely move or change size (kept candidates), a few jump (their candidates
+// found again) and now and then all of them move (the whole sweep or grid again), the pairs stay
+// the brute-force ones, and with a filter and frozen shapes the same as a fresh broadphase's.
+class BroadphaseKept : public ::testing::TestWithParam<int> {};
+TEST_P(BroadphaseKept, CandidatesEqualBruteForce) {
+  const int n = GetParam();
   std::mt19937 rng(23);
   std::vector<Aabb> boxes = scatter(rng, n);
   const std::vector<char> unbounded(n, 0);
@@ -162,6 +163,8 @@ TEST(Broadphase, KeptCandidatesEqualBruteForce) {
   }
   EXPECT_GT(total, size_t(n));
 }
+INSTANTIATE_TEST_SUITE_P(SweepAndGrid, BroadphaseKept,
+                         ::testing::Values(400, Broadphase::kGridMin + 100));
 
 // A box whose bounds are NaN or infinite overlaps nothing, and the finite ones still pair up.
 TEST(Broadphase, NonFiniteBoxesPairWithNothing) {
