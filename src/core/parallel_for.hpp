@@ -1,7 +1,16 @@
 // A loop of independent items over the step's threads.
 #pragma once
 
+#include <algorithm>
+#include <cstdint>
+#include <vector>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include "constants.hpp"
+#include "run_queue.hpp"
 
 namespace ragdoll_sim {
 
@@ -10,15 +19,42 @@ namespace ragdoll_sim {
 inline bool splitOverThreads(int n, int threads) { return threads > 1 && n >= kParallelMin; }
 
 // f(i) for i in [0, n): split over the threads when splitOverThreads, else on the caller's thread
-// without entering OpenMP.
+// without entering OpenMP. Each thread takes its share of the items (a contiguous part, as a
+// static schedule gives it, so that it touches the same data step after step) in chunks from the
+// front; one that is done takes chunks from the back of another's share (run_queue.hpp): the
+// items' cost varies (a kept manifold against a new one) and so do the vCPUs' speeds, and a
+// static split leaves one thread waiting at the end of the loop. f must be independent per item.
 template <class F>
 void parallelFor(int n, int threads, F&& f) {
   if (!splitOverThreads(n, threads)) {
     for (int i = 0; i < n; ++i) f(i);
     return;
   }
-#pragma omp parallel for schedule(static) num_threads(threads)
+#ifdef _OPENMP
+  constexpr int kChunksPerThread = 16;
+  const int chunk = std::max(1, n / (threads * kChunksPerThread));
+  const int chunks = (n + chunk - 1) / chunk;
+  // The caller's, kept between calls (the team reaches it through `queue`: in another thread
+  // the thread_local name is that thread's own).
+  thread_local RunQueue caller_queue;
+  thread_local std::vector<int> runs;
+  runs.resize(threads + 1);
+  for (int t = 0; t <= threads; ++t) runs[t] = int(int64_t(chunks) * t / threads);
+  RunQueue& queue = caller_queue;
+  queue.reset(runs);
+  const auto run = [&](int c) {
+    const int end = std::min(n, (c + 1) * chunk);
+    for (int i = c * chunk; i < end; ++i) f(i);
+  };
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num();
+    for (int c; (c = queue.take(t)) >= 0;) run(c);
+    for (int c; (c = queue.steal(t)) >= 0;) run(c);
+  }
+#else
   for (int i = 0; i < n; ++i) f(i);
+#endif
 }
 
 }  // namespace ragdoll_sim

@@ -6,6 +6,7 @@
 // threads' time does not follow (a vCPU slows, or an island costs more than its count of
 // constraints says). Islands are independent (each writes only its own bodies, joints and contacts,
 // in its fixed order), so which thread solves one does not change the result.
+// parallelFor (parallel_for.hpp) hands out the chunks of a loop's items the same way.
 //
 // Each run is one 64-bit word, front in the low half and back in the high half, changed by
 // compare-and-swap: the owner and a thief can never take the same island.

@@ -1,6 +1,7 @@
 // RunQueue (run_queue.hpp): each thread takes its own run in order, then steals from the back
 // of the others'; under contention every island is taken exactly once, and a thread that
-// falls behind has its run finished by the others.
+// falls behind has its run finished by the others. parallelFor (parallel_for.hpp), built on
+// it, calls f once per item, and the others take a stalled thread's items.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -8,6 +9,7 @@
 #include <thread>
 #include <vector>
 
+#include "parallel_for.hpp"
 #include "run_queue.hpp"
 
 namespace ragdoll_sim {
@@ -73,6 +75,50 @@ TEST(RunQueue, EveryIslandOnceUnderContentionAndALateThreadIsHelped) {
     EXPECT_GT(from_late_run.load(), 0) << "round " << round;
   }
 }
+
+TEST(ParallelFor, EveryItemOnceAtAnySizeAndThreadCount) {
+  for (const int threads : {1, 2, 3, 4})
+    for (const int n : {0, 1, kParallelMin - 1, kParallelMin, 100, 1001, 5000}) {
+      std::vector<std::atomic<int>> calls(n);
+      for (auto& c : calls) c.store(0);
+      parallelFor(n, threads, [&](int i) { calls[i].fetch_add(1); });
+      int wrong = 0;
+      for (int i = 0; i < n; ++i) wrong += calls[i].load() != 1;
+      EXPECT_EQ(wrong, 0) << n << " items, " << threads << " threads";
+    }
+}
+
+#ifdef _OPENMP
+// Thread 1 stalls on its first item: thread 0 finishes its own share and then takes the rest
+// of thread 1's (a static split would leave all of it to thread 1).
+TEST(ParallelFor, AStalledThreadsItemsAreTakenByTheOther) {
+  constexpr int kItems = 4000;
+  std::vector<int> by(kItems, -1);
+  std::atomic<bool> stalled{false};
+  parallelFor(kItems, 2, [&](int i) {
+    const int t = omp_get_thread_num();
+    if (t == 1 && !stalled.exchange(true)) {
+      // until thread 0 took an item of the second half, or 1 s
+      const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+      const auto& done = by;
+      while (std::chrono::steady_clock::now() < give_up) {
+        bool helped = false;
+        for (int k = kItems / 2; k < kItems && !helped; ++k)
+          helped = __atomic_load_n(&done[k], __ATOMIC_RELAXED) == 0;
+        if (helped) break;
+        std::this_thread::yield();
+      }
+    }
+    __atomic_store_n(&by[i], t, __ATOMIC_RELAXED);
+  });
+  int second_half_by_0 = 0;
+  for (int i = 0; i < kItems; ++i) {
+    ASSERT_GE(by[i], 0) << i;
+    if (i >= kItems / 2) second_half_by_0 += by[i] == 0;
+  }
+  EXPECT_GT(second_half_by_0, kItems / 4);
+}
+#endif
 
 }  // namespace
 }  // namespace ragdoll_sim
