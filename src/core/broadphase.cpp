@@ -17,6 +17,11 @@ void Broadphase::addPair(std::vector<std::pair<int, int>>& pairs, int i, int j) 
   if (!accept_ || accept_(a, b)) pairs.emplace_back(a, b);
 }
 
+void Broadphase::addCandidate(std::vector<std::pair<int, int>>& pairs, int i, int j) const {
+  const int a = std::min(i, j), b = std::max(i, j);
+  if (!accept_ || accept_(a, b)) pairs.emplace_back(a, b);
+}
+
 void Broadphase::findPairs(const std::vector<Aabb>& aabbs, const std::vector<char>& unbounded,
                            const std::vector<PlaneProxy>& planes, double margin,
                            std::vector<std::pair<int, int>>& pairs, Filter accept,
@@ -54,7 +59,7 @@ void Broadphase::findPairs(const std::vector<int>& bounded, const std::vector<Aa
 }
 
 void Broadphase::sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs,
-                       bool raw) {
+                       bool candidates) {
   // Keep the previous order, drop stale or unbounded ids, append new ones. seen_ is all 0
   // between calls (cleared through bounded_), so that a call costs nothing per shape left out.
   seen_.resize(aabbs.size(), 0);
@@ -124,7 +129,7 @@ void Broadphase::sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int
       const SweepBounds& b = bounds_[j];
       if (lo <= b.hi && b.lo_u <= a.hi_u && a.lo_u <= b.hi_u && b.lo_w <= a.hi_w &&
           a.lo_w <= b.hi_w) {  // Aabb::overlaps
-        if (raw) pairs.emplace_back(order_[i], order_[j]);
+        if (candidates) addCandidate(pairs, order_[i], order_[j]);
         else addPair(pairs, order_[i], order_[j]);
       }
     }
@@ -176,13 +181,13 @@ bool Broadphase::keptPairs(const std::vector<Aabb>& aabbs,
     for (int s : escaped_) {
       const Aabb a = fat_[s];
       for (int t : bounded_)
-        if (t != s && !(moved_[t] && t < s) && a.overlaps(fat_[t])) candidates_.emplace_back(s, t);
+        if (t != s && !(moved_[t] && t < s) && a.overlaps(fat_[t])) addCandidate(candidates_, s, t);
     }
     for (int id : escaped_) moved_[id] = 0;
   }
   // The exact boxes of the candidates.
   for (const auto& [i, j] : candidates_)
-    if (aabbs[i].overlaps(aabbs[j])) addPair(pairs, i, j);
+    if (aabbs[i].overlaps(aabbs[j]) && !bothFrozen(i, j)) pairs.emplace_back(i, j);
   return true;
 }
 
@@ -204,7 +209,7 @@ void Broadphase::insert(int proxy, const int cell[3]) {
 }
 
 void Broadphase::grid(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs,
-                      bool raw) {
+                      bool candidates) {
   order_.clear();  // the sweep starts afresh if the shapes drop below kGridMin
   double side_sum = 0.0;
   int finite_count = 0;
@@ -253,7 +258,7 @@ void Broadphase::grid(const std::vector<Aabb>& aabbs, std::vector<std::pair<int,
   }
 
   const auto emit = [&](int i, int j) {
-    if (raw) pairs.emplace_back(std::min(i, j), std::max(i, j));
+    if (candidates) addCandidate(pairs, i, j);
     else addPair(pairs, i, j);
   };
   size_t work = 0;
@@ -288,7 +293,7 @@ void Broadphase::grid(const std::vector<Aabb>& aabbs, std::vector<std::pair<int,
       }
     }
   };
-  if (frozen_ && !raw) cellPairs(std::true_type());
+  if (frozen_ && !candidates) cellPairs(std::true_type());
   else cellPairs(std::false_type());
   for (int s : used_) table_[s].head = -1;
 

@@ -68,6 +68,8 @@ class Broadphase {
   // frozen (optional, one flag per shape, planes included): pairs of two frozen shapes are
   // left out, unfiltered (the world carries them over from the last step: their boxes and
   // planes have not changed since).
+  // accept must give a pair the same answer from call to call until filterChanged(): the kept
+  // candidates are filtered once, when they are found.
   void findPairs(const std::vector<Aabb>& aabbs, const std::vector<char>& unbounded,
                  const std::vector<PlaneProxy>& planes, double margin,
                  std::vector<std::pair<int, int>>& pairs, Filter accept = nullptr,
@@ -79,22 +81,27 @@ class Broadphase {
                  std::vector<std::pair<int, int>>& pairs, Filter accept = nullptr,
                  const std::vector<char>* frozen = nullptr);
 
+  // The filter answers differently now: the kept candidates are found again.
+  void filterChanged() { kept_valid_ = false; }
+
   static constexpr int kGridMin = 768;  // bounded shapes from which the grid is used
 
  private:
-  // Sweep and prune over boxes; raw: every overlapping pair (no filter, no frozen test) into
-  // pairs, else through addPair.
+  // Sweep and prune over boxes; candidates: the overlapping pairs through addCandidate (the
+  // kept candidates), else through addPair.
   void sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs,
-             bool raw = false);
+             bool candidates = false);
   // The pairs through the kept candidates (fat boxes); false when a box is not finite (then the
   // plain sweep or grid runs, as the fat boxes cannot bound it).
   bool keptPairs(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs);
   bool useGrid() const { return int(bounded_.size()) >= kGridMin; }
-  // The hash grid over boxes; raw as for sweep.
+  // The hash grid over boxes; candidates as for sweep.
   void grid(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs,
-            bool raw = false);
-  // Appends (min, max) of i and j when accept_ takes it.
+            bool candidates = false);
+  // Appends (min, max) of i and j when they are not both frozen and accept_ takes it.
   void addPair(std::vector<std::pair<int, int>>& pairs, int i, int j) const;
+  // The same, frozen or not (a kept candidate is tested against frozen_ at each call).
+  void addCandidate(std::vector<std::pair<int, int>>& pairs, int i, int j) const;
   void insert(int proxy, const int cell[3]);
 
   // scratch, kept between steps to avoid a per-step allocation

@@ -125,6 +125,7 @@ void World::Impl::collide(double dt) {
     const int ba = shapes[sa].body, bb = shapes[sb].body;
     return ba != bb && (isDynamic(ba) || isDynamic(bb)) && !neverCollide(ba, bb);
   };
+  if (pairs_dirty) broadphase.filterChanged();
   broadphase.findPairs(moving_shapes, aabbs, planes, spec, pairs, accept,
                        carry_now ? &frozen : nullptr);
   // The static shapes: each dynamic shape's box queries their tree (a sleeping one only when

@@ -112,7 +112,8 @@ INSTANTIATE_TEST_SUITE_P(SweepAndGrid, BroadphaseExact,
 // The sweep and the grid keep their candidates between calls (fat boxes): over many calls in
 // which most boxes barely move or change size (kept candidates), a few jump (their candidates
 // found again) and now and then all of them move (the whole sweep or grid again), the pairs stay
-// the brute-force ones, and with a filter and frozen shapes the same as a fresh broadphase's.
+// the brute-force ones, and with a filter and frozen shapes the same as a fresh broadphase's,
+// also after the filter changed (filterChanged).
 class BroadphaseKept : public ::testing::TestWithParam<int> {};
 TEST_P(BroadphaseKept, CandidatesEqualBruteForce) {
   const int n = GetParam();
@@ -123,11 +124,16 @@ TEST_P(BroadphaseKept, CandidatesEqualBruteForce) {
   std::uniform_int_distribution<int> pick(0, n - 1);
   std::vector<char> frozen(n, 0);
   for (int i = 0; i < n; i += 3) frozen[i] = 1;
-  const auto keep = [](int i, int j) { return (i + j) % 5 != 0; };
+  int modulus = 5;  // the filter changes now and then
+  const auto keep = [&](int i, int j) { return (i + j) % modulus != 0; };
   Broadphase bp, filtered;
   Pairs pairs, filtered_pairs, fresh_pairs;
   size_t total = 0;
   for (int call = 0; call < 80; ++call) {
+    if (call % 10 == 9) {
+      modulus = modulus == 5 ? 7 : 5;
+      filtered.filterChanged();
+    }
     bp.findPairs(boxes, unbounded, {}, 0.0, pairs);
     filtered.findPairs(boxes, unbounded, {}, 0.0, filtered_pairs, keep, &frozen);
     Broadphase fresh;
