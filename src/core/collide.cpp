@@ -162,9 +162,9 @@ void World::Impl::collide(double dt) {
                merged_keys.begin());
     pair_keys.swap(merged_keys);
   }
-  // When the pairs are last step's (a scene at rest), each contact is updated where it is;
-  // otherwise the pairs go to new arrays and are merged with last step's contacts (both sorted
-  // by key). A Contact is ~400 bytes: copying every one each step costs more than its update.
+  // When the pairs are last step's (a scene at rest), each contact is updated where it is
+  // instead of being copied (~400 bytes) into a new array; otherwise the pairs go to new arrays
+  // and are merged with last step's contacts (both sorted by key).
   const bool in_place = pair_keys == contact_keys;
   const int count = int(pair_keys.size());
   if (!in_place) {

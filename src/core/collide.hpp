@@ -43,7 +43,7 @@ struct CollideData {
   std::vector<char> frozen;  // per shape: box or plane as in the last step
   std::vector<PlaneProxy> last_planes;
   // The broadphase filter changed (pairs enabled or disabled): the next collide finds every
-  // pair again instead of carrying sleeping ones over.
+  // pair again instead of carrying sleeping ones over, and the broadphase its candidates.
   bool pairs_dirty = true;
   // Per contact (same index): its manifold in the shapes' frames (manifold_cache.hpp).
   std::vector<ManifoldCache> manifold_caches, next_manifold_caches;
