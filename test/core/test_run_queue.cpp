@@ -89,8 +89,9 @@ TEST(ParallelFor, EveryItemOnceAtAnySizeAndThreadCount) {
 }
 
 #ifdef _OPENMP
-// Thread 1 stalls on its first item: thread 0 finishes its own share and then takes the rest
-// of thread 1's (a static split would leave all of it to thread 1).
+// Thread 1 stalls on its first item until an item three quarters of the way through its share
+// is done: thread 0 finishes its own share and then takes thread 1's from the back (a static
+// split would leave all of it to thread 1, and the wait would end after 1 s).
 TEST(ParallelFor, AStalledThreadsItemsAreTakenByTheOther) {
   constexpr int kItems = 4000;
   std::vector<int> by(kItems, -1);
@@ -98,16 +99,10 @@ TEST(ParallelFor, AStalledThreadsItemsAreTakenByTheOther) {
   parallelFor(kItems, 2, [&](int i) {
     const int t = omp_get_thread_num();
     if (t == 1 && !stalled.exchange(true)) {
-      // until thread 0 took an item of the second half, or 1 s
       const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(1);
-      const auto& done = by;
-      while (std::chrono::steady_clock::now() < give_up) {
-        bool helped = false;
-        for (int k = kItems / 2; k < kItems && !helped; ++k)
-          helped = __atomic_load_n(&done[k], __ATOMIC_RELAXED) == 0;
-        if (helped) break;
+      while (__atomic_load_n(&by[kItems / 2 + kItems / 8], __ATOMIC_RELAXED) < 0 &&
+             std::chrono::steady_clock::now() < give_up)
         std::this_thread::yield();
-      }
     }
     __atomic_store_n(&by[i], t, __ATOMIC_RELAXED);
   });
