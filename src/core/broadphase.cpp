@@ -11,15 +11,13 @@ bool finite(const Aabb& b) { return b.lo.allFinite() && b.hi.allFinite(); }
 
 }  // namespace
 
-void Broadphase::addPair(std::vector<std::pair<int, int>>& pairs, int i, int j) const {
-  const int a = std::min(i, j), b = std::max(i, j);
-  if (bothFrozen(a, b)) return;
-  if (!accept_ || accept_(a, b)) pairs.emplace_back(a, b);
-}
-
 void Broadphase::addCandidate(std::vector<std::pair<int, int>>& pairs, int i, int j) const {
   const int a = std::min(i, j), b = std::max(i, j);
   if (!accept_ || accept_(a, b)) pairs.emplace_back(a, b);
+}
+
+void Broadphase::addPair(std::vector<std::pair<int, int>>& pairs, int i, int j) const {
+  if (!bothFrozen(i, j)) addCandidate(pairs, i, j);
 }
 
 void Broadphase::findPairs(const std::vector<Aabb>& aabbs, const std::vector<char>& unbounded,

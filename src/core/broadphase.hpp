@@ -63,8 +63,7 @@ class Broadphase {
   };
 
   // aabbs[i] is shape i's box (ignored when unbounded[i]); pairs get (i, j) with i < j. One
-  // thread: a step's sweep costs less than starting a parallel region on the sizes it serves
-  // (the grid takes over from kGridMin shapes).
+  // thread: a step's test of the kept candidates costs less than starting a parallel region.
   // frozen (optional, one flag per shape, planes included): pairs of two frozen shapes are
   // left out, unfiltered (the world carries them over from the last step: their boxes and
   // planes have not changed since).

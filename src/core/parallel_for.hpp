@@ -26,35 +26,33 @@ inline bool splitOverThreads(int n, int threads) { return threads > 1 && n >= kP
 // static split leaves one thread waiting at the end of the loop. f must be independent per item.
 template <class F>
 void parallelFor(int n, int threads, F&& f) {
-  if (!splitOverThreads(n, threads)) {
-    for (int i = 0; i < n; ++i) f(i);
+#ifdef _OPENMP
+  if (splitOverThreads(n, threads)) {
+    constexpr int kChunksPerThread = 16;
+    const int chunk = std::max(1, n / (threads * kChunksPerThread));
+    const int chunks = (n + chunk - 1) / chunk;
+    // The caller's, kept between calls (the team reaches it through `queue`: in another thread
+    // the thread_local name is that thread's own).
+    thread_local RunQueue caller_queue;
+    thread_local std::vector<int> runs;
+    runs.resize(threads + 1);
+    for (int t = 0; t <= threads; ++t) runs[t] = int(int64_t(chunks) * t / threads);
+    RunQueue& queue = caller_queue;
+    queue.reset(runs);
+    const auto run = [&](int c) {
+      const int end = std::min(n, (c + 1) * chunk);
+      for (int i = c * chunk; i < end; ++i) f(i);
+    };
+#pragma omp parallel num_threads(threads)
+    {
+      const int t = omp_get_thread_num();
+      for (int c; (c = queue.take(t)) >= 0;) run(c);
+      for (int c; (c = queue.steal(t)) >= 0;) run(c);
+    }
     return;
   }
-#ifdef _OPENMP
-  constexpr int kChunksPerThread = 16;
-  const int chunk = std::max(1, n / (threads * kChunksPerThread));
-  const int chunks = (n + chunk - 1) / chunk;
-  // The caller's, kept between calls (the team reaches it through `queue`: in another thread
-  // the thread_local name is that thread's own).
-  thread_local RunQueue caller_queue;
-  thread_local std::vector<int> runs;
-  runs.resize(threads + 1);
-  for (int t = 0; t <= threads; ++t) runs[t] = int(int64_t(chunks) * t / threads);
-  RunQueue& queue = caller_queue;
-  queue.reset(runs);
-  const auto run = [&](int c) {
-    const int end = std::min(n, (c + 1) * chunk);
-    for (int i = c * chunk; i < end; ++i) f(i);
-  };
-#pragma omp parallel num_threads(threads)
-  {
-    const int t = omp_get_thread_num();
-    for (int c; (c = queue.take(t)) >= 0;) run(c);
-    for (int c; (c = queue.steal(t)) >= 0;) run(c);
-  }
-#else
-  for (int i = 0; i < n; ++i) f(i);
 #endif
+  for (int i = 0; i < n; ++i) f(i);
 }
 
 }  // namespace ragdoll_sim
