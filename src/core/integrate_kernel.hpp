@@ -1,8 +1,9 @@
 // The rotation step of integratePositions on plain arrays, written once for a lane type D:
 // double (one body), Double2 (two bodies in an SSE2 register, the x86-64 baseline) or Double4
-// (four bodies in an AVX register, integrate_w4.cpp, compiled with -mavx2 -mno-fma). Every lane
-// does exactly the IEEE operations, in the order, of the Eigen expressions they replace
-// (EIGEN_DONT_VECTORIZE: Eigen's scalar paths), so all types give the bits of
+// (four bodies in an AVX register, integrate_w4.cpp, compiled with -mavx2 -mno-fma), the lanes
+// of double_lanes.hpp. Every lane does exactly the IEEE operations, in the order, of the Eigen
+// expressions they replace (EIGEN_DONT_VECTORIZE: Eigen's scalar paths), so all types give the
+// bits of
 //   dp += h v;  L = R (I (R^T w));  dq = (dq + (0, h/2 w) dq).normalized();
 //   R = (dq q).toRotationMatrix();  w = R (I^-1 (R^T L))
 // where a 3-term sum a0 + a1 + a2 is Eigen's a0 + (a1 + a2) (its unrolled reduction halves the
@@ -12,10 +13,7 @@
 // per instruction set, so that no AVX copy of an inline function replaces a baseline one.
 #pragma once
 
-#include <emmintrin.h>
-#if defined(__AVX__)
-#include <immintrin.h>
-#endif
+#include "double_lanes.hpp"
 
 #if defined(__AVX2__)
 #define RAGDOLL_SIM_INTEGRATE_ISA integrate_avx2
@@ -40,14 +38,14 @@ struct BodyFields {
 
 inline namespace RAGDOLL_SIM_INTEGRATE_ISA {
 
-// Two doubles, one per body; the operators are the element-wise IEEE operations.
-typedef double Double2 __attribute__((vector_size(16)));
-inline double squareRoot(double x) { return __builtin_sqrt(x); }
-inline Double2 squareRoot(Double2 x) { return Double2(_mm_sqrt_pd(__m128d(x))); }
+using double_lanes::Double2;
+using double_lanes::squareRoot;
 #if defined(__AVX__)
-typedef double Double4 __attribute__((vector_size(32)));
-inline Double4 squareRoot(Double4 x) { return Double4(_mm256_sqrt_pd(__m256d(x))); }
+using double_lanes::Double4;
 #endif
+using double_lanes::gather;
+using double_lanes::lane;
+using double_lanes::scatter;
 
 // c / sqrt(z) where z > 0, c unchanged elsewhere (Eigen's normalized()).
 inline void divideByRoot(double z, double c[4]) {
@@ -166,44 +164,6 @@ inline double* solverField(const BodyFields& f, int body, long offset) {
 inline const double* motionField(const BodyFields& f, int body, long offset) {
   return (const double*)(f.motion + body * f.motion_stride + offset);
 }
-
-// The lanes of W bodies' arrays: out[j] = {p[0][j], ..., p[W-1][j]}, and back.
-inline double lane(double x, int) { return x; }
-template <class D>
-inline double lane(D x, int l) {
-  return x[l];
-}
-
-template <int N>
-inline void gather(const double* const p[1], double out[N]) {
-  for (int j = 0; j < N; ++j) out[j] = p[0][j];
-}
-template <int N>
-inline void scatter(const double in[N], double* const p[1]) {
-  for (int j = 0; j < N; ++j) p[0][j] = in[j];
-}
-template <int N>
-inline void gather(const double* const p[2], Double2 out[N]) {
-  for (int j = 0; j < N; ++j) out[j] = Double2{p[0][j], p[1][j]};
-}
-template <int N>
-inline void scatter(const Double2 in[N], double* const p[2]) {
-  for (int j = 0; j < N; ++j) {
-    p[0][j] = in[j][0];
-    p[1][j] = in[j][1];
-  }
-}
-#if defined(__AVX__)
-template <int N>
-inline void gather(const double* const p[4], Double4 out[N]) {
-  for (int j = 0; j < N; ++j) out[j] = Double4{p[0][j], p[1][j], p[2][j], p[3][j]};
-}
-template <int N>
-inline void scatter(const Double4 in[N], double* const p[4]) {
-  for (int j = 0; j < N; ++j)
-    for (int l = 0; l < 4; ++l) p[l][j] = in[j][l];
-}
-#endif
 
 // The position step (advanceRotation, then finishRotation) of bodies[0..count), W = sizeof(D) / 8
 // at a time; count a multiple of W. The W bodies' chains run side by side in the lanes, so one

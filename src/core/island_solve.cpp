@@ -130,8 +130,11 @@ class World::Impl::IslandPass {
       solveJoints(p, true, last_joint_sweep < 0);
       w.contact_solver.solve(ctx, true, p.contact_begin, p.contact_end, false);
       w.integratePositions(ctx.h, p.body_begin, p.body_end);
-      joints(p, [&](Joint& j) { advanceJoint(j, ctx); });
-      if (wide) w.point_lanes.refreshAnchors(p, ctx);
+      // a joint whose sweeps are all in the lanes advances there (anchors, axis, angles)
+      joints(p, [&](Joint& j) {
+        if (!j.sweeps_in_lanes) advanceJoint(j, ctx);
+      });
+      if (wide) w.point_lanes.refreshAnchors(p, w.solver, ctx);
     });
   }
 
@@ -156,10 +159,13 @@ class World::Impl::IslandPass {
   }
 
   // Joints whose anchor reached its break force are marked (breakJoints acts after the solve).
-  void markBreaks() {
+  // A joint whose sweeps are all in the lanes cannot break (wideAnchor, point_lanes.cpp): only
+  // its force after the last substep is read.
+  void markBreaks(bool last_substep) {
     parts([&](const IslandRange& p) {  // reads only the joint
       for (int k = p.joint_begin; k < p.joint_end; ++k)
-        if (breaksAfterSubstep(*js[k], ctx)) js[k]->broken = true;
+        if ((last_substep || !js[k]->sweeps_in_lanes) && breaksAfterSubstep(*js[k], ctx))
+          js[k]->broken = true;
     });
   }
 
@@ -306,7 +312,7 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx) {
     pass.integrateAndWarmStart(sub, moved);
     pass.solveBiasedAndIntegrate();
     for (int it = 0; it < ctx.relax; ++it) pass.relax(it);
-    pass.markBreaks();
+    pass.markBreaks(sub == ctx.substeps - 1);
     if (ctx.track_impulses) pass.trackImpulses(sub == 0);
     if (!tracks.empty()) pass.sample(sub);
   }

@@ -20,14 +20,10 @@ struct AnchorPart {
     point.prepare(m[j.a], m[j.b], j.frame_a.p, j.frame_b.p);
   }
 
-  // In the lanes, K^-1 and the warm start are the wide pass's (PointLanes::load); the anchors
-  // are still refreshed here, for the error, the joint trees and the blocks.
+  // In the lanes, the anchors, K^-1 and the warm start are the wide pass's (PointLanes::load).
   void warmStart(const JointBase& j, SolverBody& A, SolverBody& B, const StepContext& ctx,
                  bool anchors_current) {
-    if (in_lanes) {
-      if (!anchors_current) point.refresh(A, B);
-      return;
-    }
+    if (in_lanes) return;
     const double k = j.spring.stiffness;
     point.updateMass(A, B, k > 0.0 ? PointPart::springGamma(k, j.spring.damping, ctx.h) : 0.0,
                      anchors_current);
@@ -51,8 +47,11 @@ struct AnchorPart {
     if (!(j.spring.stiffness > 0.0)) j.force = point.impulse.norm() * ctx.inv_h;
   }
 
-  // After the position update: the relax sweeps see the moved anchors.
-  void refresh(const SolverBody& A, const SolverBody& B) { point.refresh(A, B); }
+  // After the position update: the relax sweeps see the moved anchors (in the lanes,
+  // PointLanes::refreshAnchors moves them).
+  void refresh(const SolverBody& A, const SolverBody& B) {
+    if (!in_lanes) point.refresh(A, B);
+  }
 
   bool project(const JointBase& j, SolverBody& A, SolverBody& B, const StepContext& ctx) const {
     if (j.spring.stiffness > 0.0) return false;  // a spring anchor is meant to stretch

@@ -39,13 +39,11 @@ void HingeJoint::warmStart(JointBase& j, SolverBody& A, SolverBody& B, const Ste
   if (first_substep || !axes.limitsOpen(A, B, ctx.h)) updateAngle(j, A, B, ctx);
   const bool current = !first_substep;
   axes.warmStart(A, B);
-  // The axis goes into the lanes with the anchor; there its K^-1 and warm start are the wide
-  // pass's (PointLanes::load).
+  // The axis goes into the lanes with the anchor; there its refresh, K^-1 and warm start are
+  // the wide pass's (PointLanes::load).
   if (!anchor.in_lanes) {
     hinge_axis.updateMass(A, B, current);
     hinge_axis.warmStart(A, B);
-  } else if (!current) {
-    hinge_axis.refresh(A, B);
   }
   anchor.warmStart(j, A, B, ctx, current);
 }
@@ -61,7 +59,7 @@ void HingeJoint::advance(JointBase& j, const SolverBody& A, const SolverBody& B,
                          const StepContext& ctx) {
   axes.advance(A, B, ctx.h);
   anchor.refresh(A, B);
-  hinge_axis.refresh(A, B);
+  if (!anchor.in_lanes) hinge_axis.refresh(A, B);  // else with the anchor (PointLanes)
 }
 
 bool HingeJoint::projectLimits(JointBase& j, SolverBody& A, SolverBody& B,

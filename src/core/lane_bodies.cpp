@@ -10,6 +10,9 @@ LaneBodies laneBodies(SolverBody* first) {
   static_assert(offsetof(SolverBody, w) == offsetof(SolverBody, v) + 3 * sizeof(double) &&
                     offsetof(SolverBody, inv_mass) == offsetof(SolverBody, v) + 6 * sizeof(double),
                 "the kernels read w and the inverse mass right after v");
+  static_assert(offsetof(SolverBody, dq) == offsetof(SolverBody, v) + kLaneDq * sizeof(double) &&
+                    offsetof(SolverBody, dp) == offsetof(SolverBody, v) + kLaneDp * sizeof(double),
+                "the anchor kernels find dq and dp at kLaneDq and kLaneDp");
   static_assert(sizeof(SolverBody) % (4 * sizeof(double)) == 0 && alignof(SolverBody) >= 32,
                 "the kernels load v with aligned 32-byte loads");
   return {first ? first->v.data() : nullptr, int(sizeof(SolverBody) / sizeof(double))};

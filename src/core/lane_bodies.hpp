@@ -8,7 +8,8 @@ namespace ragdoll_sim {
 struct SolverBody;
 
 // Body i's v (3 doubles), then w (3 doubles) and its inverse mass, from v + i * stride,
-// 32-byte aligned.
+// 32-byte aligned; its dq (x, y, z, w) and dp kLaneDq and kLaneDp doubles after v.
+constexpr int kLaneDq = 8, kLaneDp = 12;
 struct LaneBodies {
   double* v = nullptr;
   int stride = 0;  // doubles

@@ -28,15 +28,11 @@ void putSymmetric(float (&field)[6][kRowBlock], int i, const Mat3& m) {
 void putVec(float (&field)[3][kRowBlock], int i, const Vec3& v) {
   for (int k = 0; k < 3; ++k) field[k][i] = float(v[k]);
 }
-void putPair(float (&field)[2][kRowBlock], int i, const Eigen::Vector2d& v) {
-  field[0][i] = float(v.x());
-  field[1][i] = float(v.y());
+void putFrame(double (&field)[3][kRowBlock], int i, const Vec3& v) {
+  for (int k = 0; k < 3; ++k) field[k][i] = v[k];
 }
-// A hinge's U and C into its lane (they change with the position state).
-void putAxis(PointRowBlock& blk, int i, const HingeAxisPart& h) {
-  putVec(blk.axis_u1, i, h.u1);
-  putVec(blk.axis_u2, i, h.u2);
-  putPair(blk.axis_error, i, h.C);
+Vec3 frameAt(const double (&field)[3][kRowBlock], int i) {
+  return {field[0][i], field[1][i], field[2][i]};
 }
 HingeAxisPart* hingeAxis(Joint& j) {
   HingeJoint* h = std::get_if<HingeJoint>(&j.kind);
@@ -70,8 +66,6 @@ bool sweepsInLanes(const Joint& j) {
 // limit or a drive, gets an open range and no drive.
 template <int N>
 void putAngleErrors(PointRowBlock& blk, int i, const AngleAxes<N>& ax, int rows, double h) {
-  // A bound further than this is open for good; it keeps C / h finite in float.
-  constexpr double kFarOpen = 1e6;
   for (int r = 0; r < rows; ++r) {
     const bool used = r < ax.count;
     const bool limit = used && ax.limits_enabled;
@@ -109,6 +103,19 @@ void putAngles(PointRowBlock& blk, int i, const AngleAxes<N>& ax, int rows, doub
     blk.limit_impulse[r][0][i] = used ? float(ax.limits[r].lower_impulse) : 0.0f;
     blk.limit_impulse[r][1][i] = used ? float(ax.limits[r].upper_impulse) : 0.0f;
     if (blk.motor_rows) blk.motor_impulse[r][i] = used ? float(ax.motor_parts[r].impulse) : 0.0f;
+  }
+}
+
+// Rows [0, rows) of lane i's frame: the rate rows, angles and which rows have a limit as the
+// warm start left them (count < N: the rows past it are open and still).
+template <int N>
+void putFrameAngles(PointFrameBlock& frame, int i, const AngleAxes<N>& ax, int rows) {
+  for (int r = 0; r < rows; ++r) {
+    const bool used = r < ax.count;
+    const Vec3 j = used ? ax.rows[r] : Vec3::Zero();
+    for (int k = 0; k < 3; ++k) frame.angle_j[r][k][i] = j[k];
+    frame.angles[r][i] = used ? ax.angles[r] : 0.0;
+    frame.limited[r][i] = used && ax.limits_enabled ? 1.0 : 0.0;
   }
 }
 
@@ -180,13 +187,18 @@ void PointLanes::build(const IslandRange& p, Joint* const* js,
     packing.pack(graph, kRowBlock);
     const int count = packing.recordCount();
     R->blocks.assign(count, PointRowBlock{});
+    R->frames.assign(count, PointFrameBlock{});
     for (int r = 0; r < count; ++r) {
       PointRowBlock& blk = R->blocks[r];
+      PointFrameBlock& frame = R->frames[r];
       for (int i = 0; i < kRowBlock; ++i) {
         const int c = packing.lane(r, i);
         blk.body_a[i] = blk.body_b[i] = -1;
+        // a padding lane's frame is all zeros on the block's first bodies: its results are 0
+        const GraphEdge& e = edges[c < 0 ? packing.lane(r, 0) : c];
+        frame.body_a[i] = e.body_a;
+        frame.body_b[i] = e.body_b;
         if (c < 0) continue;
-        const GraphEdge& e = edges[c];
         R->lanes.push_back({joints[c], members[c], axes[c], e.body_a, e.body_b, r, i, 0});
         if (axes[c]) blk.axis_rows = 1;
         // a body the rows must not write stays -1, with inertia 0 in its lane
@@ -218,6 +230,41 @@ void PointLanes::build(const IslandRange& p, Joint* const* js,
       inv_mass += bodies[l.b].inv_mass;
     }
     blk.inv_mass[i] = float(inv_mass);
+    PointFrameBlock& frame = R->frames[l.block];
+    const PointPart& pt = l.anchor->point;
+    putFrame(frame.r_a0, i, pt.rA0);
+    putFrame(frame.r_b0, i, pt.rB0);
+    putFrame(frame.center, i, pt.delta_center);
+    withAngleAxes(*l.joint, [&](auto& ax) {
+      for (int r = 0; r < l.angle_rows; ++r) {
+        frame.lower[r][i] = ax.lower[r];
+        frame.upper[r][i] = ax.upper[r];
+      }
+    });
+    if (!l.axis) continue;
+    putFrame(frame.a1, i, l.axis->a1_0);
+    putFrame(frame.b2, i, l.axis->b2_0);
+    putFrame(frame.c2, i, l.axis->c2_0);
+  }
+}
+
+void PointLanes::refreshFrames(Range& R, std::vector<SolverBody>& bodies, bool advance_angles,
+                               double h) {
+  refreshPointFrames(R.frames.data(), R.blocks.data(), int(R.blocks.size()),
+                     laneBodies(bodies.data()), advance_angles, h);
+  for (const Lane& l : R.lanes) {
+    const PointFrameBlock& frame = R.frames[l.block];
+    const int i = l.lane;
+    l.anchor->point.rA = frameAt(frame.r_a, i);
+    l.anchor->point.rB = frameAt(frame.r_b, i);
+    if (advance_angles && l.angle_rows)
+      withAngleAxes(*l.joint, [&](auto& ax) {
+        for (int r = 0; r < ax.count; ++r) ax.angles[r] = frame.angles[r][i];
+      });
+    if (!l.axis) continue;
+    l.axis->u1 = frameAt(frame.u1, i);
+    l.axis->u2 = frameAt(frame.u2, i);
+    l.axis->C = {frame.axis_c[0][i], frame.axis_c[1][i]};
   }
 }
 
@@ -225,44 +272,43 @@ void PointLanes::load(const IslandRange& p, std::vector<SolverBody>& bodies,
                       const StepContext& ctx, bool anchors_moved) {
   Range* R = rangeOf(p);
   if (!R || R->blocks.empty()) return;
+  if (anchors_moved) refreshFrames(*R, bodies, false, ctx.h);
   for (const Lane& l : R->lanes) {
     const PointPart& pt = l.anchor->point;
     PointRowBlock& blk = R->blocks[l.block];
     const int i = l.lane;
-    if (anchors_moved) {
-      putVec(blk.r_a, i, pt.rA);
-      putVec(blk.r_b, i, pt.rB);
-    }
-    putVec(blk.error, i, pt.error(bodies[l.a], bodies[l.b]));
     putVec(blk.impulse, i, pt.impulse);
     // every lane of a block with angle rows writes them: a lane without any has j = 0
     if (l.angle_rows) {
-      withAngleAxes(*l.joint, [&](auto& ax) { putAngles(blk, i, ax, blk.angle_rows, ctx.h); });
+      withAngleAxes(*l.joint, [&](auto& ax) {
+        putAngles(blk, i, ax, blk.angle_rows, ctx.h);
+        putFrameAngles(R->frames[l.block], i, ax, blk.angle_rows);
+      });
     } else if (blk.angle_rows) {
       static const AngleAxes<1> kNone;
       putAngles(blk, i, kNone, blk.angle_rows, ctx.h);
+      putFrameAngles(R->frames[l.block], i, kNone, blk.angle_rows);
     }
     if (!l.axis) continue;
-    if (anchors_moved) putAxis(blk, i, *l.axis);
-    putPair(blk.axis_impulse, i, l.axis->impulse);
+    blk.axis_impulse[0][i] = float(l.axis->impulse.x());
+    blk.axis_impulse[1][i] = float(l.axis->impulse.y());
   }
   const LaneBodies view = laneBodies(bodies.data());
   warmStartPointRows(ctx.lanes, R->blocks.data(), int(R->blocks.size()), view);
 }
 
-void PointLanes::refreshAnchors(const IslandRange& p, const StepContext& ctx) {
+void PointLanes::refreshAnchors(const IslandRange& p, std::vector<SolverBody>& bodies,
+                                const StepContext& ctx) {
   Range* R = rangeOf(p);
-  if (!R) return;
+  if (!R || R->blocks.empty()) return;
+  // the angles advance with the positions (the rows are kept), and the limits' errors with them
+  refreshFrames(*R, bodies, true, ctx.h);
+  // a position motor's bias moves with its angle too
   for (const Lane& l : R->lanes) {
     PointRowBlock& blk = R->blocks[l.block];
-    const int i = l.lane;
-    putVec(blk.r_a, i, l.anchor->point.rA);
-    putVec(blk.r_b, i, l.anchor->point.rB);
-    if (l.axis) putAxis(blk, i, *l.axis);
-    // the angles advanced with the positions (AngleAxes::advance); the rows are kept
-    if (l.angle_rows)
+    if (l.angle_rows && blk.motor_rows)
       withAngleAxes(*l.joint,
-                    [&](auto& ax) { putAngleErrors(blk, i, ax, blk.angle_rows, ctx.h); });
+                    [&](auto& ax) { putAngleErrors(blk, l.lane, ax, blk.angle_rows, ctx.h); });
   }
 }
 

@@ -10,12 +10,15 @@
 // are coloured in joint order (ConstraintGraph, FirstFit; no two of a colour share a dynamic
 // body) and packed colour by colour into blocks of kRowBlock lanes; the overflow set past the
 // colours stays in its joint's scalar solve (AnchorPart::in_lanes false). The bodies' world
-// inverse inertias and inverse masses go into the blocks once per step, the anchors and the
-// hinge axes' U and C (formed in double, HingeAxisPart::refresh) once per position state (the
-// first substep's warm start, then after each position update). Each substep the blocks take
-// C and the impulses (and the angles' rows, errors, motor terms and impulses, the angles
-// computed in double by the joint's warm start), and the kernel forms K^-1 from the anchors
-// (and axes) and applies the warm start, colour by colour, in place of the joints' scalar ones.
+// inverse inertias and inverse masses go into the blocks once per step, the anchors, their
+// error C and the hinge axes' U and C once per position state (the first substep's warm start,
+// then after each position update), formed in double lanes from the step-start frames
+// (point_frames.hpp) with the bits of the parts' own refresh, and copied back to the parts
+// (the joint trees, the limit projection and the reports read them there; the parts leave the
+// refresh to the lanes). Each substep the blocks take the impulses (and the angles' rows,
+// errors, motor terms and impulses, the angles computed in double by the joint's warm start),
+// and the kernel forms K^-1 from the anchors (and axes) and applies the warm start, colour by
+// colour, in place of the joints' scalar ones.
 // The kernels read and write the double solver bodies themselves (the impulse reaches v
 // through the double inverse masses). After the substep's last joint sweep the impulses go
 // back to PointPart::impulse, HingeAxisPart::impulse and the angle parts in double, so whatever
@@ -33,6 +36,7 @@
 
 #include "constraint_graph.hpp"
 #include "island_schedule.hpp"
+#include "point_frames.hpp"
 #include "point_row_wide.hpp"
 #include "solver_context.hpp"
 
@@ -50,14 +54,16 @@ class PointLanes {
   // After the range's joints are prepared (ctx.lanes != 1): the blocks, and the joints they
   // hold marked in_lanes.
   void build(const IslandRange& p, Joint* const* js, const std::vector<SolverBody>& bodies);
-  // After the range's joints warm started: errors and impulses into the blocks, and the anchors
-  // when the warm start refreshed them (anchors_moved: the first substep; later ones keep what
-  // refreshAnchors put after the last position update); then K^-1 and the warm start in lanes.
+  // After the range's joints warm started: the impulses into the blocks, and the anchors and
+  // errors at the step's first position state (anchors_moved: the first substep; later ones
+  // keep what refreshAnchors formed after the last position update); then K^-1 and the warm
+  // start in lanes.
   void load(const IslandRange& p, std::vector<SolverBody>& bodies, const StepContext& ctx,
             bool anchors_moved);
-  // After the range's joints advanced: the refreshed anchors and what moves with the advanced
-  // angles (limit errors, position motors' bias).
-  void refreshAnchors(const IslandRange& p, const StepContext& ctx);
+  // After the range's joints advanced: the anchors and errors at the new position state, and
+  // what moves with the advanced angles (limit errors, position motors' bias).
+  void refreshAnchors(const IslandRange& p, std::vector<SolverBody>& bodies,
+                      const StepContext& ctx);
   // One wide pass over the range's blocks, colour by colour; sync: the impulses back to the
   // joints (the substep's last joint sweep).
   void solve(const IslandRange& p, std::vector<SolverBody>& bodies, const StepContext& ctx,
@@ -76,11 +82,16 @@ class PointLanes {
   struct alignas(64) Range {  // its own cache lines (allocated by the thread that builds it)
     std::vector<Lane> lanes;
     std::vector<PointRowBlock> blocks;
+    std::vector<PointFrameBlock> frames;  // block k's anchors and axes in double
     // What the layout was coloured from: a step with the same anchors on the same bodies keeps it.
     std::vector<AnchorPart*> anchors;
     std::vector<GraphEdge> edges;
   };
   Range* rangeOf(const IslandRange& p) const;
+  // The anchors and axes at the bodies' current deltas into the blocks, and back to the parts;
+  // with advance_angles, the angles advanced by h too (refreshPointFrames).
+  static void refreshFrames(Range& R, std::vector<SolverBody>& bodies, bool advance_angles,
+                            double h);
 
   std::vector<std::unique_ptr<Range>> ranges_;  // by the range's first joint, null until built
 };

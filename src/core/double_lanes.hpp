@@ -1,0 +1,73 @@
+// Double lanes for kernels that must give the bits of the scalar Eigen code they replace:
+// Double2 (an SSE2 register, the x86-64 baseline) and Double4 (an AVX register, only in a file
+// compiled with -mavx2 -mno-fma), GCC vectors whose operators are the element-wise IEEE
+// operations, with the gathers and scatters that move W bodies' fields in and out of them.
+// As lanes.hpp: no std headers or Eigen (an AVX file includes this), and an inline namespace
+// per instruction set, so that no AVX copy of an inline function replaces a baseline one.
+#pragma once
+
+#include <emmintrin.h>
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
+
+#if defined(__AVX2__)
+#define RAGDOLL_SIM_DOUBLE_LANES_ISA double_lanes_avx2
+#else
+#define RAGDOLL_SIM_DOUBLE_LANES_ISA double_lanes_sse2
+#endif
+
+namespace ragdoll_sim {
+namespace double_lanes {
+inline namespace RAGDOLL_SIM_DOUBLE_LANES_ISA {
+
+// Two doubles, one per body; the operators are the element-wise IEEE operations.
+typedef double Double2 __attribute__((vector_size(16)));
+inline double squareRoot(double x) { return __builtin_sqrt(x); }
+inline Double2 squareRoot(Double2 x) { return Double2(_mm_sqrt_pd(__m128d(x))); }
+#if defined(__AVX__)
+typedef double Double4 __attribute__((vector_size(32)));
+inline Double4 squareRoot(Double4 x) { return Double4(_mm256_sqrt_pd(__m256d(x))); }
+#endif
+
+// The lanes of W bodies' arrays: out[j] = {p[0][j], ..., p[W-1][j]}, and back.
+inline double lane(double x, int) { return x; }
+template <class D>
+inline double lane(D x, int l) {
+  return x[l];
+}
+
+template <int N>
+inline void gather(const double* const p[1], double out[N]) {
+  for (int j = 0; j < N; ++j) out[j] = p[0][j];
+}
+template <int N>
+inline void scatter(const double in[N], double* const p[1]) {
+  for (int j = 0; j < N; ++j) p[0][j] = in[j];
+}
+template <int N>
+inline void gather(const double* const p[2], Double2 out[N]) {
+  for (int j = 0; j < N; ++j) out[j] = Double2{p[0][j], p[1][j]};
+}
+template <int N>
+inline void scatter(const Double2 in[N], double* const p[2]) {
+  for (int j = 0; j < N; ++j) {
+    p[0][j] = in[j][0];
+    p[1][j] = in[j][1];
+  }
+}
+#if defined(__AVX__)
+template <int N>
+inline void gather(const double* const p[4], Double4 out[N]) {
+  for (int j = 0; j < N; ++j) out[j] = Double4{p[0][j], p[1][j], p[2][j], p[3][j]};
+}
+template <int N>
+inline void scatter(const Double4 in[N], double* const p[4]) {
+  for (int j = 0; j < N; ++j)
+    for (int l = 0; l < 4; ++l) p[l][j] = in[j][l];
+}
+#endif
+
+}  // namespace RAGDOLL_SIM_DOUBLE_LANES_ISA
+}  // namespace double_lanes
+}  // namespace ragdoll_sim
