@@ -257,7 +257,8 @@ void PointLanes::refreshFrames(Range& R, std::vector<SolverBody>& bodies, bool a
     const int i = l.lane;
     l.anchor->point.rA = frameAt(frame.r_a, i);
     l.anchor->point.rB = frameAt(frame.r_b, i);
-    if (advance_angles && l.angle_rows)
+    // a joint with swing-twist limits recomputed its angles exactly (BallJoint::advance)
+    if (advance_angles && l.angle_rows && l.joint->sweeps_in_lanes)
       withAngleAxes(*l.joint, [&](auto& ax) {
         for (int r = 0; r < ax.count; ++r) ax.angles[r] = frame.angles[r][i];
       });
@@ -303,10 +304,11 @@ void PointLanes::refreshAnchors(const IslandRange& p, std::vector<SolverBody>& b
   if (!R || R->blocks.empty()) return;
   // the angles advance with the positions (the rows are kept), and the limits' errors with them
   refreshFrames(*R, bodies, true, ctx.h);
-  // a position motor's bias moves with its angle too
+  // a position motor's bias moves with its angle too, and the errors of angles recomputed
+  // exactly (swing-twist limits) follow those
   for (const Lane& l : R->lanes) {
     PointRowBlock& blk = R->blocks[l.block];
-    if (l.angle_rows && blk.motor_rows)
+    if (l.angle_rows && (blk.motor_rows || !l.joint->sweeps_in_lanes))
       withAngleAxes(*l.joint,
                     [&](auto& ax) { putAngleErrors(blk, l.lane, ax, blk.angle_rows, ctx.h); });
   }
