@@ -124,6 +124,17 @@ std::vector<std::pair<int, int>> WorldInternals::pairs(const World& world) {
 
 const std::vector<Aabb>& WorldInternals::shapeBoxes(const World& world) { return world.impl_->aabbs; }
 
+std::vector<double> WorldInternals::solverAngles(const World& world, JointId joint) {
+  const Joint& j = world.impl_->joint(joint);
+  std::vector<double> out;
+  const auto take = [&](const auto& ax) {
+    out.assign(ax.angles.begin(), ax.angles.begin() + ax.count);
+  };
+  if (const BallJoint* b = j.as<BallJoint>()) take(b->axes);
+  if (const HingeJoint* h = j.as<HingeJoint>()) take(h->axes);
+  return out;
+}
+
 std::vector<char> WorldInternals::boundedShapes(const World& world) {
   const World::Impl& w = *world.impl_;
   std::vector<char> out(w.shapes.size(), 0);

@@ -41,6 +41,9 @@ struct WorldInternals {
   static std::vector<std::pair<int, int>> pairs(const World& world);
   static const std::vector<Aabb>& shapeBoxes(const World& world);
   static std::vector<char> boundedShapes(const World& world);
+  // A ball's Euler angles or a hinge's angle as the solver last left them (AngleAxes: the rows
+  // it solved, [0, count)), for comparing with the angles at the poses.
+  static std::vector<double> solverAngles(const World& world, JointId joint);
 };
 
 }  // namespace ragdoll_sim

@@ -21,6 +21,7 @@
 #include "ragdoll_sim/world.hpp"
 #include "scene_util.hpp"
 #include "softness.hpp"
+#include "world_tuning.hpp"
 
 using namespace ragdoll_sim;
 using namespace ragdoll_sim::test;
@@ -250,5 +251,40 @@ TEST(JointLanes, AxisRowsHoldACantileverAsTheScalarRowsDo) {
     else EXPECT_LT(worst, 1.5 * scalar_worst + 1e-6) << "lanes " << lanes;
     std::printf("[ beam     ] lanes %d: axis error %.2e rad, torque %.4f N m (m g L %.4f)\n", lanes,
                 worst, std::hypot(torque.y(), torque.z()), expected);
+  }
+}
+
+// A ball with swing-twist limits recomputes its Euler angles exactly after each position update
+// (BallJoint::advance); in the lanes its Euler rows (here from the damping) must keep those, not
+// the lanes' first-order advance. Without projections the solver's angles after the step are
+// those of the final poses.
+TEST(JointLanes, SwingTwistBallKeepsItsExactAngles) {
+  for (const int lanes : {1, 4, 8}) {
+    WorldDef def = zeroG();
+    def.sleep.enabled = false;
+    def.solver.lanes = lanes;
+    def.solver.position_iterations = 0;
+    def.solver.anchor_iterations = 0;
+    def.solver.exact_joints = false;
+    World w(def);
+    BallJointDef bj;
+    std::tie(bj.body_a, bj.body_b) = addAnchoredArm(w, Vec3(3.0, 8.0, -6.0));
+    bj.axes = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
+    bj.enable_limits = true;
+    bj.limit_mode = BallLimitMode::SwingTwist;
+    bj.swing_cone_angle = 1.2;
+    bj.twist_lower = -1.0;
+    bj.twist_upper = 1.0;
+    for (JointMotor& m : bj.motors) m.damping = 0.01;
+    const JointId joint = w.createBallJoint(bj);
+    double worst = 0.0;
+    for (int i = 0; i < 20; ++i) {
+      w.step(kDt);
+      const std::vector<double> solver = WorldInternals::solverAngles(w, joint);
+      const std::array<double, 3> exact = w.ballAngles(joint);
+      ASSERT_EQ(solver.size(), 3u) << "lanes " << lanes << ", step " << i;
+      for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(solver[k] - exact[k]));
+    }
+    EXPECT_LT(worst, 1e-10) << "lanes " << lanes;
   }
 }
