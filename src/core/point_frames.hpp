@@ -42,7 +42,8 @@ static_assert(sizeof(PointFrameBlock) % 64 == 0, "a block is whole cache lines")
 // Blocks [0, count): each frame's double results, and into its row block the anchors r_a, r_b,
 // the error and (where the row block holds a hinge) the axis rows and errors in float; with
 // advance_angles, the angles advance by h (j . (wB - wA)) and the row block takes the limits'
-// errors. A row block's padding lanes at its end are left as they are.
+// errors. Padding lanes get zeros where they share a group of W lanes with used ones; the
+// groups past the last used lane are skipped.
 void refreshPointFrames(PointFrameBlock* frames, PointRowBlock* rows, int count,
                         const LaneBodies& bodies, bool advance_angles, double h);
 
