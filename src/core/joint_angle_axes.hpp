@@ -89,7 +89,6 @@ struct AngleAxes {
   // The relax pass comes right after the position update: the angles moved by h theta_dot
   // (first order; the rows are kept). Exact angles are recomputed at the next warm start.
   void advance(const SolverBody& A, const SolverBody& B, double h) {
-    if (in_lanes) return;  // PointLanes::refreshAnchors advances them, with the same bits
     const Vec3 dw = B.w - A.w;
     for (int i = 0; i < count; ++i) angles[i] += h * rows[i].dot(dw);
   }

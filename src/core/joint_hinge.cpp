@@ -59,7 +59,7 @@ void HingeJoint::advance(JointBase& j, const SolverBody& A, const SolverBody& B,
                          const StepContext& ctx) {
   axes.advance(A, B, ctx.h);
   anchor.refresh(A, B);
-  if (!anchor.in_lanes) hinge_axis.refresh(A, B);  // else with the anchor (PointLanes)
+  hinge_axis.refresh(A, B);
 }
 
 bool HingeJoint::projectLimits(JointBase& j, SolverBody& A, SolverBody& B,
