@@ -114,7 +114,8 @@ class World::Impl::IslandPass {
     parts([&](const IslandRange& p) {
       w.integrateVelocities(ctx.h, p.body_begin, p.body_end);
       joints(p, [&](Joint& j) { warmStartJoint(j, ctx, sub == 0); });
-      if (wide) w.point_lanes.load(p, w.solver, ctx, sub == 0);
+      if (wide)
+        w.point_lanes.load(p, w.solver, ctx, sub == 0, sub == 0 || !w.tuning.lane_angles_kept);
       w.contact_solver.warmStart(ctx, p.contact_begin, p.contact_end, moved);
     });
     boundary([&](int b, int e) {

@@ -30,6 +30,9 @@ struct AngleAxes {
   std::array<double, N> angles{};
   std::array<Vec3, N> rows;
   std::array<double, N> k{};  // row^T (IA^-1 + IB^-1) row
+  // Set when the type recomputes the angles and rows, cleared when the wide pass takes them
+  // (PointLanes::load): between substeps the lanes otherwise hold what they would copy.
+  bool fresh = false;
 
   bool motorsActive() const {  // a drive or viscous damping on some axis
     for (const JointMotor& m : motors)

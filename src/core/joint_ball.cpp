@@ -32,6 +32,7 @@ void BallJoint::prepare(JointBase& j, const StepContext& ctx) {
 void BallJoint::updateAngles(const JointBase& j, const SolverBody& A, const SolverBody& B,
                              const StepContext& ctx) {
   axes.count = 0;
+  axes.fresh = true;
   const bool euler_rows = axes.rowsNeeded();
   if (!euler_rows && !swing_twist_limits) return;
   const auto& m = *ctx.motions;

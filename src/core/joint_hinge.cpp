@@ -20,6 +20,7 @@ void HingeJoint::prepare(JointBase& j, const StepContext& ctx) {
 void HingeJoint::updateAngle(const JointBase& j, const SolverBody& A, const SolverBody& B,
                              const StepContext& ctx) {
   axes.count = 0;
+  axes.fresh = true;
   if (!axes.rowsNeeded()) return;
   const auto& m = *ctx.motions;
   const Quat fa = j.frameRotationA(A.dq * m[j.a].q);

@@ -270,7 +270,7 @@ void PointLanes::refreshFrames(Range& R, std::vector<SolverBody>& bodies, bool a
 }
 
 void PointLanes::load(const IslandRange& p, std::vector<SolverBody>& bodies,
-                      const StepContext& ctx, bool anchors_moved) {
+                      const StepContext& ctx, bool anchors_moved, bool all_angles) {
   Range* R = rangeOf(p);
   if (!R || R->blocks.empty()) return;
   if (anchors_moved) refreshFrames(*R, bodies, false, ctx.h);
@@ -278,14 +278,17 @@ void PointLanes::load(const IslandRange& p, std::vector<SolverBody>& bodies,
     const PointPart& pt = l.anchor->point;
     PointRowBlock& blk = R->blocks[l.block];
     const int i = l.lane;
-    putVec(blk.impulse, i, pt.impulse);
+    putVec(blk.impulse, i, pt.impulse);  // the joint trees add to it between the substeps
     // every lane of a block with angle rows writes them: a lane without any has j = 0
     if (l.angle_rows) {
       withAngleAxes(*l.joint, [&](auto& ax) {
-        putAngles(blk, i, ax, blk.angle_rows, ctx.h);
-        putFrameAngles(R->frames[l.block], i, ax, blk.angle_rows);
+        if (all_angles || ax.fresh || !l.joint->sweeps_in_lanes) {
+          putAngles(blk, i, ax, blk.angle_rows, ctx.h);
+          putFrameAngles(R->frames[l.block], i, ax, blk.angle_rows);
+        }
+        ax.fresh = false;
       });
-    } else if (blk.angle_rows) {
+    } else if (blk.angle_rows && all_angles) {
       static const AngleAxes<1> kNone;
       putAngles(blk, i, kNone, blk.angle_rows, ctx.h);
       putFrameAngles(R->frames[l.block], i, kNone, blk.angle_rows);

@@ -57,9 +57,11 @@ class PointLanes {
   // After the range's joints warm started: the impulses into the blocks, and the anchors and
   // errors at the step's first position state (anchors_moved: the first substep; later ones
   // keep what refreshAnchors formed after the last position update); then K^-1 and the warm
-  // start in lanes.
+  // start in lanes. The angle rows go in at the first substep (all_angles); later ones keep
+  // the angles the lanes advanced and the impulses they solved (synced to the parts at each
+  // substep's last sweep), and take only the angles the joints recomputed (AngleAxes::fresh).
   void load(const IslandRange& p, std::vector<SolverBody>& bodies, const StepContext& ctx,
-            bool anchors_moved);
+            bool anchors_moved, bool all_angles);
   // After the range's joints advanced: the anchors and errors at the new position state, and
   // what moves with the advanced angles (limit errors, position motors' bias).
   void refreshAnchors(const IslandRange& p, std::vector<SolverBody>& bodies,

@@ -21,6 +21,9 @@ struct WorldTuning {
   // Shapes of static bodies in their own tree (collide.hpp). Off: they go through the
   // broadphase with the others every step; the pairs and the result are the same bit for bit.
   bool static_tree = true;
+  // After the first substep the wide pass keeps the angles it advanced and takes only those the
+  // joints recomputed (PointLanes::load). Off: every substep puts them all; the same bits.
+  bool lane_angles_kept = true;
   // m, manifold_cache.hpp; 0 (or a value not below speculative_distance) turns the cache off.
   double manifold_cache_distance = kManifoldCacheDistance;
 };
