@@ -41,6 +41,18 @@ integrate_kernel::BodyFields bodyFields(std::vector<SolverBody>& solver,
   return f;
 }
 
+namespace {
+// An awake body's solver body at the step start, but for its world inverse inertia.
+void startSolverBody(const BodyMotion& m, SolverBody& s) {
+  s.dp.setZero();
+  s.dq = Quat::Identity();
+  s.moved_sweep = 0;
+  s.v = m.v;
+  s.w = m.w;
+  s.inv_mass = m.inv_mass;
+}
+}  // namespace
+
 // The solver body of body i at the step start: an awake body's velocities, inverse mass
 // and world inverse inertia, an identity state for the others.
 void World::Impl::prepareSolverBody(int i) {
@@ -51,13 +63,28 @@ void World::Impl::prepareSolverBody(int i) {
     return;
   }
   const Mat3& R = rotations[i] = m.q.toRotationMatrix();
-  s.dp.setZero();
-  s.dq = Quat::Identity();
-  s.moved_sweep = 0;
-  s.v = m.v;
-  s.w = m.w;
-  s.inv_mass = m.inv_mass;
+  startSolverBody(m, s);
   s.inv_inertia = R * m.inv_inertia_local * R.transpose();
+}
+
+// An island's bodies (all awake): as prepareSolverBody, with the rotations and world inverse
+// inertias four bodies at a time in AVX lanes, then two in SSE2 lanes, the last one alone (the
+// same bits, integrate_kernel.hpp).
+void World::Impl::prepareSolverBodies(int begin, int end) {
+  if (begin >= end) return;
+  for (int k = begin; k < end; ++k) {
+    const int i = island_bodies[k];
+    startSolverBody(motions[i], solver[i]);
+  }
+  using namespace integrate_kernel;
+  const BodyFields f = bodyFields(solver, motions, rotations);
+  const int* bodies = island_bodies.data() + begin;
+  const int n = end - begin;
+  const int n4 = cpuHasAvx2() ? n / 4 * 4 : 0;
+  const int n2 = n4 + (n - n4) / 2 * 2;
+  integrate_w4::prepareRotations(f, bodies, n4);
+  prepareRotations<Double2>(f, bodies + n4, n2 - n4);
+  prepareRotations<double>(f, bodies + n2, n - n2);
 }
 
 // Four bodies at a time in AVX lanes where the CPU has AVX2 (integrate_kernel.hpp), a chunk at a

@@ -6,6 +6,7 @@
 // bits of
 //   dp += h v;  L = R (I (R^T w));  dq = (dq + (0, h/2 w) dq).normalized();
 //   R = (dq q).toRotationMatrix();  w = R (I^-1 (R^T L))
+// and, at the step start, R = q.toRotationMatrix() and the world inverse inertia R I^-1 R^T,
 // where a 3-term sum a0 + a1 + a2 is Eigen's a0 + (a1 + a2) (its unrolled reduction halves the
 // range), a quaternion product sums left to right, and |c|^2 = (x^2 + y^2) + (z^2 + w^2).
 // Matrices are column-major (Eigen's default), quaternions stored x, y, z, w.
@@ -110,6 +111,19 @@ inline void rotationMatrix(const D c[4], D R[9]) {
   R[8] = one - (txx + tyy);
 }
 
+// The world inverse inertia R I^-1 R^T as Eigen evaluates R * I^-1 * R.transpose(): R I^-1 into
+// a temporary T, then T R^T, each coefficient a row-column sum as in mul.
+template <class D>
+inline void worldInverseInertia(const D R[9], const D M[9], D out[9]) {
+  D T[9];
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i)
+      T[3 * j + i] = R[i] * M[3 * j] + (R[3 + i] * M[3 * j + 1] + R[6 + i] * M[3 * j + 2]);
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i)
+      out[3 * j + i] = T[i] * R[j] + (T[3 + i] * R[3 + j] + T[6 + i] * R[6 + j]);
+}
+
 // A body's velocity step (integrateVelocities before the clamps): gravity, force and torque,
 // then damping: v = (v + h (s g + m^-1 f)) / (1 + h c), w = (w + h (I^-1 t)) / (1 + h c_w),
 // where Eigen evaluates h (I^-1 t) as (h I^-1) t.
@@ -206,6 +220,31 @@ inline void stepPositions(const BodyFields& f, const int* bodies, int count, dou
   }
 }
 
+// The step-start rotation R = q.toRotationMatrix() and world inverse inertia of bodies[0..count),
+// W at a time as stepPositions (prepareSolverBodies).
+template <class D>
+inline void prepareRotations(const BodyFields& f, const int* bodies, int count) {
+  constexpr int W = sizeof(D) / sizeof(double);
+  for (int k = 0; k < count; k += W) {
+    const double *q[W], *inv_inertia[W];
+    double *R[W], *world[W];
+    for (int l = 0; l < W; ++l) {
+      const int b = bodies[k + l];
+      q[l] = motionField(f, b, f.q);
+      inv_inertia[l] = motionField(f, b, f.inv_inertia);
+      R[l] = f.rotations + 9 * b;
+      world[l] = solverField(f, b, f.world_inv_inertia);
+    }
+    D ql[4], Rl[9], Ml[9], out[9];
+    gather<4>(q, ql);
+    gather<9>(inv_inertia, Ml);
+    rotationMatrix(ql, Rl);
+    worldInverseInertia(Rl, Ml, out);
+    scatter<9>(Rl, R);
+    scatter<9>(out, world);
+  }
+}
+
 // advanceVelocity on bodies[0..count), W at a time as stepPositions; gravity: 3 doubles. The
 // indices k of the bodies whose v or w fails clampNorm's first test (|v|^2 <= max_v^2, the same
 // for w, NaN fails) go to clamp[], their number is returned: only those need clampNorm.
@@ -259,5 +298,6 @@ void stepPositions(const integrate_kernel::BodyFields& f, const int* bodies, int
                    double half_h);
 int advanceVelocities(const integrate_kernel::BodyFields& f, const int* bodies, int count, double h,
                       const double* gravity, double max_v2, double max_w2, int* clamp);
+void prepareRotations(const integrate_kernel::BodyFields& f, const int* bodies, int count);
 }  // namespace integrate_w4
 }  // namespace ragdoll_sim

@@ -23,5 +23,9 @@ int advanceVelocities(const integrate_kernel::BodyFields& f, const int* bodies, 
                                                     clamp);
 }
 
+void prepareRotations(const integrate_kernel::BodyFields& f, const int* bodies, int count) {
+  integrate_kernel::prepareRotations<Lanes>(f, bodies, count);
+}
+
 }  // namespace integrate_w4
 }  // namespace ragdoll_sim

@@ -83,7 +83,7 @@ void World::Impl::prepareOutsideBodies() {
 }
 
 void World::Impl::prepareIsland(const IslandRange& p, const StepContext& c) {
-  for (int k = p.body_begin; k < p.body_end; ++k) prepareSolverBody(island_bodies[k]);
+  prepareSolverBodies(p.body_begin, p.body_end);
   for (int k = p.joint_begin; k < p.joint_end; ++k) prepareJoint(*active_joints[k], c);
   if (c.lanes != 1) point_lanes.build(p, active_joints.data(), solver);
   if (def.solver.exact_joints)

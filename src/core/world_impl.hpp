@@ -210,6 +210,7 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
   StepContexts makeContexts(double dt);
   class IslandPass;  // one island's substep sequence on this thread (island_solve.cpp)
   void prepareSolverBody(int i);  // integrate.cpp
+  void prepareSolverBodies(int begin, int end);  // island_bodies[begin, end), integrate.cpp
   void prepareOutsideBodies();
   void prepareIsland(const IslandRange& p, const StepContext& c);
   // f(each island of p) when p is several whole islands solved as one range, else f(p): the

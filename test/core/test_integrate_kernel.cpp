@@ -186,5 +186,42 @@ TEST(IntegrateKernel, VelocityStepGivesTheEigenBitsAtEachWidth) {
   EXPECT_GT(flagged, 0);
 }
 
+// The step-start rotation and world inverse inertia (prepareSolverBodies) against
+// prepareSolverBody's Eigen code, at each width; the inputs include unnormalised quaternions
+// (the lanes must not normalise) and a zero inverse inertia.
+TEST(IntegrateKernel, StepStartRotationsGiveTheEigenBitsAtEachWidth) {
+  std::mt19937_64 rng(62);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<int> widths = {1, 2};
+  if (cpuHasAvx2()) widths.push_back(4);
+  for (int n = 0; n < 5000; ++n) {
+    std::vector<SolverBody> solver(4);
+    std::vector<BodyMotion> motions(4);
+    std::vector<Mat3> reference_R(4), reference_world(4);
+    for (int l = 0; l < 4; ++l) {
+      BodyMotion& m = motions[l];
+      m.q = Quat(u(rng), u(rng), u(rng), u(rng));
+      if ((n + l) % 3) m.q.normalize();
+      const Mat3 A = Mat3::NullaryExpr([&] { return u(rng); });
+      m.inv_inertia_local = (n + l) % 11 ? Mat3(A * A.transpose()) : Mat3::Zero();
+      reference_R[l] = m.q.toRotationMatrix();
+      reference_world[l] = reference_R[l] * m.inv_inertia_local * reference_R[l].transpose();
+    }
+    const int bodies[4] = {3, 1, 0, 2};
+    for (const int width : widths) {
+      std::vector<SolverBody> lanes = solver;
+      std::vector<Mat3> rotations(4, Mat3::Zero());
+      const BodyFields f = bodyFields(lanes, motions, rotations);
+      if (width == 4) integrate_w4::prepareRotations(f, bodies, 4);
+      else if (width == 2) prepareRotations<Double2>(f, bodies, 4);
+      else prepareRotations<double>(f, bodies, 4);
+      for (int l = 0; l < 4; ++l)
+        ASSERT_TRUE(sameBits(rotations[l], reference_R[l]) &&
+                    sameBits(lanes[l].inv_inertia, reference_world[l]))
+            << "width " << width << ", body " << l << ", case " << n;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace ragdoll_sim
