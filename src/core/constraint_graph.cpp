@@ -87,7 +87,7 @@ void ConstraintGraph::clearBits(const GraphEdge* edges, int n) {
   }
 }
 
-void LanePacking::pack(const ConstraintGraph& graph, int width) {
+void LanePacking::pack(const ConstraintGraph& graph, int width, const std::vector<int>* kind) {
   if (width != 4 && width != 8)
     throw std::invalid_argument("LanePacking: width " + std::to_string(width) +
                                 " is neither 4 nor 8");
@@ -106,8 +106,10 @@ void LanePacking::pack(const ConstraintGraph& graph, int width) {
   for (int c = 0; c < colours; ++c) {
     const int first = graph.colourBegin(c), size = graph.colourSize(c);
     // a colour's lanes are contiguous: its records follow each other
-    std::copy(order.begin() + first, order.begin() + first + size,
-              lanes_.begin() + (size_t(record_begin_[c]) << shift));
+    const auto lanes = lanes_.begin() + (size_t(record_begin_[c]) << shift);
+    std::copy(order.begin() + first, order.begin() + first + size, lanes);
+    if (kind)
+      std::stable_sort(lanes, lanes + size, [&](int x, int y) { return (*kind)[x] < (*kind)[y]; });
     for (int r = record_begin_[c]; r < record_begin_[c + 1]; ++r) {
       const int left = size - ((r - record_begin_[c]) << shift);
       masks_[r] = uint8_t(left >= width ? (1u << width) - 1 : (1u << left) - 1);

@@ -85,8 +85,10 @@ class ConstraintGraph {
 // has a bit per used lane, the padding lanes hold -1). The overflow set is not packed.
 class LanePacking {
  public:
-  // width: 4 or 8 (std::invalid_argument otherwise).
-  void pack(const ConstraintGraph& graph, int width);
+  // width: 4 or 8 (std::invalid_argument otherwise). With kind (one per constraint), each
+  // colour's constraints are ordered by kind first (stable): a record's lanes then mostly share
+  // the rows of one kind of constraint, which a record solves for all its lanes.
+  void pack(const ConstraintGraph& graph, int width, const std::vector<int>* kind = nullptr);
 
   int width() const { return width_; }
   int recordCount() const { return int(masks_.size()); }

@@ -162,6 +162,7 @@ void PointLanes::build(const IslandRange& p, Joint* const* js,
   thread_local std::vector<AnchorPart*> members;
   thread_local std::vector<HingeAxisPart*> axes;
   thread_local std::vector<Joint*> joints;
+  thread_local std::vector<int> kinds;
   edges.clear();
   members.clear();
   axes.clear();
@@ -184,7 +185,11 @@ void PointLanes::build(const IslandRange& p, Joint* const* js,
     R->blocks.clear();
     if (members.empty()) return;
     graph.colour(edges, int(bodies.size()));
-    packing.pack(graph, kRowBlock);
+    // A record solves the angle rows and axis rows any of its lanes has, for all of them: its
+    // lanes grouped by joint kind (within a colour the order changes no bit).
+    kinds.clear();
+    for (const Joint* j : joints) kinds.push_back(int(j->kind.index()));
+    packing.pack(graph, kRowBlock, &kinds);
     const int count = packing.recordCount();
     R->blocks.assign(count, PointRowBlock{});
     R->frames.assign(count, PointFrameBlock{});

@@ -303,6 +303,35 @@ TEST(LanePacking, GroupsEachColourInRecordsOfWidthLanes) {
   EXPECT_THROW(pack.pack(g, 5), std::invalid_argument);
 }
 
+// With a kind per constraint each colour's lanes hold its constraints ordered by kind, in the
+// colour's order within a kind; the records and masks stay as without.
+TEST(LanePacking, OrdersEachColourByKind) {
+  std::mt19937 rng(5);
+  const Edges e = randomGraph(rng, 40, 120);
+  ConstraintGraph g;
+  g.colour(e, 40);
+  std::vector<int> kind(e.size());
+  for (size_t i = 0; i < e.size(); ++i) kind[i] = int(rng() % 3);
+  for (const int w : {4, 8}) {
+    LanePacking plain, sorted;
+    plain.pack(g, w);
+    sorted.pack(g, w, &kind);
+    ASSERT_EQ(sorted.recordCount(), plain.recordCount());
+    for (int r = 0; r < plain.recordCount(); ++r) EXPECT_EQ(sorted.mask(r), plain.mask(r));
+    for (int c = 0; c < g.colourCount(); ++c) {
+      std::vector<int> expected(g.order().begin() + g.colourBegin(c),
+                                g.order().begin() + g.colourBegin(c + 1));
+      std::stable_sort(expected.begin(), expected.end(),
+                       [&](int x, int y) { return kind[x] < kind[y]; });
+      std::vector<int> got;
+      for (int r = sorted.recordBegin(c); r < sorted.recordBegin(c + 1); ++r)
+        for (int lane = 0; lane < w; ++lane)
+          if (sorted.mask(r) >> lane & 1) got.push_back(sorted.lane(r, lane));
+      EXPECT_EQ(got, expected) << "width " << w << ", colour " << c;
+    }
+  }
+}
+
 TEST(LanePacking, LeavesTheOverflowOut) {
   Edges e;
   for (int b = 1; b <= 5; ++b) e.push_back(dyn(0, b));  // a star: each its own colour
