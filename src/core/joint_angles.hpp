@@ -37,10 +37,13 @@
 
 namespace ragdoll_sim {
 
-inline double hingeAngle(const Quat& frame_a, const Quat& frame_b, const Vec3& axis) {
-  const Vec3 u = anyPerpendicular(axis);
-  const Vec3 a = frame_a * axis, uA = frame_a * u, uB = frame_b * u;
+// a = frame_a * axis (the angle's row) and u = anyPerpendicular(axis), which the solver keeps.
+inline double hingeAngle(const Quat& frame_a, const Quat& frame_b, const Vec3& a, const Vec3& u) {
+  const Vec3 uA = frame_a * u, uB = frame_b * u;
   return std::atan2(a.dot(uA.cross(uB)), uA.dot(uB));
+}
+inline double hingeAngle(const Quat& frame_a, const Quat& frame_b, const Vec3& axis) {
+  return hingeAngle(frame_a, frame_b, frame_a * axis, anyPerpendicular(axis));
 }
 
 struct EulerBasis {

@@ -3,7 +3,10 @@
 namespace ragdoll_sim {
 
 HingeJoint::HingeJoint(const HingeJointDef& def)
-    : axis(def.axis.normalized()), axis_in_a(def.frame_a.q * axis), axis_in_b(def.frame_b.q * axis) {
+    : axis(def.axis.normalized()),
+      perp(anyPerpendicular(axis)),
+      axis_in_a(def.frame_a.q * axis),
+      axis_in_b(def.frame_b.q * axis) {
   axes.limits_enabled = def.enable_limit;
   axes.lower[0] = def.lower;
   axes.upper[0] = def.upper;
@@ -26,7 +29,7 @@ void HingeJoint::updateAngle(const JointBase& j, const SolverBody& A, const Solv
   const Quat fa = j.frameRotationA(A.dq * m[j.a].q);
   const Quat fb = j.frameRotationB(B.dq * m[j.b].q);
   axes.rows[0] = fa * axis;
-  axes.angles[0] = hingeAngle(fa, fb, axis);
+  axes.angles[0] = hingeAngle(fa, fb, axes.rows[0], perp);
   axes.count = 1;
   axes.updateMass(A, B);
 }

@@ -16,6 +16,7 @@ struct HingeJoint {
   explicit HingeJoint(const HingeJointDef& def);
 
   Vec3 axis = Vec3::UnitZ();  // joint frame
+  Vec3 perp;                  // anyPerpendicular(axis), the angle's reference (hingeAngle)
   Vec3 axis_in_a, axis_in_b;  // the axis in the link frames (the joint frames are fixed in them)
   AngleAxes<1> axes;
   HingeAxisPart hinge_axis;
