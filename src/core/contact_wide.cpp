@@ -3,6 +3,7 @@
 #include "contact_wide.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstring>
 
 #include "contact_solver.hpp"
@@ -42,7 +43,7 @@ void ContactBatch::build(std::vector<ContactConstraint>& cs, const StepContext& 
   scalar_.clear();
   wide_.clear();
   lane_of_.clear();
-  blocks_.clear();
+  block_count_ = 0;
   std::vector<int>& candidates = candidates_;
   candidates.clear();
   for (int k = begin; k < end; ++k) {
@@ -64,23 +65,25 @@ void ContactBatch::build(std::vector<ContactConstraint>& cs, const StepContext& 
   }
   graph_.colour(edges_.data(), int(edges_.size()), int(bodies.size()));
   for (int c = 0; c < graph_.colourCount(); ++c) {
-    // A block loops over the points of its largest manifold: sorted by point count, the
+    // A block loops over the points of its largest manifold: by point count, most first, the
     // manifolds of a colour fill the blocks' points better. The constraints of a colour share
     // no body, so their order within it changes no bit.
-    colour_slots_.clear();
-    for (int j = 0; j < graph_.colourSize(c); ++j)
-      colour_slots_.push_back(candidates[graph_.order()[graph_.colourBegin(c) + j]]);
-    std::stable_sort(colour_slots_.begin(), colour_slots_.end(),
-                     [&](int x, int y) { return cs[x].count > cs[y].count; });
+    const int* order = graph_.order().data() + graph_.colourBegin(c);
+    const int size = graph_.colourSize(c);
+    // A counting sort: bucket kMax - count holds the manifolds of `count` points, in order.
+    constexpr int kMax = Manifold::kMaxPoints;
+    int first[kMax + 1] = {};  // where each bucket begins
+    for (int j = 0; j < size; ++j) ++first[kMax - cs[candidates[order[j]]].count + 1];
+    for (int k = 1; k <= kMax; ++k) first[k] += first[k - 1];
+    colour_slots_.resize(size);
+    for (int j = 0; j < size; ++j) {
+      const int slot = candidates[order[j]];
+      colour_slots_[first[kMax - cs[slot].count]++] = slot;
+    }
     for (int j = 0; j < int(colour_slots_.size()); ++j) {
-      if (j % kRowBlock == 0) {
-        blocks_.emplace_back();
-        ContactBlock& b = blocks_.back();
-        std::memset(static_cast<void*>(&b), 0, sizeof b);  // padding: zero rows, mass 0
-        for (int l = 0; l < kRowBlock; ++l) b.body_a[l] = b.body_b[l] = -1;
-      }
       const int slot = colour_slots_[j];
-      const int lane_slot = (int(blocks_.size()) - 1) * kRowBlock + j % kRowBlock;
+      if (j % kRowBlock == 0) newBlock(cs[slot].count);
+      const int lane_slot = (block_count_ - 1) * kRowBlock + j % kRowBlock;
       wide_.push_back(slot);
       lane_of_.push_back(lane_slot);
       fillLane(cs[slot], bodies, lane_slot);
@@ -89,6 +92,16 @@ void ContactBatch::build(std::vector<ContactConstraint>& cs, const StepContext& 
   const int overflow = graph_.colourBegin(graph_.colourCount());
   for (int j = overflow; j < graph_.size(); ++j) scalar_.push_back(candidates[graph_.order()[j]]);
   std::sort(scalar_.begin(), scalar_.end());
+}
+
+void ContactBatch::newBlock(int points) {
+  if (block_count_ == int(blocks_.size())) blocks_.emplace_back();
+  ContactBlock& b = blocks_[block_count_++];
+  // Padding is zero rows and mass 0; the kernels read no point past the block's first lane's
+  // count, the most of its lanes.
+  std::memset(static_cast<void*>(&b), 0, offsetof(ContactBlock, point));
+  std::memset(static_cast<void*>(b.point), 0, points * sizeof(ContactPointLanes));
+  for (int l = 0; l < kRowBlock; ++l) b.body_a[l] = b.body_b[l] = -1;
 }
 
 void ContactBatch::fillLane(const ContactConstraint& cc, const std::vector<SolverBody>& bodies,
@@ -132,17 +145,17 @@ void ContactBatch::updateSeparations(std::vector<ContactConstraint>& cs, const S
 void ContactBatch::warmStart(std::vector<ContactConstraint>& cs, const StepContext& ctx,
                              bool positions_moved) {
   ++substep_;
-  if (blocks_.empty()) return;
+  if (block_count_ == 0) return;
   if (positions_moved) updateSeparations(cs, ctx);
   const LaneBodies view = laneBodies(ctx.bodies->data());
-  const int n = int(blocks_.size());
+  const int n = block_count_;
   if (wide8(ctx.lanes)) kernel_w8::warmStartContactBlocks(blocks_.data(), n, view);
   else kernel_w4::warmStartContactBlocks(blocks_.data(), n, view);
 }
 
 void ContactBatch::solve(std::vector<ContactConstraint>& cs, const StepContext& ctx,
                          bool use_bias, bool positions_moved) {
-  if (blocks_.empty()) return;
+  if (block_count_ == 0) return;
   if (positions_moved) updateSeparations(cs, ctx);
   const SolverSettings& s = *ctx.settings;
   NormalRowParams p;
@@ -154,7 +167,7 @@ void ContactBatch::solve(std::vector<ContactConstraint>& cs, const StepContext& 
   p.max_push_velocity = float(s.max_push_velocity);
   p.use_bias = use_bias;
   const LaneBodies view = laneBodies(ctx.bodies->data());
-  const int n = int(blocks_.size());
+  const int n = block_count_;
   const auto sweep = [&](ContactBlock* first, int count) {
     if (wide8(ctx.lanes)) kernel_w8::solveContactBlocks(first, count, view, p);
     else kernel_w4::solveContactBlocks(first, count, view, p);

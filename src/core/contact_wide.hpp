@@ -44,6 +44,9 @@ class ContactBatch {
 
  private:
   void updateSeparations(std::vector<ContactConstraint>& cs, const StepContext& ctx);
+  // The next block, zeroed for manifolds of up to `points` points; the blocks are kept from
+  // step to step.
+  void newBlock(int points);
   void fillLane(const ContactConstraint& cc, const std::vector<SolverBody>& bodies, int lane_slot);
 
   int begin_ = 0, end_ = -1;
@@ -51,7 +54,8 @@ class ContactBatch {
   std::vector<int> scalar_;
   std::vector<int> wide_;     // the slots in blocks
   std::vector<int> lane_of_;  // of wide_[i]: block * kRowBlock + lane
-  std::vector<ContactBlock> blocks_;
+  std::vector<ContactBlock> blocks_;  // [0, block_count_) this step's
+  int block_count_ = 0;
   std::vector<GraphEdge> edges_;
   std::vector<int> candidates_;    // the eligible slots, in slot order
   std::vector<int> colour_slots_;  // one colour's slots, by point count
