@@ -34,9 +34,9 @@ struct Body {
 // solver and the narrowphase work from such differences (joint centres, contact origins),
 // and a scene moved by any grid vector gives the same motion bit for bit, so copies of one
 // ragdoll placed apart behave alike instead of diverging by round-off.
+constexpr double kPositionGrid = 4294967296.0;  // 2^32 steps per metre
 inline double snapPosition(double x) {
-  constexpr double kGrid = 4294967296.0;  // 2^32 steps per metre
-  return std::abs(x) < kWorldRange ? std::nearbyint(x * kGrid) / kGrid : x;
+  return std::abs(x) < kWorldRange ? std::nearbyint(x * kPositionGrid) / kPositionGrid : x;
 }
 inline Vec3 snapPosition(const Vec3& x) {
   return {snapPosition(x.x()), snapPosition(x.y()), snapPosition(x.z())};

@@ -30,6 +30,22 @@ typedef double Double4 __attribute__((vector_size(32)));
 inline Double4 squareRoot(Double4 x) { return Double4(_mm256_sqrt_pd(__m256d(x))); }
 #endif
 
+// nearbyint in the default rounding mode (to nearest, ties to even), for |y| < 2^52: SSE2 has
+// no rounding instruction, so 2^52 with y's sign is added and taken away (the sum's ulp is 1),
+// and the sign goes back on a zero result, as nearbyint keeps it.
+inline double roundToInteger(double y) { return __builtin_nearbyint(y); }
+inline Double2 roundToInteger(Double2 y) {
+  const __m128d sign = _mm_and_pd(__m128d(y), _mm_set1_pd(-0.0));
+  const __m128d big = _mm_or_pd(_mm_set1_pd(4503599627370496.0), sign);
+  const __m128d r = _mm_sub_pd(_mm_add_pd(__m128d(y), big), big);
+  return Double2(_mm_or_pd(r, sign));
+}
+#if defined(__AVX__)
+inline Double4 roundToInteger(Double4 y) {
+  return Double4(_mm256_round_pd(__m256d(y), _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC));
+}
+#endif
+
 // The lanes of W bodies' arrays: out[j] = {p[0][j], ..., p[W-1][j]}, and back.
 inline double lane(double x, int) { return x; }
 template <class D>

@@ -60,27 +60,34 @@ void World::Impl::resetBody(int b, BodyFaultCause cause) {
 // threads): resetFaulted resets the marked ones, in body order.
 void World::Impl::finishBody(int i) {
   BodyMotion& m = motions[i];
-  const SolverBody& s = solver[i];
   if (m.awake) {
+    const SolverBody& s = solver[i];
     const Vec3 d = s.dp + m.x_carry;
     const Vec3 on_grid = snapPosition(d);
     m.x_carry = d - on_grid;  // exact
     m.x += on_grid;           // exact: both on the grid
     m.q = (s.dq * m.q).normalized();
-    m.v = s.v;
-    m.w = s.w;
-    if (!motionFinite(m)) {
-      solver_fault[i] = kSolverFault;
-    } else if (!withinWorldRange(m.x)) {
-      solver_fault[i] = kRangeFault;
-    } else {
-      clampNorm(m.v, def.solver.max_linear_speed);
-      clampNorm(m.w, def.solver.max_angular_speed);
-      last_finite[i] = {m.x, m.q};
-    }
+    finishMotion(i);
   }
   m.force.setZero();
   m.torque.setZero();
+}
+
+// An awake body after its pose: the velocities, the fault marks, the clamps.
+void World::Impl::finishMotion(int i) {
+  BodyMotion& m = motions[i];
+  const SolverBody& s = solver[i];
+  m.v = s.v;
+  m.w = s.w;
+  if (!motionFinite(m)) {
+    solver_fault[i] = kSolverFault;
+  } else if (!withinWorldRange(m.x)) {
+    solver_fault[i] = kRangeFault;
+  } else {
+    clampNorm(m.v, def.solver.max_linear_speed);
+    clampNorm(m.w, def.solver.max_angular_speed);
+    last_finite[i] = {m.x, m.q};
+  }
 }
 
 // Only awake (dynamic) bodies are marked (finishBody).

@@ -42,6 +42,17 @@ integrate_kernel::BodyFields bodyFields(std::vector<SolverBody>& solver,
 }
 
 namespace {
+// Bodies [0, n) in runs by lane width: four at a time in AVX lanes where the CPU has AVX2, then
+// two in SSE2 lanes, the last one alone; run(width, first, count) for each run.
+template <class Run>
+void byLaneWidth(int n, Run&& run) {
+  const int n4 = cpuHasAvx2() ? n / 4 * 4 : 0;
+  const int n2 = n4 + (n - n4) / 2 * 2;
+  run(4, 0, n4);
+  run(2, n4, n2 - n4);
+  run(1, n2, n - n2);
+}
+
 // An awake body's solver body at the step start, but for its world inverse inertia.
 void startSolverBody(const BodyMotion& m, SolverBody& s) {
   s.dp.setZero();
@@ -79,12 +90,40 @@ void World::Impl::prepareSolverBodies(int begin, int end) {
   using namespace integrate_kernel;
   const BodyFields f = bodyFields(solver, motions, rotations);
   const int* bodies = island_bodies.data() + begin;
-  const int n = end - begin;
-  const int n4 = cpuHasAvx2() ? n / 4 * 4 : 0;
-  const int n2 = n4 + (n - n4) / 2 * 2;
-  integrate_w4::prepareRotations(f, bodies, n4);
-  prepareRotations<Double2>(f, bodies + n4, n2 - n4);
-  prepareRotations<double>(f, bodies + n2, n - n2);
+  byLaneWidth(end - begin, [&](int width, int first, int count) {
+    if (width == 4) integrate_w4::prepareRotations(f, bodies + first, count);
+    else if (width == 2) prepareRotations<Double2>(f, bodies + first, count);
+    else prepareRotations<double>(f, bodies + first, count);
+  });
+}
+
+// The pose part of finishBody for island_bodies[begin, end) (all awake), by lane width as above.
+void World::Impl::finishPoses(int begin, int end) {
+  if (begin >= end) return;
+  using namespace integrate_kernel;
+  const BodyMotion& m = motions[0];
+  const SolverBody& s = solver[0];
+  const auto at = [](const void* field, const void* base) {
+    return long((const char*)field - (const char*)base);
+  };
+  PoseFields f;
+  f.motion = (char*)motions.data();
+  f.motion_stride = sizeof(BodyMotion);
+  f.x = at(m.x.data(), &m);
+  f.x_carry = at(m.x_carry.data(), &m);
+  f.q = at(m.q.coeffs().data(), &m);
+  f.solver = (const char*)solver.data();
+  f.solver_stride = sizeof(SolverBody);
+  f.dp = at(s.dp.data(), &s);
+  f.dq = at(s.dq.coeffs().data(), &s);
+  const int* bodies = island_bodies.data() + begin;
+  const double grid = kPositionGrid, range = kWorldRange;
+  byLaneWidth(end - begin, [&](int width, int first, int count) {
+    const int* b = bodies + first;
+    if (width == 4) integrate_w4::finishPoses(f, b, count, grid, range);
+    else if (width == 2) integrate_kernel::finishPoses<Double2>(f, b, count, grid, range);
+    else integrate_kernel::finishPoses<double>(f, b, count, grid, range);
+  });
 }
 
 // Four bodies at a time in AVX lanes where the CPU has AVX2 (integrate_kernel.hpp), a chunk at a
@@ -141,12 +180,11 @@ void World::Impl::integratePositions(double h, int begin, int end) {
   const double half_h = 0.5 * h;
   const BodyFields f = bodyFields(solver, motions, rotations);
   const int* bodies = island_bodies.data() + begin;
-  const int n = end - begin;
-  const int n4 = cpuHasAvx2() ? n / 4 * 4 : 0;
-  const int n2 = n4 + (n - n4) / 2 * 2;
-  integrate_w4::stepPositions(f, bodies, n4, h, half_h);
-  stepPositions<Double2>(f, bodies + n4, n2 - n4, h, half_h);
-  stepPositions<double>(f, bodies + n2, n - n2, h, half_h);
+  byLaneWidth(end - begin, [&](int width, int first, int count) {
+    if (width == 4) integrate_w4::stepPositions(f, bodies + first, count, h, half_h);
+    else if (width == 2) stepPositions<Double2>(f, bodies + first, count, h, half_h);
+    else stepPositions<double>(f, bodies + first, count, h, half_h);
+  });
 }
 
 }  // namespace ragdoll_sim

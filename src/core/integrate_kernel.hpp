@@ -37,6 +37,15 @@ struct BodyFields {
   double* rotations;  // 9 per body, column-major
 };
 
+// Where the step's end finds an awake body's pose (finishPoses): BodyMotion's x, x_carry and q,
+// which it writes, and SolverBody's dp and dq.
+struct PoseFields {
+  char* motion;
+  long motion_stride, x, x_carry, q;
+  const char* solver;
+  long solver_stride, dp, dq;
+};
+
 inline namespace RAGDOLL_SIM_INTEGRATE_ISA {
 
 using double_lanes::Double2;
@@ -46,6 +55,7 @@ using double_lanes::Double4;
 #endif
 using double_lanes::gather;
 using double_lanes::lane;
+using double_lanes::roundToInteger;
 using double_lanes::scatter;
 
 // c / sqrt(z) where z > 0, c unchanged elsewhere (Eigen's normalized()).
@@ -245,6 +255,56 @@ inline void prepareRotations(const BodyFields& f, const int* bodies, int count) 
   }
 }
 
+// x on the position grid (body.hpp's snapPosition): nearbyint(x 2^32) / 2^32 within the world
+// range, x beyond it.
+inline double snapToGrid(double x, double grid, double range) {
+  return (x < 0.0 ? -x : x) < range ? roundToInteger(x * grid) / grid : x;
+}
+template <class D>
+inline D snapToGrid(D x, D grid, D range) {
+  const auto within = (x < D() + 0.0 ? -x : x) < range;
+  return within ? roundToInteger(x * grid) / grid : x;
+}
+
+// The pose part of finishBody on bodies[0..count), W at a time as stepPositions: the step's
+// displacement goes onto the grid with the carry, q = (dq q).normalized().
+// grid, range: body.hpp's 2^32 steps per metre and kWorldRange.
+template <class D>
+inline void finishPoses(const PoseFields& f, const int* bodies, int count, double grid,
+                        double range) {
+  constexpr int W = sizeof(D) / sizeof(double);
+  const D gridl = D() + grid, rangel = D() + range;
+  for (int k = 0; k < count; k += W) {
+    const double *dp[W], *dq[W];
+    double *x[W], *carry[W], *q[W];
+    for (int l = 0; l < W; ++l) {
+      const int b = bodies[k + l];
+      dp[l] = (const double*)(f.solver + b * f.solver_stride + f.dp);
+      dq[l] = (const double*)(f.solver + b * f.solver_stride + f.dq);
+      x[l] = (double*)(f.motion + b * f.motion_stride + f.x);
+      carry[l] = (double*)(f.motion + b * f.motion_stride + f.x_carry);
+      q[l] = (double*)(f.motion + b * f.motion_stride + f.q);
+    }
+    D dpl[3], xl[3], carryl[3], dql[4], ql[4], out[4];
+    gather<3>(dp, dpl);
+    gather<3>(x, xl);
+    gather<3>(carry, carryl);
+    gather<4>(dq, dql);
+    gather<4>(q, ql);
+    for (int j = 0; j < 3; ++j) {
+      const D d = dpl[j] + carryl[j];
+      const D on_grid = snapToGrid(d, gridl, rangel);
+      carryl[j] = d - on_grid;
+      xl[j] = xl[j] + on_grid;
+    }
+    quatProduct(dql, ql, out);
+    divideByRoot((out[0] * out[0] + out[1] * out[1]) + (out[2] * out[2] + out[3] * out[3]), out);
+    scatter<3>(xl, x);
+    scatter<3>(carryl, carry);
+    scatter<4>(out, q);
+  }
+}
+
 // advanceVelocity on bodies[0..count), W at a time as stepPositions; gravity: 3 doubles. The
 // indices k of the bodies whose v or w fails clampNorm's first test (|v|^2 <= max_v^2, the same
 // for w, NaN fails) go to clamp[], their number is returned: only those need clampNorm.
@@ -299,5 +359,7 @@ void stepPositions(const integrate_kernel::BodyFields& f, const int* bodies, int
 int advanceVelocities(const integrate_kernel::BodyFields& f, const int* bodies, int count, double h,
                       const double* gravity, double max_v2, double max_w2, int* clamp);
 void prepareRotations(const integrate_kernel::BodyFields& f, const int* bodies, int count);
+void finishPoses(const integrate_kernel::PoseFields& f, const int* bodies, int count, double grid,
+                 double range);
 }  // namespace integrate_w4
 }  // namespace ragdoll_sim

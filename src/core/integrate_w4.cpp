@@ -27,5 +27,10 @@ void prepareRotations(const integrate_kernel::BodyFields& f, const int* bodies, 
   integrate_kernel::prepareRotations<Lanes>(f, bodies, count);
 }
 
+void finishPoses(const integrate_kernel::PoseFields& f, const int* bodies, int count, double grid,
+                 double range) {
+  integrate_kernel::finishPoses<Lanes>(f, bodies, count, grid, range);
+}
+
 }  // namespace integrate_w4
 }  // namespace ragdoll_sim

@@ -329,8 +329,15 @@ void World::Impl::restitute(int begin, int end, const StepContext& c) {
 }
 
 // The island's bodies take the step (joint breaks only mark the joints).
+// finishBody of each (all awake), the poses in lanes (finishPoses, integrate.cpp).
 void World::Impl::finishIslandBodies(const IslandRange& p) {
-  for (int k = p.body_begin; k < p.body_end; ++k) finishBody(island_bodies[k]);
+  finishPoses(p.body_begin, p.body_end);
+  for (int k = p.body_begin; k < p.body_end; ++k) {
+    const int i = island_bodies[k];
+    finishMotion(i);
+    motions[i].force.setZero();
+    motions[i].torque.setZero();
+  }
   if (!tracks.empty()) sampleFinish(p);
 }
 

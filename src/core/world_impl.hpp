@@ -211,6 +211,7 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
   class IslandPass;  // one island's substep sequence on this thread (island_solve.cpp)
   void prepareSolverBody(int i);  // integrate.cpp
   void prepareSolverBodies(int begin, int end);  // island_bodies[begin, end), integrate.cpp
+  void finishPoses(int begin, int end);          // island_bodies[begin, end), integrate.cpp
   void prepareOutsideBodies();
   void prepareIsland(const IslandRange& p, const StepContext& c);
   // f(each island of p) when p is several whole islands solved as one range, else f(p): the
@@ -231,6 +232,7 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
   // fault_guard.cpp
   void guardInputs();
   void finishBody(int i);
+  void finishMotion(int i);  // finishBody after the pose
   void finishOutsideBodies();
   void resetFaulted();
   void finishStep();

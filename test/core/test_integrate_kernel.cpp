@@ -223,5 +223,73 @@ TEST(IntegrateKernel, StepStartRotationsGiveTheEigenBitsAtEachWidth) {
   }
 }
 
+// The pose part of finishBody (finishPoses) against its Eigen code, at each width: displacements
+// that round to ties, to zero from below (nearbyint keeps the sign), and a carry beyond the
+// world range, where the position is left off the grid.
+TEST(IntegrateKernel, StepEndPosesGiveTheEigenBitsAtEachWidth) {
+  std::mt19937_64 rng(63);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<int> widths = {1, 2};
+  if (cpuHasAvx2()) widths.push_back(4);
+  const double ulp = 1.0 / kPositionGrid;
+  for (int n = 0; n < 5000; ++n) {
+    std::vector<SolverBody> solver(4);
+    std::vector<BodyMotion> motions(4);
+    for (int l = 0; l < 4; ++l) {
+      SolverBody& s = solver[l];
+      BodyMotion& m = motions[l];
+      m.x = snapPosition(Vec3(100.0 * u(rng), 100.0 * u(rng), 100.0 * u(rng)));
+      m.x_carry = 0.5 * ulp * Vec3(u(rng), u(rng), u(rng));
+      m.q = Quat(u(rng), u(rng), u(rng), u(rng)).normalized();
+      s.dp = 0.01 * Vec3(u(rng), u(rng), u(rng));
+      s.dq = Quat(1.0 + 0.01 * u(rng), 0.01 * u(rng), 0.01 * u(rng), 0.01 * u(rng)).normalized();
+      switch ((n + l) % 6) {
+        case 1: s.dp = Vec3(2.5, -3.5, 0.5) * ulp, m.x_carry.setZero(); break;  // ties
+        case 2:  // -0.3 ulp snaps to -0, and -0 + -0 keeps the sign
+          s.dp = Vec3(-0.3 * ulp, 0.0, 0.0), m.x_carry.setZero(), m.x.x() = -0.0;
+          break;
+        case 3: m.x_carry.x() = 1e300; break;  // beyond the range: left as is
+        case 4: s.dq = Quat(0.0, 0.0, 0.0, 0.0); break;     // the unnormalisable branch
+        default: break;
+      }
+    }
+    std::vector<BodyMotion> reference = motions;
+    for (int l = 0; l < 4; ++l) {
+      BodyMotion& m = reference[l];
+      const Vec3 d = solver[l].dp + m.x_carry, on_grid = snapPosition(d);
+      m.x_carry = d - on_grid;
+      m.x += on_grid;
+      m.q = (solver[l].dq * m.q).normalized();
+    }
+    const int bodies[4] = {1, 3, 2, 0};
+    const BodyMotion& m0 = motions[0];
+    const SolverBody& s0 = solver[0];
+    const auto at = [](const void* field, const void* base) {
+      return long((const char*)field - (const char*)base);
+    };
+    for (const int width : widths) {
+      std::vector<BodyMotion> lanes = motions;
+      PoseFields f;
+      f.motion = (char*)lanes.data();
+      f.motion_stride = sizeof(BodyMotion);
+      f.x = at(m0.x.data(), &m0);
+      f.x_carry = at(m0.x_carry.data(), &m0);
+      f.q = at(m0.q.coeffs().data(), &m0);
+      f.solver = (const char*)solver.data();
+      f.solver_stride = sizeof(SolverBody);
+      f.dp = at(s0.dp.data(), &s0);
+      f.dq = at(s0.dq.coeffs().data(), &s0);
+      if (width == 4) integrate_w4::finishPoses(f, bodies, 4, kPositionGrid, kWorldRange);
+      else if (width == 2) finishPoses<Double2>(f, bodies, 4, kPositionGrid, kWorldRange);
+      else finishPoses<double>(f, bodies, 4, kPositionGrid, kWorldRange);
+      for (int l = 0; l < 4; ++l)
+        ASSERT_TRUE(sameBits(lanes[l].x, reference[l].x) &&
+                    sameBits(lanes[l].x_carry, reference[l].x_carry) &&
+                    sameBits(lanes[l].q.coeffs(), reference[l].q.coeffs()))
+            << "width " << width << ", body " << l << ", case " << n;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace ragdoll_sim
