@@ -41,6 +41,26 @@ integrate_kernel::BodyFields bodyFields(std::vector<SolverBody>& solver,
   return f;
 }
 
+integrate_kernel::PoseFields poseFields(std::vector<BodyMotion>& motions,
+                                        const std::vector<SolverBody>& solver) {
+  const BodyMotion& m = motions[0];
+  const SolverBody& s = solver[0];
+  const auto at = [](const void* field, const void* base) {
+    return long((const char*)field - (const char*)base);
+  };
+  integrate_kernel::PoseFields f;
+  f.motion = (char*)motions.data();
+  f.motion_stride = sizeof(BodyMotion);
+  f.x = at(m.x.data(), &m);
+  f.x_carry = at(m.x_carry.data(), &m);
+  f.q = at(m.q.coeffs().data(), &m);
+  f.solver = (const char*)solver.data();
+  f.solver_stride = sizeof(SolverBody);
+  f.dp = at(s.dp.data(), &s);
+  f.dq = at(s.dq.coeffs().data(), &s);
+  return f;
+}
+
 namespace {
 // Bodies [0, n) in runs by lane width: four at a time in AVX lanes where the CPU has AVX2, then
 // two in SSE2 lanes, the last one alone; run(width, first, count) for each run.
@@ -101,21 +121,7 @@ void World::Impl::prepareSolverBodies(int begin, int end) {
 void World::Impl::finishPoses(int begin, int end) {
   if (begin >= end) return;
   using namespace integrate_kernel;
-  const BodyMotion& m = motions[0];
-  const SolverBody& s = solver[0];
-  const auto at = [](const void* field, const void* base) {
-    return long((const char*)field - (const char*)base);
-  };
-  PoseFields f;
-  f.motion = (char*)motions.data();
-  f.motion_stride = sizeof(BodyMotion);
-  f.x = at(m.x.data(), &m);
-  f.x_carry = at(m.x_carry.data(), &m);
-  f.q = at(m.q.coeffs().data(), &m);
-  f.solver = (const char*)solver.data();
-  f.solver_stride = sizeof(SolverBody);
-  f.dp = at(s.dp.data(), &s);
-  f.dq = at(s.dq.coeffs().data(), &s);
+  const PoseFields f = poseFields(motions, solver);
   const int* bodies = island_bodies.data() + begin;
   const double grid = kPositionGrid, range = kWorldRange;
   byLaneWidth(end - begin, [&](int width, int first, int count) {

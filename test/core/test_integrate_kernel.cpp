@@ -262,23 +262,9 @@ TEST(IntegrateKernel, StepEndPosesGiveTheEigenBitsAtEachWidth) {
       m.q = (solver[l].dq * m.q).normalized();
     }
     const int bodies[4] = {1, 3, 2, 0};
-    const BodyMotion& m0 = motions[0];
-    const SolverBody& s0 = solver[0];
-    const auto at = [](const void* field, const void* base) {
-      return long((const char*)field - (const char*)base);
-    };
     for (const int width : widths) {
       std::vector<BodyMotion> lanes = motions;
-      PoseFields f;
-      f.motion = (char*)lanes.data();
-      f.motion_stride = sizeof(BodyMotion);
-      f.x = at(m0.x.data(), &m0);
-      f.x_carry = at(m0.x_carry.data(), &m0);
-      f.q = at(m0.q.coeffs().data(), &m0);
-      f.solver = (const char*)solver.data();
-      f.solver_stride = sizeof(SolverBody);
-      f.dp = at(s0.dp.data(), &s0);
-      f.dq = at(s0.dq.coeffs().data(), &s0);
+      const PoseFields f = poseFields(lanes, solver);
       if (width == 4) integrate_w4::finishPoses(f, bodies, 4, kPositionGrid, kWorldRange);
       else if (width == 2) finishPoses<Double2>(f, bodies, 4, kPositionGrid, kWorldRange);
       else finishPoses<double>(f, bodies, 4, kPositionGrid, kWorldRange);
