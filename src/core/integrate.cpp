@@ -11,7 +11,7 @@ namespace ragdoll_sim {
 static_assert(sizeof(Mat3) == 9 * sizeof(double), "rotations are read as 9 doubles a body");
 
 integrate_kernel::BodyFields bodyFields(std::vector<SolverBody>& solver,
-                                        const std::vector<BodyMotion>& motions,
+                                        std::vector<BodyMotion>& motions,
                                         std::vector<Mat3>& rotations) {
   const SolverBody& s = solver[0];
   const BodyMotion& m = motions[0];
@@ -26,8 +26,10 @@ integrate_kernel::BodyFields bodyFields(std::vector<SolverBody>& solver,
   f.dp = at(s.dp.data(), &s);
   f.dq = at(s.dq.coeffs().data(), &s);
   f.world_inv_inertia = at(s.inv_inertia.data(), &s);
-  f.motion = (const char*)motions.data();
+  f.motion = (char*)motions.data();
   f.motion_stride = sizeof(BodyMotion);
+  f.x = at(m.x.data(), &m);
+  f.x_carry = at(m.x_carry.data(), &m);
   f.inertia = at(m.inertia_local.data(), &m);
   f.inv_inertia = at(m.inv_inertia_local.data(), &m);
   f.q = at(m.q.coeffs().data(), &m);
@@ -38,26 +40,6 @@ integrate_kernel::BodyFields bodyFields(std::vector<SolverBody>& solver,
   f.linear_damping = at(&m.linear_damping, &m);
   f.angular_damping = at(&m.angular_damping, &m);
   f.rotations = rotations[0].data();
-  return f;
-}
-
-integrate_kernel::PoseFields poseFields(std::vector<BodyMotion>& motions,
-                                        const std::vector<SolverBody>& solver) {
-  const BodyMotion& m = motions[0];
-  const SolverBody& s = solver[0];
-  const auto at = [](const void* field, const void* base) {
-    return long((const char*)field - (const char*)base);
-  };
-  integrate_kernel::PoseFields f;
-  f.motion = (char*)motions.data();
-  f.motion_stride = sizeof(BodyMotion);
-  f.x = at(m.x.data(), &m);
-  f.x_carry = at(m.x_carry.data(), &m);
-  f.q = at(m.q.coeffs().data(), &m);
-  f.solver = (const char*)solver.data();
-  f.solver_stride = sizeof(SolverBody);
-  f.dp = at(s.dp.data(), &s);
-  f.dq = at(s.dq.coeffs().data(), &s);
   return f;
 }
 
@@ -121,7 +103,7 @@ void World::Impl::prepareSolverBodies(int begin, int end) {
 void World::Impl::finishPoses(int begin, int end) {
   if (begin >= end) return;
   using namespace integrate_kernel;
-  const PoseFields f = poseFields(motions, solver);
+  const BodyFields f = bodyFields(solver, motions, rotations);
   const int* bodies = island_bodies.data() + begin;
   const double grid = kPositionGrid, range = kWorldRange;
   byLaneWidth(end - begin, [&](int width, int first, int count) {

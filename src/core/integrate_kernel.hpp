@@ -31,19 +31,10 @@ namespace integrate_kernel {
 struct BodyFields {
   char* solver;  // SolverBody array
   long solver_stride, v, w, dp, dq, world_inv_inertia;
-  const char* motion;  // BodyMotion array
-  long motion_stride, inertia, inv_inertia, q, force, torque, gravity_scale, inv_mass,
+  char* motion;  // BodyMotion array (finishPoses writes x, x_carry and q)
+  long motion_stride, x, x_carry, inertia, inv_inertia, q, force, torque, gravity_scale, inv_mass,
       linear_damping, angular_damping;
   double* rotations;  // 9 per body, column-major
-};
-
-// Where the step's end finds an awake body's pose (finishPoses): BodyMotion's x, x_carry and q,
-// which it writes, and SolverBody's dp and dq.
-struct PoseFields {
-  char* motion;
-  long motion_stride, x, x_carry, q;
-  const char* solver;
-  long solver_stride, dp, dq;
 };
 
 inline namespace RAGDOLL_SIM_INTEGRATE_ISA {
@@ -185,6 +176,9 @@ inline void finishRotation(const D R[9], const D inv_inertia[9], D w[3]) {
 inline double* solverField(const BodyFields& f, int body, long offset) {
   return (double*)(f.solver + body * f.solver_stride + offset);
 }
+inline double* motionOut(const BodyFields& f, int body, long offset) {
+  return (double*)(f.motion + body * f.motion_stride + offset);
+}
 inline const double* motionField(const BodyFields& f, int body, long offset) {
   return (const double*)(f.motion + body * f.motion_stride + offset);
 }
@@ -257,9 +251,6 @@ inline void prepareRotations(const BodyFields& f, const int* bodies, int count) 
 
 // x on the position grid (body.hpp's snapPosition): nearbyint(x 2^32) / 2^32 within the world
 // range, x beyond it.
-inline double snapToGrid(double x, double grid, double range) {
-  return (x < 0.0 ? -x : x) < range ? roundToInteger(x * grid) / grid : x;
-}
 template <class D>
 inline D snapToGrid(D x, D grid, D range) {
   const auto within = (x < D() + 0.0 ? -x : x) < range;
@@ -270,7 +261,7 @@ inline D snapToGrid(D x, D grid, D range) {
 // displacement goes onto the grid with the carry, q = (dq q).normalized().
 // grid, range: body.hpp's 2^32 steps per metre and kWorldRange.
 template <class D>
-inline void finishPoses(const PoseFields& f, const int* bodies, int count, double grid,
+inline void finishPoses(const BodyFields& f, const int* bodies, int count, double grid,
                         double range) {
   constexpr int W = sizeof(D) / sizeof(double);
   const D gridl = D() + grid, rangel = D() + range;
@@ -279,11 +270,11 @@ inline void finishPoses(const PoseFields& f, const int* bodies, int count, doubl
     double *x[W], *carry[W], *q[W];
     for (int l = 0; l < W; ++l) {
       const int b = bodies[k + l];
-      dp[l] = (const double*)(f.solver + b * f.solver_stride + f.dp);
-      dq[l] = (const double*)(f.solver + b * f.solver_stride + f.dq);
-      x[l] = (double*)(f.motion + b * f.motion_stride + f.x);
-      carry[l] = (double*)(f.motion + b * f.motion_stride + f.x_carry);
-      q[l] = (double*)(f.motion + b * f.motion_stride + f.q);
+      dp[l] = solverField(f, b, f.dp);
+      dq[l] = solverField(f, b, f.dq);
+      x[l] = motionOut(f, b, f.x);
+      carry[l] = motionOut(f, b, f.x_carry);
+      q[l] = motionOut(f, b, f.q);
     }
     D dpl[3], xl[3], carryl[3], dql[4], ql[4], out[4];
     gather<3>(dp, dpl);
@@ -359,7 +350,7 @@ void stepPositions(const integrate_kernel::BodyFields& f, const int* bodies, int
 int advanceVelocities(const integrate_kernel::BodyFields& f, const int* bodies, int count, double h,
                       const double* gravity, double max_v2, double max_w2, int* clamp);
 void prepareRotations(const integrate_kernel::BodyFields& f, const int* bodies, int count);
-void finishPoses(const integrate_kernel::PoseFields& f, const int* bodies, int count, double grid,
+void finishPoses(const integrate_kernel::BodyFields& f, const int* bodies, int count, double grid,
                  double range);
 }  // namespace integrate_w4
 }  // namespace ragdoll_sim

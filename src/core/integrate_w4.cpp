@@ -27,7 +27,7 @@ void prepareRotations(const integrate_kernel::BodyFields& f, const int* bodies, 
   integrate_kernel::prepareRotations<Lanes>(f, bodies, count);
 }
 
-void finishPoses(const integrate_kernel::PoseFields& f, const int* bodies, int count, double grid,
+void finishPoses(const integrate_kernel::BodyFields& f, const int* bodies, int count, double grid,
                  double range) {
   integrate_kernel::finishPoses<Lanes>(f, bodies, count, grid, range);
 }

@@ -264,7 +264,8 @@ TEST(IntegrateKernel, StepEndPosesGiveTheEigenBitsAtEachWidth) {
     const int bodies[4] = {1, 3, 2, 0};
     for (const int width : widths) {
       std::vector<BodyMotion> lanes = motions;
-      const PoseFields f = poseFields(lanes, solver);
+      std::vector<Mat3> rotations(4);
+      const BodyFields f = bodyFields(solver, lanes, rotations);
       if (width == 4) integrate_w4::finishPoses(f, bodies, 4, kPositionGrid, kWorldRange);
       else if (width == 2) finishPoses<Double2>(f, bodies, 4, kPositionGrid, kWorldRange);
       else finishPoses<double>(f, bodies, 4, kPositionGrid, kWorldRange);
