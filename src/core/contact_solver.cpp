@@ -380,7 +380,7 @@ void forSlots(ContactBatch* batch, int begin, int end, Slot&& slot) {
 void ContactSolver::warmStart(const StepContext& ctx, int begin, int end, bool positions_moved) {
   auto& bodies = *ctx.bodies;
   ContactBatch* batch = batchOf(ctx, begin, end);
-  if (batch) batch->warmStart(constraints_, ctx, positions_moved);
+  if (batch) batch->warmStart(ctx, positions_moved);
   forSlots(batch, begin, end, [&](int k) {
     ContactConstraint& cc = constraints_[k];
     SolverBody &A = bodies[cc.a], &B = bodies[cc.b];
@@ -393,7 +393,7 @@ void ContactSolver::solve(const StepContext& ctx, bool use_bias, int begin, int 
                           bool positions_moved) {
   auto& bodies = *ctx.bodies;
   ContactBatch* batch = batchOf(ctx, begin, end);
-  if (batch) batch->solve(constraints_, ctx, use_bias, positions_moved);
+  if (batch) batch->solve(ctx, use_bias, positions_moved);
   forSlots(batch, begin, end, [&](int k) {
     ContactConstraint& cc = constraints_[k];
     SolverBody &A = bodies[cc.a], &B = bodies[cc.b];

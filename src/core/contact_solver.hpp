@@ -22,7 +22,9 @@ struct ContactRow {
 struct ContactConstraintPoint {
   Vec3 rA, rB;                  // from the COMs at step start (world)
   double base_separation;       // separation - (rB - rA).n, so s = (d + rB' - rA').n + base
-  double separation;            // s at the current deltas (warm start, first sweep after a move)
+  // s at the current deltas (warm start, first sweep after a move); in the wide path the
+  // block's geometry holds it after prepare (contact_separations.hpp)
+  double separation;
   ContactRow normal_row, tangent_row[2];
   double normal_impulse, tangent_impulse[2];
   double max_normal_impulse;

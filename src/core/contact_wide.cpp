@@ -95,7 +95,13 @@ void ContactBatch::build(std::vector<ContactConstraint>& cs, const StepContext& 
 }
 
 void ContactBatch::newBlock(int points) {
-  if (block_count_ == int(blocks_.size())) blocks_.emplace_back();
+  if (block_count_ == int(blocks_.size())) {
+    blocks_.emplace_back();
+    geometry_.emplace_back();
+  }
+  // A lane's points past its count are computed from whatever they hold, and not stored.
+  std::memset(static_cast<void*>(&geometry_[block_count_]), 0,
+              offsetof(ContactSeparationBlock, r_a));
   ContactBlock& b = blocks_[block_count_++];
   // Padding is zero rows and mass 0; the kernels read no point past the block's first lane's
   // count, the most of its lanes.
@@ -117,9 +123,20 @@ void ContactBatch::fillLane(const ContactConstraint& cc, const std::vector<Solve
   setVec(b.t1, l, cc.tangent[1]);
   b.friction[l] = float(cc.friction);
   b.points = std::max(b.points, int32_t(cc.count));
+  ContactSeparationBlock& g = geometry_[lane_slot / kRowBlock];
+  g.body_a[l] = cc.a;
+  g.body_b[l] = cc.b;
+  g.count[l] = cc.count;
+  for (int k = 0; k < 3; ++k) g.n[k][l] = cc.normal[k];
   for (int i = 0; i < cc.count; ++i) {
     const ContactConstraintPoint& p = cc.points[i];
     ContactPointLanes& q = b.point[i];
+    for (int k = 0; k < 3; ++k) {
+      g.r_a[i][k][l] = p.rA[k];
+      g.r_b[i][k][l] = p.rB[k];
+    }
+    g.base[i][l] = p.base_separation;
+    g.separation[i][l] = p.separation;
     setRow(q.row[0], l, p.normal_row);
     setRow(q.row[1], l, p.tangent_row[0]);
     setRow(q.row[2], l, p.tangent_row[1]);
@@ -131,32 +148,24 @@ void ContactBatch::fillLane(const ContactConstraint& cc, const std::vector<Solve
   }
 }
 
-void ContactBatch::updateSeparations(std::vector<ContactConstraint>& cs, const StepContext& ctx) {
-  const auto& bodies = *ctx.bodies;
-  for (size_t i = 0; i < wide_.size(); ++i) {
-    ContactConstraint& cc = cs[wide_[i]];
-    ragdoll_sim::updateSeparations(bodies[cc.a], bodies[cc.b], cc);
-    ContactBlock& b = blocks_[lane_of_[i] / kRowBlock];
-    const int l = lane_of_[i] % kRowBlock;
-    for (int p = 0; p < cc.count; ++p) b.point[p].separation[l] = float(cc.points[p].separation);
-  }
+void ContactBatch::updateSeparations(const StepContext& ctx) {
+  updateBlockSeparations(geometry_.data(), blocks_.data(), block_count_,
+                         laneBodies(ctx.bodies->data()));
 }
 
-void ContactBatch::warmStart(std::vector<ContactConstraint>& cs, const StepContext& ctx,
-                             bool positions_moved) {
+void ContactBatch::warmStart(const StepContext& ctx, bool positions_moved) {
   ++substep_;
   if (block_count_ == 0) return;
-  if (positions_moved) updateSeparations(cs, ctx);
+  if (positions_moved) updateSeparations(ctx);
   const LaneBodies view = laneBodies(ctx.bodies->data());
   const int n = block_count_;
   if (wide8(ctx.lanes)) kernel_w8::warmStartContactBlocks(blocks_.data(), n, view);
   else kernel_w4::warmStartContactBlocks(blocks_.data(), n, view);
 }
 
-void ContactBatch::solve(std::vector<ContactConstraint>& cs, const StepContext& ctx,
-                         bool use_bias, bool positions_moved) {
+void ContactBatch::solve(const StepContext& ctx, bool use_bias, bool positions_moved) {
   if (block_count_ == 0) return;
-  if (positions_moved) updateSeparations(cs, ctx);
+  if (positions_moved) updateSeparations(ctx);
   const SolverSettings& s = *ctx.settings;
   NormalRowParams p;
   p.inv_h = float(ctx.inv_h);

@@ -7,6 +7,7 @@
 
 #include "constraint_graph.hpp"
 #include "contact_rows_wide.hpp"
+#include "contact_separations.hpp"
 
 namespace ragdoll_sim {
 
@@ -29,21 +30,20 @@ class ContactBatch {
   // The colours of the blocks (0 without any).
   int colourCount() const { return wide_.empty() ? 0 : graph_.colourCount(); }
 
-  // Once per substep, first. positions_moved: the double separations are recomputed and copied
-  // into the lanes first.
-  void warmStart(std::vector<ContactConstraint>& cs, const StepContext& ctx, bool positions_moved);
+  // Once per substep, first. positions_moved: the double separations are recomputed (in the
+  // blocks' geometry; the constraints keep prepare's) and rounded into the lanes first.
+  void warmStart(const StepContext& ctx, bool positions_moved);
   // The biased sweep takes the colours forward in the odd substeps of the step and backward
   // in the even ones (counted by warmStart): solved always in one order, the contacts of the
   // colour solved last take the push-out, and down a stack every other contact sinks to the
   // linear slop while its neighbours stay shallow.
-  void solve(std::vector<ContactConstraint>& cs, const StepContext& ctx, bool use_bias,
-             bool positions_moved);
+  void solve(const StepContext& ctx, bool use_bias, bool positions_moved);
   // The lanes' impulses (normal, tangents, largest normal increment) into the double
   // constraints, which stay the source for everything after the substeps.
   void syncImpulses(std::vector<ContactConstraint>& cs) const;
 
  private:
-  void updateSeparations(std::vector<ContactConstraint>& cs, const StepContext& ctx);
+  void updateSeparations(const StepContext& ctx);
   // The next block, zeroed for manifolds of up to `points` points; the blocks are kept from
   // step to step.
   void newBlock(int points);
@@ -55,6 +55,7 @@ class ContactBatch {
   std::vector<int> wide_;     // the slots in blocks
   std::vector<int> lane_of_;  // of wide_[i]: block * kRowBlock + lane
   std::vector<ContactBlock> blocks_;  // [0, block_count_) this step's
+  std::vector<ContactSeparationBlock> geometry_;  // of blocks_[k]
   int block_count_ = 0;
   std::vector<GraphEdge> edges_;
   std::vector<int> candidates_;    // the eligible slots, in slot order

@@ -45,6 +45,13 @@ inline void storeFloats(D x, float* p) {
   for (int l = 0; l < int(sizeof(D) / sizeof(double)); ++l) p[l] = float(lane(x, l));
 }
 
+// The addresses of the field `offset` doubles after v of the bodies ids[0, W).
+template <int W>
+inline void laneFields(const LaneBodies& bodies, const int32_t* ids, int offset,
+                       const double* out[W]) {
+  for (int l = 0; l < W; ++l) out[l] = bodies.v + long(ids[l]) * bodies.stride + offset;
+}
+
 template <class D>
 inline void cross(const D a[3], const D b[3], D out[3]) {
   out[0] = a[1] * b[2] - a[2] * b[1];
@@ -112,16 +119,12 @@ inline void refreshLanes(PointFrameBlock& f, PointRowBlock& r, int o, const Lane
                          bool advance_angles, double h) {
   constexpr int W = sizeof(D) / sizeof(double);
   const double *qa[W], *qb[W], *pa[W], *pb[W], *wa[W], *wb[W];
-  for (int l = 0; l < W; ++l) {
-    const double* A = bodies.v + long(f.body_a[o + l]) * bodies.stride;
-    const double* B = bodies.v + long(f.body_b[o + l]) * bodies.stride;
-    qa[l] = A + kLaneDq;
-    qb[l] = B + kLaneDq;
-    pa[l] = A + kLaneDp;
-    pb[l] = B + kLaneDp;
-    wa[l] = A + 3;
-    wb[l] = B + 3;
-  }
+  laneFields<W>(bodies, f.body_a + o, kLaneDq, qa);
+  laneFields<W>(bodies, f.body_b + o, kLaneDq, qb);
+  laneFields<W>(bodies, f.body_a + o, kLaneDp, pa);
+  laneFields<W>(bodies, f.body_b + o, kLaneDp, pb);
+  laneFields<W>(bodies, f.body_a + o, 3, wa);
+  laneFields<W>(bodies, f.body_b + o, 3, wb);
   if (advance_angles && r.angle_rows) advanceAngles<D>(f, r, o, wa, wb, h);
   D dqa[4], dqb[4], dpa[3], dpb[3];
   gather<4>(qa, dqa);
