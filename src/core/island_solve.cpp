@@ -13,7 +13,9 @@ bool extendsRange(IslandRange& c, const IslandRange& r, int k, int left) {
   const bool follows = k == c.island_end && r.body_begin == c.body_end &&
                        r.joint_begin == c.joint_end && r.contact_begin == c.contact_end &&
                        r.resting == c.resting;
-  if (!follows || c.work() + r.work() > kLaneRangeWork || c.island_end - c.island_begin >= left)
+  const int work = c.work() + r.work();
+  if (!follows || work > kLaneRangeWork ||
+      (work > kLaneRangeFill && c.island_end - c.island_begin >= left))
     return false;
   c.body_end = r.body_end;
   c.joint_end = r.joint_end;

@@ -28,13 +28,16 @@ namespace ragdoll_sim {
 // With lanes, a thread solves consecutive whole islands of its run as one range (solveIslands):
 // the most work (IslandRange::work) of such a range, enough for full lanes.
 constexpr int kLaneRangeWork = 512;
+// The work a range may take before it must leave islands to steal: a lone ragdoll's joints fill
+// about half the lanes of each colour's blocks, three fill them.
+constexpr int kLaneRangeFill = 160;
 
 // Appends island r (index k in island_ranges) to range c when it follows c directly in the body,
-// joint and contact arrays, takes the same substeps, keeps c within kLaneRangeWork and leaves at
-// least as many islands untaken as c then holds (left: the islands of the run after r); false (c
-// unchanged) otherwise. A thread takes a range's islands before it solves any of them, so the
-// last rule shrinks the ranges towards the end of its run and leaves the other threads islands
-// to steal.
+// joint and contact arrays, takes the same substeps, keeps c within kLaneRangeWork and either
+// keeps it within kLaneRangeFill or leaves at least as many islands untaken as c then holds
+// (left: the islands of the run after r); false (c unchanged) otherwise. A thread takes a
+// range's islands before it solves any of them, so the last rule shrinks the ranges towards the
+// end of its run, down to kLaneRangeFill, and leaves the other threads islands to steal.
 bool extendsRange(IslandRange& c, const IslandRange& r, int k, int left);
 
 // The step's two substep sequences: the full one, and the rest substeps of islands whose bodies

@@ -1,6 +1,6 @@
 // The ranges of islands a thread solves together with lanes (extendsRange, island_solve.hpp):
-// consecutive islands up to kLaneRangeWork, and, when other threads may steal, never more
-// islands than the run still leaves after them.
+// consecutive islands up to kLaneRangeWork, and, when other threads may steal, beyond
+// kLaneRangeFill never more islands than the run still leaves after them.
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -47,10 +47,18 @@ TEST(LaneRanges, AloneTheRangesFillUpToTheWork) {
 // Shared, a thread holds at most half of what is left: the other thread, done with its own
 // run, still finds islands to steal at the end instead of waiting for a whole range.
 TEST(LaneRanges, SharedTheRangesShrinkTowardsTheEndOfTheRun) {
-  const int small = 4;
-  EXPECT_EQ(rangeSizes(islands(16, small), true), (std::vector<int>{8, 4, 2, 1, 1}));
   const int per = kLaneRangeWork / 8;
-  EXPECT_EQ(rangeSizes(islands(40, per), true), (std::vector<int>{8, 8, 8, 8, 4, 2, 1, 1}));
+  EXPECT_EQ(rangeSizes(islands(40, per), true), (std::vector<int>{8, 8, 8, 8, 4, 2, 2}));
+  const int half_fill = kLaneRangeFill / 2;  // a ragdoll of ragdoll15 with its contacts
+  EXPECT_EQ(rangeSizes(islands(10, half_fill), true), (std::vector<int>{5, 2, 2, 1}));
+}
+
+// ... but not below kLaneRangeFill: one island alone would fill the lanes by half.
+TEST(LaneRanges, SharedTheRangesKeepTheFill) {
+  const int small = 4;  // 16 of them are within kLaneRangeFill: one range
+  EXPECT_EQ(rangeSizes(islands(16, small), true), (std::vector<int>{16}));
+  const int third = kLaneRangeFill / 3;
+  EXPECT_EQ(rangeSizes(islands(6, third), true), (std::vector<int>{3, 3}));
 }
 
 TEST(LaneRanges, OnlyConsecutiveIslandsWithTheSameSubsteps) {
