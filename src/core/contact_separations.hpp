@@ -20,7 +20,7 @@ struct alignas(64) ContactSeparationBlock {
   // Of each point, from the step's prepare: the lever arms rA, rB and base_separation.
   double r_a[kBlockPoints][3][kRowBlock], r_b[kBlockPoints][3][kRowBlock];
   double base[kBlockPoints][kRowBlock];
-  double separation[kBlockPoints][kRowBlock];  // at the current position state
+  double separation[kBlockPoints][kRowBlock];  // as the last update computed them
 };
 
 // Blocks [0, count): the separations of each lane's points into `geometry` and, rounded, into

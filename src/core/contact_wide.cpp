@@ -136,7 +136,6 @@ void ContactBatch::fillLane(const ContactConstraint& cc, const std::vector<Solve
       g.r_b[i][k][l] = p.rB[k];
     }
     g.base[i][l] = p.base_separation;
-    g.separation[i][l] = p.separation;
     setRow(q.row[0], l, p.normal_row);
     setRow(q.row[1], l, p.tangent_row[0]);
     setRow(q.row[2], l, p.tangent_row[1]);

@@ -176,11 +176,8 @@ inline void finishRotation(const D R[9], const D inv_inertia[9], D w[3]) {
 inline double* solverField(const BodyFields& f, int body, long offset) {
   return (double*)(f.solver + body * f.solver_stride + offset);
 }
-inline double* motionOut(const BodyFields& f, int body, long offset) {
+inline double* motionField(const BodyFields& f, int body, long offset) {
   return (double*)(f.motion + body * f.motion_stride + offset);
-}
-inline const double* motionField(const BodyFields& f, int body, long offset) {
-  return (const double*)(f.motion + body * f.motion_stride + offset);
 }
 
 // The position step (advanceRotation, then finishRotation) of bodies[0..count), W = sizeof(D) / 8
@@ -272,9 +269,9 @@ inline void finishPoses(const BodyFields& f, const int* bodies, int count, doubl
       const int b = bodies[k + l];
       dp[l] = solverField(f, b, f.dp);
       dq[l] = solverField(f, b, f.dq);
-      x[l] = motionOut(f, b, f.x);
-      carry[l] = motionOut(f, b, f.x_carry);
-      q[l] = motionOut(f, b, f.q);
+      x[l] = motionField(f, b, f.x);
+      carry[l] = motionField(f, b, f.x_carry);
+      q[l] = motionField(f, b, f.q);
     }
     D dpl[3], xl[3], carryl[3], dql[4], ql[4], out[4];
     gather<3>(dp, dpl);
