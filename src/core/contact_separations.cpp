@@ -6,13 +6,13 @@
 namespace ragdoll_sim {
 
 namespace contact_separations_w2 {
-void update(ContactSeparationBlock* geometry, ContactBlock* blocks, int count,
+void update(ContactGeometryBlock* geometry, ContactBlock* blocks, int count,
             const LaneBodies& bodies) {
   contact_separations::updateBlocks<double_lanes::Double2>(geometry, blocks, count, bodies);
 }
 }  // namespace contact_separations_w2
 
-void updateBlockSeparations(ContactSeparationBlock* geometry, ContactBlock* blocks, int count,
+void updateBlockSeparations(ContactGeometryBlock* geometry, ContactBlock* blocks, int count,
                             const LaneBodies& bodies) {
   if (cpuHasAvx2()) contact_separations_w4::update(geometry, blocks, count, bodies);
   else contact_separations_w2::update(geometry, blocks, count, bodies);

@@ -26,17 +26,13 @@ using double_lanes::lane;
 using point_frames::dot;
 using point_frames::laneFields;
 using point_frames::loadLanes;
+using point_frames::loadVector;
 using point_frames::rotate;
 using point_frames::storeLanes;
 
-template <class D>
-inline void loadVector(const double (&field)[3][kRowBlock], int o, D out[3]) {
-  for (int j = 0; j < 3; ++j) out[j] = loadLanes<D>(field[j] + o);
-}
-
 // Lanes [o, o + W) of one block.
 template <class D>
-inline void separationLanes(ContactSeparationBlock& g, ContactBlock& b, int o,
+inline void separationLanes(ContactGeometryBlock& g, ContactBlock& b, int o,
                             const LaneBodies& bodies) {
   constexpr int W = sizeof(D) / sizeof(double);
   const double *qa[W], *qb[W], *pa[W], *pb[W];
@@ -72,7 +68,7 @@ inline void separationLanes(ContactSeparationBlock& g, ContactBlock& b, int o,
 
 // Blocks [0, count), W lanes at a time up to the first padding lane's group.
 template <class D>
-inline void updateBlocks(ContactSeparationBlock* geometry, ContactBlock* blocks, int count,
+inline void updateBlocks(ContactGeometryBlock* geometry, ContactBlock* blocks, int count,
                          const LaneBodies& bodies) {
   constexpr int W = sizeof(D) / sizeof(double);
   for (int k = 0; k < count; ++k)

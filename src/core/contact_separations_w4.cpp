@@ -12,7 +12,7 @@ using Lanes = double_lanes::Double4;
 using Lanes = double_lanes::Double2;
 #endif
 
-void update(ContactSeparationBlock* geometry, ContactBlock* blocks, int count,
+void update(ContactGeometryBlock* geometry, ContactBlock* blocks, int count,
             const LaneBodies& bodies) {
   contact_separations::updateBlocks<Lanes>(geometry, blocks, count, bodies);
 }

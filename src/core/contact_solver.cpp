@@ -52,18 +52,6 @@
 namespace ragdoll_sim {
 
 namespace {
-// Inlined: prepare builds three rows per point and the call would cost as much as the row.
-[[gnu::always_inline]] inline ContactRow makeRow(const SolverBody& A, const SolverBody& B,
-                                                 const Vec3& rA, const Vec3& rB, const Vec3& d) {
-  ContactRow r;
-  r.angA = rA.cross(d);
-  r.angB = rB.cross(d);
-  r.iangA = A.inv_inertia * r.angA;
-  r.iangB = B.inv_inertia * r.angB;
-  const double k = A.inv_mass + B.inv_mass + r.angA.dot(r.iangA) + r.angB.dot(r.iangB);
-  r.mass = k > 0.0 ? 1.0 / k : 0.0;
-  return r;
-}
 // The velocities of a manifold's two bodies, held in locals through its rows and written back
 // once, and only for a movable() body: static bodies are shared by all islands, and writing the
 // ground from both threads on every row would make the cores fight over its cache line.
@@ -133,6 +121,15 @@ std::vector<int>& ContactSolver::selectActive(const std::vector<Contact>& contac
   return active_;
 }
 
+namespace {
+void prepareFrictionRows(ContactConstraint& cc, const SolverBody& A, const SolverBody& B) {
+  for (int i = 0; i < cc.count; ++i) {
+    ContactConstraintPoint& p = cc.points[i];
+    for (int k = 0; k < 2; ++k) p.tangent_row[k] = contactRow(A, B, p.rA, p.rB, cc.tangent[k]);
+  }
+}
+}  // namespace
+
 void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepContext& ctx,
                             int begin, int end) {
   const auto& motions = *ctx.motions;
@@ -173,16 +170,14 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
       p.rA = mp.point + oA;
       p.rB = mp.point + oB;
       p.base_separation = mp.separation - (p.rB - p.rA).dot(cc.normal);
-      p.normal_row = makeRow(A, B, p.rA, p.rB, cc.normal);
+      p.normal_row = contactRow(A, B, p.rA, p.rB, cc.normal);
       const Vec3 dv = relativeVelocity(A, B, p.rA, p.rB);
       p.relative_velocity = dv.dot(cc.normal);
       max_slip = std::max(max_slip, (dv - p.relative_velocity * cc.normal).norm());
       p.normal_impulse = scale * c.normal_impulse[i];
       p.max_normal_impulse = 0.0;
-      for (int k = 0; k < 2; ++k) {
-        p.tangent_row[k] = makeRow(A, B, p.rA, p.rB, cc.tangent[k]);
+      for (int k = 0; k < 2; ++k)
         p.tangent_impulse[k] = scale * c.friction_impulse[i].dot(cc.tangent[k]);
-      }
     }
     cc.friction =
         max_slip < settings.static_friction_speed ? c.static_friction : c.kinetic_friction;
@@ -199,11 +194,17 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
         for (int l = 0; l < 2; ++l) K(k, l) = cc.tangent[k].dot(cc.roll_iA[l] + cc.roll_iB[l]);
       cc.roll_mass = inverseOrZero(K);
     }
+    // A wide constraint's friction rows are prepared in the block's lanes (ContactBatch).
+    if (ctx.lanes == 1 || !ContactBatch::eligible(cc)) prepareFrictionRows(cc, A, B);
   }
   if (begin >= end || ctx.lanes == 1) return;
   ContactBatch& batch = takeBatch();
   batch.build(constraints_, ctx, begin, end);
   batch_at_[begin] = &batch;
+  for (const int k : batch.scalar()) {  // the colouring's overflow
+    ContactConstraint& cc = constraints_[k];
+    if (ContactBatch::eligible(cc)) prepareFrictionRows(cc, bodies[cc.a], bodies[cc.b]);
+  }
 }
 
 void ContactSolver::resize(int threads) {

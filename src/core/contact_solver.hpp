@@ -25,7 +25,8 @@ struct ContactConstraintPoint {
   // s at the current deltas (warm start, first sweep after a move); in the wide path the
   // block's geometry holds it after prepare (contact_separations.hpp)
   double separation;
-  ContactRow normal_row, tangent_row[2];
+  ContactRow normal_row;
+  ContactRow tangent_row[2];  // unset in the wide path: the block's lanes hold them
   double normal_impulse, tangent_impulse[2];
   double max_normal_impulse;
   double relative_velocity;     // normal approach speed before the step (for restitution)
@@ -56,6 +57,21 @@ struct ContactConstraint {
 
 // s = (dpB - dpA + dqB rB - dqA rA).n + base_separation of every point of cc, in double.
 void updateSeparations(const SolverBody& A, const SolverBody& B, ContactConstraint& cc);
+
+// The row along d of a point with lever arms rA, rB. Inlined: prepare builds three rows per
+// point and the call would cost as much as the row.
+[[gnu::always_inline]] inline ContactRow contactRow(const SolverBody& A, const SolverBody& B,
+                                                    const Vec3& rA, const Vec3& rB,
+                                                    const Vec3& d) {
+  ContactRow r;
+  r.angA = rA.cross(d);
+  r.angB = rB.cross(d);
+  r.iangA = A.inv_inertia * r.angA;
+  r.iangB = B.inv_inertia * r.angB;
+  const double k = A.inv_mass + B.inv_mass + r.angA.dot(r.iangA) + r.angB.dot(r.iangB);
+  r.mass = k > 0.0 ? 1.0 / k : 0.0;
+  return r;
+}
 
 // Constraints are stored grouped by island (World groups the selected contacts, then each
 // island's are prepared by the thread that solves it); the per-substep calls take the range

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstring>
 
+#include "contact_friction_rows.hpp"
 #include "contact_solver.hpp"
 #include "lane_bodies.hpp"
 #include "lane_width.hpp"
@@ -16,8 +17,6 @@ namespace ragdoll_sim {
 static_assert(kBlockPoints == Manifold::kMaxPoints, "a block holds a whole manifold");
 
 namespace {
-bool eligible(const ContactConstraint& cc) { return !cc.compliant && cc.rolling == 0.0; }
-
 void setVec(float (&field)[3][kRowBlock], int lane, const Vec3& x) {
   for (int k = 0; k < 3; ++k) field[k][lane] = float(x[k]);
 }
@@ -33,6 +32,10 @@ bool wide8(int width) { return width == 8 && cpuHasAvx2(); }
 // The kernels write a movable body only (a static or sleeping one is shared between ranges).
 int writable(const std::vector<SolverBody>& bodies, int b) { return movable(bodies[b]) ? b : -1; }
 }  // namespace
+
+bool ContactBatch::eligible(const ContactConstraint& cc) {
+  return !cc.compliant && cc.rolling == 0.0;
+}
 
 void ContactBatch::build(std::vector<ContactConstraint>& cs, const StepContext& ctx, int begin,
                          int end) {
@@ -92,6 +95,8 @@ void ContactBatch::build(std::vector<ContactConstraint>& cs, const StepContext& 
   const int overflow = graph_.colourBegin(graph_.colourCount());
   for (int j = overflow; j < graph_.size(); ++j) scalar_.push_back(candidates[graph_.order()[j]]);
   std::sort(scalar_.begin(), scalar_.end());
+  prepareBlockFrictionRows(geometry_.data(), blocks_.data(), block_count_,
+                           laneBodies(ctx.bodies->data()));
 }
 
 void ContactBatch::newBlock(int points) {
@@ -101,7 +106,7 @@ void ContactBatch::newBlock(int points) {
   }
   // A lane's points past its count are computed from whatever they hold, and not stored.
   std::memset(static_cast<void*>(&geometry_[block_count_]), 0,
-              offsetof(ContactSeparationBlock, r_a));
+              offsetof(ContactGeometryBlock, r_a));
   ContactBlock& b = blocks_[block_count_++];
   // Padding is zero rows and mass 0; the kernels read no point past the block's first lane's
   // count, the most of its lanes.
@@ -123,11 +128,15 @@ void ContactBatch::fillLane(const ContactConstraint& cc, const std::vector<Solve
   setVec(b.t1, l, cc.tangent[1]);
   b.friction[l] = float(cc.friction);
   b.points = std::max(b.points, int32_t(cc.count));
-  ContactSeparationBlock& g = geometry_[lane_slot / kRowBlock];
+  ContactGeometryBlock& g = geometry_[lane_slot / kRowBlock];
   g.body_a[l] = cc.a;
   g.body_b[l] = cc.b;
   g.count[l] = cc.count;
-  for (int k = 0; k < 3; ++k) g.n[k][l] = cc.normal[k];
+  for (int k = 0; k < 3; ++k) {
+    g.n[k][l] = cc.normal[k];
+    g.t[0][k][l] = cc.tangent[0][k];
+    g.t[1][k][l] = cc.tangent[1][k];
+  }
   for (int i = 0; i < cc.count; ++i) {
     const ContactConstraintPoint& p = cc.points[i];
     ContactPointLanes& q = b.point[i];
@@ -137,8 +146,6 @@ void ContactBatch::fillLane(const ContactConstraint& cc, const std::vector<Solve
     }
     g.base[i][l] = p.base_separation;
     setRow(q.row[0], l, p.normal_row);
-    setRow(q.row[1], l, p.tangent_row[0]);
-    setRow(q.row[2], l, p.tangent_row[1]);
     q.separation[l] = float(p.separation);
     q.impulse[0][l] = float(p.normal_impulse);
     q.impulse[1][l] = float(p.tangent_impulse[0]);

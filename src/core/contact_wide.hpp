@@ -18,9 +18,12 @@ struct StepContext;
 // (ContactSolver), so ranges prepared on different threads share nothing.
 class ContactBatch {
  public:
-  // The wide blocks of constraints cs[begin, end) (already prepared in double): rigid ones
-  // without rolling resistance, in colours of the graph of their dynamic bodies; the others
-  // and the colouring's overflow go to scalar().
+  // Whether a constraint may go to the blocks: rigid, without rolling resistance.
+  static bool eligible(const ContactConstraint& cc);
+  // The wide blocks of constraints cs[begin, end) (prepared in double, the friction rows of
+  // eligible ones excepted): the eligible ones in colours of the graph of their dynamic
+  // bodies, their friction rows prepared in the lanes; the others and the colouring's
+  // overflow go to scalar().
   void build(std::vector<ContactConstraint>& cs, const StepContext& ctx, int begin, int end);
   // True when this holds the batch of [begin, end) (built this step with lanes != 1).
   bool holds(int begin, int end) const { return begin == begin_ && end == end_; }
@@ -55,7 +58,7 @@ class ContactBatch {
   std::vector<int> wide_;     // the slots in blocks
   std::vector<int> lane_of_;  // of wide_[i]: block * kRowBlock + lane
   std::vector<ContactBlock> blocks_;  // [0, block_count_) this step's
-  std::vector<ContactSeparationBlock> geometry_;  // of blocks_[k]
+  std::vector<ContactGeometryBlock> geometry_;  // of blocks_[k]
   int block_count_ = 0;
   std::vector<GraphEdge> edges_;
   std::vector<int> candidates_;    // the eligible slots, in slot order

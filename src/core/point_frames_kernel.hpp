@@ -40,6 +40,11 @@ template <class D>
 inline void storeLanes(D x, double* p) {
   __builtin_memcpy(p, &x, sizeof(D));
 }
+// field[0..2][o, o + W).
+template <class D>
+inline void loadVector(const double (&field)[3][kRowBlock], int o, D out[3]) {
+  for (int j = 0; j < 3; ++j) out[j] = loadLanes<D>(field[j] + o);
+}
 template <class D>
 inline void storeFloats(D x, float* p) {
   for (int l = 0; l < int(sizeof(D) / sizeof(double)); ++l) p[l] = float(lane(x, l));
@@ -76,7 +81,7 @@ inline void rotate(const D q[4], const D v[3], D out[3]) {
 template <class D>
 inline void rotateField(const D q[4], const double (&field)[3][kRowBlock], int o, D out[3]) {
   D v[3];
-  for (int j = 0; j < 3; ++j) v[j] = loadLanes<D>(field[j] + o);
+  loadVector(field, o, v);
   rotate(q, v, out);
 }
 // x into lanes [o, o + W) of a frame's field, and rounded into the row block's.
