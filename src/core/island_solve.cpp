@@ -71,8 +71,13 @@ StepContexts World::Impl::makeContexts(double dt) {
 void World::Impl::prepareOutsideBodies() {
   for (const int i : dynamic_bodies)
     if (island_of_body[i] < 0) prepareSolverBody(i);
-  const auto prepareStatic = [this](int b) {
-    if (!isDynamic(b) && bodies[b].alive) prepareSolverBody(b);
+  static_prepared.resize(bodies.size(), 0);
+  statics_set.clear();
+  const auto prepareStatic = [&](int b) {
+    if (static_prepared[b] || isDynamic(b) || !bodies[b].alive) return;
+    prepareSolverBody(b);
+    static_prepared[b] = 1;
+    statics_set.push_back(b);
   };
   for (const int ci : contact_solver.active()) {
     prepareStatic(contacts[ci].body_a);
@@ -82,6 +87,7 @@ void World::Impl::prepareOutsideBodies() {
     prepareStatic(j->a);
     prepareStatic(j->b);
   }
+  for (const int b : statics_set) static_prepared[b] = 0;
 }
 
 void World::Impl::prepareIsland(const IslandRange& p, const StepContext& c) {
