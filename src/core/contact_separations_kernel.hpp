@@ -1,4 +1,4 @@
-// updateBlockSeparations (contact_separations.hpp) written once for a lane type D, Double2 or
+// updateBlockSeparations (contact_geometry.hpp) written once for a lane type D, Double2 or
 // Double4 (double_lanes.hpp). Each lane does exactly the IEEE operations, in the order, of the
 // Eigen expressions of updateSeparations (contact_solver.cpp; EIGEN_DONT_VECTORIZE, no fused
 // multiply-add), so its bits are those of
@@ -8,7 +8,7 @@
 // As double_lanes.hpp: no std headers or Eigen, and an inline namespace per instruction set.
 #pragma once
 
-#include "contact_separations.hpp"
+#include "contact_geometry.hpp"
 #include "point_frames_kernel.hpp"
 
 #if defined(__AVX2__)

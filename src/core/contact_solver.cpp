@@ -122,9 +122,10 @@ std::vector<int>& ContactSolver::selectActive(const std::vector<Contact>& contac
 }
 
 namespace {
-void prepareFrictionRows(ContactConstraint& cc, const SolverBody& A, const SolverBody& B) {
+void prepareRows(ContactConstraint& cc, const SolverBody& A, const SolverBody& B) {
   for (int i = 0; i < cc.count; ++i) {
     ContactConstraintPoint& p = cc.points[i];
+    p.normal_row = contactRow(A, B, p.rA, p.rB, cc.normal);
     for (int k = 0; k < 2; ++k) p.tangent_row[k] = contactRow(A, B, p.rA, p.rB, cc.tangent[k]);
   }
 }
@@ -170,7 +171,6 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
       p.rA = mp.point + oA;
       p.rB = mp.point + oB;
       p.base_separation = mp.separation - (p.rB - p.rA).dot(cc.normal);
-      p.normal_row = contactRow(A, B, p.rA, p.rB, cc.normal);
       const Vec3 dv = relativeVelocity(A, B, p.rA, p.rB);
       p.relative_velocity = dv.dot(cc.normal);
       max_slip = std::max(max_slip, (dv - p.relative_velocity * cc.normal).norm());
@@ -194,8 +194,8 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
         for (int l = 0; l < 2; ++l) K(k, l) = cc.tangent[k].dot(cc.roll_iA[l] + cc.roll_iB[l]);
       cc.roll_mass = inverseOrZero(K);
     }
-    // A wide constraint's friction rows are prepared in the block's lanes (ContactBatch).
-    if (ctx.lanes == 1 || !ContactBatch::eligible(cc)) prepareFrictionRows(cc, A, B);
+    // A wide constraint's rows are prepared in the block's lanes (ContactBatch).
+    if (ctx.lanes == 1 || !ContactBatch::eligible(cc)) prepareRows(cc, A, B);
   }
   if (begin >= end || ctx.lanes == 1) return;
   ContactBatch& batch = takeBatch();
@@ -203,7 +203,7 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
   batch_at_[begin] = &batch;
   for (const int k : batch.scalar()) {  // the colouring's overflow
     ContactConstraint& cc = constraints_[k];
-    if (ContactBatch::eligible(cc)) prepareFrictionRows(cc, bodies[cc.a], bodies[cc.b]);
+    if (ContactBatch::eligible(cc)) prepareRows(cc, bodies[cc.a], bodies[cc.b]);
   }
 }
 
@@ -438,14 +438,16 @@ void ContactSolver::applyRestitution(const StepContext& ctx, int begin, int end)
     for (int i = 0; i < cc.count; ++i) {
       ContactConstraintPoint& p = cc.points[i];
       if (p.relative_velocity > -threshold || p.max_normal_impulse == 0.0) continue;
+      // Built again: a wide constraint keeps only its normal row's mass (contact_wide.hpp).
+      const ContactRow row = contactRow(A, B, p.rA, p.rB, cc.normal);
       PairVelocity<true> u(A, B);
-      const double vn = u.rowVelocity(p.normal_row, cc.normal);
-      double lambda = -p.normal_row.mass * (vn + cc.restitution * p.relative_velocity);
+      const double vn = u.rowVelocity(row, cc.normal);
+      double lambda = -row.mass * (vn + cc.restitution * p.relative_velocity);
       const double next = std::max(p.normal_impulse + lambda, 0.0);
       lambda = next - p.normal_impulse;
       p.normal_impulse = next;
       if (ctx.track_impulses) p.step_impulse += lambda;
-      u.applyRow(p.normal_row, cc.normal, lambda);
+      u.applyRow(row, cc.normal, lambda);
       u.store(A, B);
     }
   }

@@ -25,8 +25,8 @@ struct ContactConstraintPoint {
   // s at the current deltas (warm start, first sweep after a move); in the wide path the
   // block's geometry holds it after prepare (contact_separations.hpp)
   double separation;
-  ContactRow normal_row;
-  ContactRow tangent_row[2];  // unset in the wide path: the block's lanes hold them
+  // In the wide path the block's lanes hold the rows: only the normal row's mass is set here.
+  ContactRow normal_row, tangent_row[2];
   double normal_impulse, tangent_impulse[2];
   double max_normal_impulse;
   double relative_velocity;     // normal approach speed before the step (for restitution)

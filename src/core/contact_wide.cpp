@@ -6,7 +6,6 @@
 #include <cstddef>
 #include <cstring>
 
-#include "contact_friction_rows.hpp"
 #include "contact_solver.hpp"
 #include "lane_bodies.hpp"
 #include "lane_width.hpp"
@@ -19,13 +18,6 @@ static_assert(kBlockPoints == Manifold::kMaxPoints, "a block holds a whole manif
 namespace {
 void setVec(float (&field)[3][kRowBlock], int lane, const Vec3& x) {
   for (int k = 0; k < 3; ++k) field[k][lane] = float(x[k]);
-}
-void setRow(ContactRowLanes& r, int lane, const ContactRow& row) {
-  setVec(r.ang_a, lane, row.angA);
-  setVec(r.ang_b, lane, row.angB);
-  setVec(r.iang_a, lane, row.iangA);
-  setVec(r.iang_b, lane, row.iangB);
-  r.mass[lane] = float(row.mass);
 }
 
 bool wide8(int width) { return width == 8 && cpuHasAvx2(); }
@@ -95,8 +87,13 @@ void ContactBatch::build(std::vector<ContactConstraint>& cs, const StepContext& 
   const int overflow = graph_.colourBegin(graph_.colourCount());
   for (int j = overflow; j < graph_.size(); ++j) scalar_.push_back(candidates[graph_.order()[j]]);
   std::sort(scalar_.begin(), scalar_.end());
-  prepareBlockFrictionRows(geometry_.data(), blocks_.data(), block_count_,
-                           laneBodies(ctx.bodies->data()));
+  prepareBlockRows(geometry_.data(), blocks_.data(), block_count_, laneBodies(ctx.bodies->data()));
+  for (size_t i = 0; i < wide_.size(); ++i) {  // for the position projection
+    ContactConstraint& cc = cs[wide_[i]];
+    const ContactGeometryBlock& g = geometry_[lane_of_[i] / kRowBlock];
+    const int l = lane_of_[i] % kRowBlock;
+    for (int p = 0; p < cc.count; ++p) cc.points[p].normal_row.mass = g.normal_mass[p][l];
+  }
 }
 
 void ContactBatch::newBlock(int points) {
@@ -109,9 +106,11 @@ void ContactBatch::newBlock(int points) {
               offsetof(ContactGeometryBlock, r_a));
   ContactBlock& b = blocks_[block_count_++];
   // Padding is zero rows and mass 0; the kernels read no point past the block's first lane's
-  // count, the most of its lanes.
+  // count, the most of its lanes. The rows are all written by prepareBlockRows.
   std::memset(static_cast<void*>(&b), 0, offsetof(ContactBlock, point));
-  std::memset(static_cast<void*>(b.point), 0, points * sizeof(ContactPointLanes));
+  constexpr size_t kRows = offsetof(ContactPointLanes, separation);
+  for (int p = 0; p < points; ++p)
+    std::memset(reinterpret_cast<char*>(&b.point[p]) + kRows, 0, sizeof(ContactPointLanes) - kRows);
   for (int l = 0; l < kRowBlock; ++l) b.body_a[l] = b.body_b[l] = -1;
 }
 
@@ -145,7 +144,6 @@ void ContactBatch::fillLane(const ContactConstraint& cc, const std::vector<Solve
       g.r_b[i][k][l] = p.rB[k];
     }
     g.base[i][l] = p.base_separation;
-    setRow(q.row[0], l, p.normal_row);
     q.separation[l] = float(p.separation);
     q.impulse[0][l] = float(p.normal_impulse);
     q.impulse[1][l] = float(p.tangent_impulse[0]);

@@ -1,10 +1,10 @@
 // The double-lane kernels of the wide contact blocks' geometry against the scalar code they
 // replace: contact_separations_kernel.hpp against updateSeparations and
-// contact_friction_rows_kernel.hpp against contactRow (contact_solver.hpp). At two lanes (SSE2)
+// contact_row_lanes_kernel.hpp against contactRow (contact_solver.hpp). At two lanes (SSE2)
 // and four (AVX, where the CPU has AVX2) the double results must have the scalar bits and the
-// float lanes those bits rounded. A friction row in double lanes is compared in double too: a
-// row one ulp off rounds to the same float almost always, so the floats alone would not see
-// the order of a sum.
+// float lanes those bits rounded. A row in double lanes is compared in double too: a row one
+// ulp off rounds to the same float almost always, so the floats alone would not see the order
+// of a sum.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "body.hpp"
-#include "contact_friction_rows_kernel.hpp"
-#include "contact_separations.hpp"
+#include "contact_row_lanes_kernel.hpp"
+#include "contact_geometry.hpp"
 #include "contact_solver.hpp"
 #include "lane_width.hpp"
 
@@ -125,8 +125,8 @@ TEST(ContactSeparations, TwoAndFourLanesGiveTheScalarBits) {
       ContactGeometryBlock g = c.geometry;
       ContactBlock b = c.block;
       const LaneBodies view = laneBodies(c.bodies.data());
-      if (width == 4) contact_separations_w4::update(&g, &b, 1, view);
-      else contact_separations_w2::update(&g, &b, 1, view);
+      if (width == 4) contact_geometry_w4::updateSeparations(&g, &b, 1, view);
+      else contact_geometry_w2::updateSeparations(&g, &b, 1, view);
       for (int l = 0; l < kRowBlock; ++l)
         for (int p = 0; p < kBlockPoints; ++p) {
           if (p >= c.count(l)) {
@@ -141,7 +141,7 @@ TEST(ContactSeparations, TwoAndFourLanesGiveTheScalarBits) {
   }
 }
 
-TEST(ContactFrictionRows, DoubleLanesGiveTheScalarRowBits) {
+TEST(ContactRowLanes, DoubleLanesGiveTheScalarRowBits) {
   using double_lanes::Double2;
   std::mt19937_64 rng(79);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -168,7 +168,7 @@ TEST(ContactFrictionRows, DoubleLanesGiveTheScalarRowBits) {
     }
     Double2 ang_a[3], ang_b[3], iang_a[3], iang_b[3];
     const Double2 mass =
-        contact_friction_rows::row(ra, rb, d, ia, ib, masses, ang_a, ang_b, iang_a, iang_b);
+        contact_row_lanes::row(ra, rb, d, ia, ib, masses, ang_a, ang_b, iang_a, iang_b);
     for (int l = 0; l < 2; ++l) {
       const std::string at = "case " + std::to_string(n) + ", lane " + std::to_string(l);
       for (int k = 0; k < 3; ++k) {
@@ -192,37 +192,49 @@ void expectRow(const ContactRowLanes& r, int l, F&& expect, const std::string& a
   ASSERT_TRUE(sameBits(r.mass[l], expect(4, 0))) << at << ", mass";
 }
 
-// The points past a lane's count and the padding lanes get zero rows and mass; the normal rows
-// are left as they were.
-TEST(ContactFrictionRows, TwoAndFourLanesGiveTheScalarBits) {
+// The points past a lane's count and the padding lanes get zero rows and mass; the rest of a
+// point (separation, impulses) is left as it was.
+TEST(ContactRowLanes, TwoAndFourLanesGiveTheScalarBits) {
   std::mt19937_64 rng(78);
-  constexpr float kNormalRow = 12345.0f;
+  constexpr float kUntouched = 12345.0f;
+  constexpr double kMassUntouched = 54321.0;
   for (int n = 0; n < 3000; ++n) {
     BlockCase c(n, rng);
     for (int p = 0; p < kBlockPoints; ++p)
-      for (int k = 0; k < 3; ++k)
-        for (int l = 0; l < kRowBlock; ++l) c.block.point[p].row[0].ang_a[k][l] = kNormalRow;
+      for (int l = 0; l < kRowBlock; ++l) {
+        c.block.point[p].separation[l] = kUntouched;
+        c.geometry.normal_mass[p][l] = kMassUntouched;
+      }
     for (const int width : laneWidths()) {
+      ContactGeometryBlock g = c.geometry;
       ContactBlock b = c.block;
       const LaneBodies view = laneBodies(c.bodies.data());
-      if (width == 4) contact_friction_rows_w4::prepare(&c.geometry, &b, 1, view);
-      else contact_friction_rows_w2::prepare(&c.geometry, &b, 1, view);
+      if (width == 4) contact_geometry_w4::prepareRows(&g, &b, 1, view);
+      else contact_geometry_w2::prepareRows(&g, &b, 1, view);
       for (int l = 0; l < kRowBlock; ++l)
         for (int p = 0; p < kBlockPoints; ++p) {
           const std::string at = where(width, l, p, n);
-          ASSERT_TRUE(sameBits(b.point[p].row[0].ang_a[0][l], kNormalRow)) << at;
-          for (int j = 0; j < 2; ++j) {
-            const ContactRowLanes& lanes = b.point[p].row[1 + j];
+          ASSERT_TRUE(sameBits(b.point[p].separation[l], kUntouched)) << at;
+          if (p >= b.points) {  // not read by the solver: not written
+            ASSERT_TRUE(sameBits(g.normal_mass[p][l], kMassUntouched)) << at;
+            continue;
+          }
+          for (int j = 0; j < 3; ++j) {
+            const ContactRowLanes& lanes = b.point[p].row[j];
             if (p >= c.count(l)) {
               expectRow(lanes, l, [](int, int) { return 0.0f; }, at);
               continue;
             }
             const ContactConstraint& cc = c.cs[l];
-            const ContactRow r = contactRow(c.bodies[cc.a], c.bodies[cc.b], cc.points[p].rA,
-                                            cc.points[p].rB, cc.tangent[j]);
+            const Vec3& d = j == 0 ? cc.normal : cc.tangent[j - 1];
+            const ContactRow r =
+                contactRow(c.bodies[cc.a], c.bodies[cc.b], cc.points[p].rA, cc.points[p].rB, d);
             const Vec3* v[4] = {&r.angA, &r.angB, &r.iangA, &r.iangB};
             expectRow(lanes, l, [&](int f, int k) { return float(f < 4 ? (*v[f])[k] : r.mass); },
-                      at + ", tangent " + std::to_string(j));
+                      at + ", row " + std::to_string(j));
+            if (j == 0) {
+              ASSERT_TRUE(sameBits(g.normal_mass[p][l], r.mass)) << at;
+            }
           }
         }
     }

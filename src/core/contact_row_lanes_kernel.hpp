@@ -1,7 +1,7 @@
-// prepareBlockFrictionRows (contact_friction_rows.hpp) written once for a lane type D, Double2
-// or Double4 (double_lanes.hpp). Each lane does exactly the IEEE operations, in the order, of
-// contactRow's Eigen expressions (contact_solver.hpp; EIGEN_DONT_VECTORIZE, no fused
-// multiply-add), so its bits are those of, for each tangent d of the manifold:
+// prepareBlockRows (contact_geometry.hpp) written once for a lane type D, Double2 or Double4
+// (double_lanes.hpp). Each lane does exactly the IEEE operations, in the order, of contactRow's
+// Eigen expressions (contact_solver.hpp; EIGEN_DONT_VECTORIZE, no fused multiply-add), so its
+// bits are those of, for the normal and each tangent d of the manifold:
 //   angA = rA x d,  angB = rB x d,  iangA = IA^-1 angA,  iangB = IB^-1 angB,
 //   k = ((1/mA + 1/mB) + angA . iangA) + angB . iangB,  mass = k > 0 ? 1 / k : 0
 // with a x b and a . b as in point_frames_kernel.hpp, and M v row by row as a . b (Eigen's
@@ -9,18 +9,18 @@
 // As double_lanes.hpp: no std headers or Eigen, and an inline namespace per instruction set.
 #pragma once
 
-#include "contact_friction_rows.hpp"
+#include "contact_geometry.hpp"
 #include "point_frames_kernel.hpp"
 
 #if defined(__AVX2__)
-#define RAGDOLL_SIM_FRICTION_ROWS_ISA contact_friction_rows_avx2
+#define RAGDOLL_SIM_ROW_LANES_ISA contact_row_lanes_avx2
 #else
-#define RAGDOLL_SIM_FRICTION_ROWS_ISA contact_friction_rows_sse2
+#define RAGDOLL_SIM_ROW_LANES_ISA contact_row_lanes_sse2
 #endif
 
 namespace ragdoll_sim {
-namespace contact_friction_rows {
-inline namespace RAGDOLL_SIM_FRICTION_ROWS_ISA {
+namespace contact_row_lanes {
+inline namespace RAGDOLL_SIM_ROW_LANES_ISA {
 
 using double_lanes::Double2;
 using double_lanes::gather;
@@ -67,8 +67,7 @@ inline void storeVector(const D x[3], M has_point, int o, float (&field)[3][kRow
 
 // Lanes [o, o + W) of one block.
 template <class D>
-inline void frictionRowLanes(const ContactGeometryBlock& g, ContactBlock& b, int o,
-                             const LaneBodies& bodies) {
+inline void rowLanes(ContactGeometryBlock& g, ContactBlock& b, int o, const LaneBodies& bodies) {
   constexpr int W = sizeof(D) / sizeof(double);
   const double *ma[W], *mb[W], *ia[W], *ib[W];
   laneFields<W>(bodies, g.body_a + o, 6, ma);  // the inverse mass, right after w
@@ -81,9 +80,10 @@ inline void frictionRowLanes(const ContactGeometryBlock& g, ContactBlock& b, int
   gather<9>(ia, inertia_a);
   gather<9>(ib, inertia_b);
   const D masses = inv_mass_a[0] + inv_mass_b[0];
-  D t[2][3];
-  loadVector(g.t[0], o, t[0]);
-  loadVector(g.t[1], o, t[1]);
+  D d[3][3];  // the normal and the tangents
+  loadVector(g.n, o, d[0]);
+  loadVector(g.t[0], o, d[1]);
+  loadVector(g.t[1], o, d[2]);
   D count;
   for (int l = 0; l < W; ++l) count[l] = double(g.count[o + l]);
   for (int p = 0; p < b.points; ++p) {
@@ -91,29 +91,29 @@ inline void frictionRowLanes(const ContactGeometryBlock& g, ContactBlock& b, int
     D ra[3], rb[3];
     loadVector(g.r_a[p], o, ra);
     loadVector(g.r_b[p], o, rb);
-    for (int k = 0; k < 2; ++k) {
+    for (int k = 0; k < 3; ++k) {
       D ang_a[3], ang_b[3], iang_a[3], iang_b[3];
-      const D mass = row(ra, rb, t[k], inertia_a, inertia_b, masses, ang_a, ang_b, iang_a, iang_b);
-      ContactRowLanes& out = b.point[p].row[1 + k];
+      const D mass = row(ra, rb, d[k], inertia_a, inertia_b, masses, ang_a, ang_b, iang_a, iang_b);
+      ContactRowLanes& out = b.point[p].row[k];
       storeVector(ang_a, has_point, o, out.ang_a);
       storeVector(ang_b, has_point, o, out.ang_b);
       storeVector(iang_a, has_point, o, out.iang_a);
       storeVector(iang_b, has_point, o, out.iang_b);
       storeFloats(has_point ? mass : D{}, out.mass + o);
+      if (k == 0) point_frames::storeLanes(mass, g.normal_mass[p] + o);
     }
   }
 }
 
-// Blocks [0, count), W lanes at a time up to the first padding lane's group.
+// Blocks [0, count), W lanes at a time, padding lanes too: the block is not zeroed there.
 template <class D>
-inline void prepareBlocks(const ContactGeometryBlock* geometry, ContactBlock* blocks, int count,
+inline void prepareBlocks(ContactGeometryBlock* geometry, ContactBlock* blocks, int count,
                           const LaneBodies& bodies) {
   constexpr int W = sizeof(D) / sizeof(double);
   for (int k = 0; k < count; ++k)
-    for (int o = 0; o < kRowBlock && geometry[k].count[o] > 0; o += W)
-      frictionRowLanes<D>(geometry[k], blocks[k], o, bodies);
+    for (int o = 0; o < kRowBlock; o += W) rowLanes<D>(geometry[k], blocks[k], o, bodies);
 }
 
-}  // namespace RAGDOLL_SIM_FRICTION_ROWS_ISA
-}  // namespace contact_friction_rows
+}  // namespace RAGDOLL_SIM_ROW_LANES_ISA
+}  // namespace contact_row_lanes
 }  // namespace ragdoll_sim
