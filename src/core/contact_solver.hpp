@@ -23,7 +23,7 @@ struct ContactConstraintPoint {
   Vec3 rA, rB;                  // from the COMs at step start (world)
   double base_separation;       // separation - (rB - rA).n, so s = (d + rB' - rA').n + base
   // s at the current deltas (warm start, first sweep after a move); in the wide path the
-  // block's geometry holds it after prepare (contact_separations.hpp)
+  // block's geometry holds it after prepare (contact_geometry.hpp)
   double separation;
   // In the wide path the block's lanes hold the rows: only the normal row's mass is set here.
   ContactRow normal_row, tangent_row[2];
