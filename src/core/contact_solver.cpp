@@ -148,6 +148,9 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
     cc.moved_sweep = 0;
     cc.restitution = c.restitution;
     cc.compliant = c.contact_hertz > 0.0;
+    cc.rolling = c.rolling;
+    // A wide constraint's rows are prepared in its block's lanes (ContactBatch::build).
+    const bool scalar_rows = ctx.lanes == 1 || !wideEligible(cc);
     if (cc.compliant)
       cc.compliance = Softness::make(std::min(c.contact_hertz, 0.25 * ctx.inv_h),
                                      c.contact_damping_ratio, ctx.h);
@@ -171,17 +174,19 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
       p.rA = mp.point + oA;
       p.rB = mp.point + oB;
       p.base_separation = mp.separation - (p.rB - p.rA).dot(cc.normal);
+      if (scalar_rows) p.normal_row = contactRow(A, B, p.rA, p.rB, cc.normal);
       const Vec3 dv = relativeVelocity(A, B, p.rA, p.rB);
       p.relative_velocity = dv.dot(cc.normal);
       max_slip = std::max(max_slip, (dv - p.relative_velocity * cc.normal).norm());
       p.normal_impulse = scale * c.normal_impulse[i];
       p.max_normal_impulse = 0.0;
-      for (int k = 0; k < 2; ++k)
+      for (int k = 0; k < 2; ++k) {
+        if (scalar_rows) p.tangent_row[k] = contactRow(A, B, p.rA, p.rB, cc.tangent[k]);
         p.tangent_impulse[k] = scale * c.friction_impulse[i].dot(cc.tangent[k]);
+      }
     }
     cc.friction =
         max_slip < settings.static_friction_speed ? c.static_friction : c.kinetic_friction;
-    cc.rolling = c.rolling;
     cc.rolling_impulse[0] = cc.rolling_impulse[1] = 0.0;
     if (cc.rolling > 0.0) {
       Eigen::Matrix2d K;
@@ -194,8 +199,6 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
         for (int l = 0; l < 2; ++l) K(k, l) = cc.tangent[k].dot(cc.roll_iA[l] + cc.roll_iB[l]);
       cc.roll_mass = inverseOrZero(K);
     }
-    // A wide constraint's rows are prepared in the block's lanes (ContactBatch).
-    if (ctx.lanes == 1 || !ContactBatch::eligible(cc)) prepareRows(cc, A, B);
   }
   if (begin >= end || ctx.lanes == 1) return;
   ContactBatch& batch = takeBatch();
@@ -203,7 +206,7 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
   batch_at_[begin] = &batch;
   for (const int k : batch.scalar()) {  // the colouring's overflow
     ContactConstraint& cc = constraints_[k];
-    if (ContactBatch::eligible(cc)) prepareRows(cc, bodies[cc.a], bodies[cc.b]);
+    if (wideEligible(cc)) prepareRows(cc, bodies[cc.a], bodies[cc.b]);
   }
 }
 

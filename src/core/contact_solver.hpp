@@ -55,6 +55,10 @@ struct ContactConstraint {
   ContactConstraintPoint points[Manifold::kMaxPoints];
 };
 
+// Whether cc may be solved in the wide blocks (contact_wide.hpp): rigid, without rolling
+// resistance.
+inline bool wideEligible(const ContactConstraint& cc) { return !cc.compliant && cc.rolling == 0.0; }
+
 // s = (dpB - dpA + dqB rB - dqA rA).n + base_separation of every point of cc, in double.
 void updateSeparations(const SolverBody& A, const SolverBody& B, ContactConstraint& cc);
 

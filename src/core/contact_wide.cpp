@@ -25,10 +25,6 @@ bool wide8(int width) { return width == 8 && cpuHasAvx2(); }
 int writable(const std::vector<SolverBody>& bodies, int b) { return movable(bodies[b]) ? b : -1; }
 }  // namespace
 
-bool ContactBatch::eligible(const ContactConstraint& cc) {
-  return !cc.compliant && cc.rolling == 0.0;
-}
-
 void ContactBatch::build(std::vector<ContactConstraint>& cs, const StepContext& ctx, int begin,
                          int end) {
   const auto& bodies = *ctx.bodies;
@@ -42,7 +38,7 @@ void ContactBatch::build(std::vector<ContactConstraint>& cs, const StepContext& 
   std::vector<int>& candidates = candidates_;
   candidates.clear();
   for (int k = begin; k < end; ++k) {
-    if (!eligible(cs[k])) {
+    if (!wideEligible(cs[k])) {
       scalar_.push_back(k);
       continue;
     }

@@ -18,12 +18,10 @@ struct StepContext;
 // (ContactSolver), so ranges prepared on different threads share nothing.
 class ContactBatch {
  public:
-  // Whether a constraint may go to the blocks: rigid, without rolling resistance.
-  static bool eligible(const ContactConstraint& cc);
   // The wide blocks of constraints cs[begin, end) (prepared in double, the rows of eligible
-  // ones excepted): the eligible ones in colours of the graph of their dynamic bodies, their
-  // rows prepared in the lanes (and each normal row's mass set in its constraint); the others
-  // and the colouring's overflow go to scalar().
+  // ones excepted): the eligible ones (wideEligible, contact_solver.hpp) in colours of the
+  // graph of their dynamic bodies, their rows prepared in the lanes (and each normal row's
+  // mass set in its constraint); the others and the colouring's overflow go to scalar().
   void build(std::vector<ContactConstraint>& cs, const StepContext& ctx, int begin, int end);
   // True when this holds the batch of [begin, end) (built this step with lanes != 1).
   bool holds(int begin, int end) const { return begin == begin_ && end == end_; }
