@@ -58,8 +58,8 @@ inline void storeFloats(Double2 x, float* p) {
 #if defined(__AVX__)
 inline void storeFloats(Double4 x, float* p) { _mm_storeu_ps(p, _mm256_cvtpd_ps(__m256d(x))); }
 #endif
-// A vector rounded into lanes [o, o + W) of a field; lanes without the point get 0, what
-// the block was zeroed with.
+// A vector rounded into lanes [o, o + W) of a field; lanes without the point get 0 (a zero row
+// with mass 0 takes no impulse).
 template <class D, class M>
 inline void storeVector(const D x[3], M has_point, int o, float (&field)[3][kRowBlock]) {
   for (int j = 0; j < 3; ++j) storeFloats(has_point ? x[j] : D{}, field[j] + o);
