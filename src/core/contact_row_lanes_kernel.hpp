@@ -22,11 +22,8 @@ namespace ragdoll_sim {
 namespace contact_row_lanes {
 inline namespace RAGDOLL_SIM_ROW_LANES_ISA {
 
-using double_lanes::Double2;
 using double_lanes::gather;
-#if defined(__AVX__)
-using double_lanes::Double4;
-#endif
+using double_lanes::storeFloats;
 using point_frames::cross;
 using point_frames::dot;
 using point_frames::laneFields;
@@ -51,13 +48,6 @@ inline D row(const D ra[3], const D rb[3], const D d[3], const D ia[9], const D 
   return k > 0.0 ? 1.0 / k : D{};
 }
 
-// x rounded to float into p[0, W): the conversion instruction rounds to nearest, as a cast does.
-inline void storeFloats(Double2 x, float* p) {
-  _mm_storel_pi(reinterpret_cast<__m64*>(p), _mm_cvtpd_ps(__m128d(x)));
-}
-#if defined(__AVX__)
-inline void storeFloats(Double4 x, float* p) { _mm_storeu_ps(p, _mm256_cvtpd_ps(__m256d(x))); }
-#endif
 // A vector rounded into lanes [o, o + W) of a field; lanes without the point get 0 (a zero row
 // with mass 0 takes no impulse).
 template <class D, class M>

@@ -46,6 +46,15 @@ inline Double4 roundToInteger(Double4 y) {
 }
 #endif
 
+// x rounded to float into p[0, W): the conversion instruction rounds to nearest, as a cast does.
+inline void storeFloats(double x, float* p) { *p = float(x); }
+inline void storeFloats(Double2 x, float* p) {
+  _mm_storel_pi(reinterpret_cast<__m64*>(p), _mm_cvtpd_ps(__m128d(x)));
+}
+#if defined(__AVX__)
+inline void storeFloats(Double4 x, float* p) { _mm_storeu_ps(p, _mm256_cvtpd_ps(__m256d(x))); }
+#endif
+
 // The lanes of W bodies' arrays: out[j] = {p[0][j], ..., p[W-1][j]}, and back.
 inline double lane(double x, int) { return x; }
 template <class D>

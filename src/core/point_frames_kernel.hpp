@@ -29,6 +29,7 @@ inline namespace RAGDOLL_SIM_FRAMES_ISA {
 
 using double_lanes::gather;
 using double_lanes::lane;
+using double_lanes::storeFloats;
 
 template <class D>
 inline D loadLanes(const double* p) {
@@ -44,10 +45,6 @@ inline void storeLanes(D x, double* p) {
 template <class D>
 inline void loadVector(const double (&field)[3][kRowBlock], int o, D out[3]) {
   for (int j = 0; j < 3; ++j) out[j] = loadLanes<D>(field[j] + o);
-}
-template <class D>
-inline void storeFloats(D x, float* p) {
-  for (int l = 0; l < int(sizeof(D) / sizeof(double)); ++l) p[l] = float(lane(x, l));
 }
 
 // The addresses of the field `offset` doubles after v of the bodies ids[0, W).
