@@ -28,6 +28,7 @@ using point_frames::cross;
 using point_frames::dot;
 using point_frames::laneFields;
 using point_frames::loadVector;
+using point_frames::storeLanes;
 
 // out = M x, M column by column (Eigen's storage).
 template <class D>
@@ -60,8 +61,8 @@ template <class D>
 inline void rowLanes(ContactGeometryBlock& g, ContactBlock& b, int o, const LaneBodies& bodies) {
   constexpr int W = sizeof(D) / sizeof(double);
   const double *ma[W], *mb[W], *ia[W], *ib[W];
-  laneFields<W>(bodies, g.body_a + o, 6, ma);  // the inverse mass, right after w
-  laneFields<W>(bodies, g.body_b + o, 6, mb);
+  laneFields<W>(bodies, g.body_a + o, kLaneInvMass, ma);
+  laneFields<W>(bodies, g.body_b + o, kLaneInvMass, mb);
   laneFields<W>(bodies, g.body_a + o, kLaneInvInertia, ia);
   laneFields<W>(bodies, g.body_b + o, kLaneInvInertia, ib);
   D inv_mass_a[1], inv_mass_b[1], inertia_a[9], inertia_b[9];
@@ -90,7 +91,7 @@ inline void rowLanes(ContactGeometryBlock& g, ContactBlock& b, int o, const Lane
       storeVector(iang_a, has_point, o, out.iang_a);
       storeVector(iang_b, has_point, o, out.iang_b);
       storeFloats(has_point ? mass : D{}, out.mass + o);
-      if (k == 0) point_frames::storeLanes(mass, g.normal_mass[p] + o);
+      if (k == 0) storeLanes(mass, g.normal_mass[p] + o);
     }
   }
 }

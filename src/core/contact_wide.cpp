@@ -140,11 +140,11 @@ void ContactBatch::fillLane(const ContactConstraint& cc, const std::vector<Solve
       g.r_b[i][k][l] = p.rB[k];
     }
     g.base[i][l] = p.base_separation;
-    q.separation[l] = float(p.separation);
+    // The separation comes with the first warm start (positions_moved), the largest increment
+    // starts at the zero newBlock left.
     q.impulse[0][l] = float(p.normal_impulse);
     q.impulse[1][l] = float(p.tangent_impulse[0]);
     q.impulse[2][l] = float(p.tangent_impulse[1]);
-    q.max_impulse[l] = float(p.max_normal_impulse);
   }
 }
 

@@ -7,10 +7,10 @@ namespace ragdoll_sim {
 
 struct SolverBody;
 
-// Body i's v (3 doubles), then w (3 doubles) and its inverse mass, from v + i * stride,
-// 32-byte aligned; its dq (x, y, z, w) and dp kLaneDq and kLaneDp doubles after v, and its
-// world inverse inertia (9 doubles, column by column) kLaneInvInertia doubles after v.
-constexpr int kLaneDq = 8, kLaneDp = 12, kLaneInvInertia = 15;
+// Body i's v (3 doubles), then w (3 doubles) and its inverse mass (kLaneInvMass), from
+// v + i * stride, 32-byte aligned; its dq (x, y, z, w) and dp kLaneDq and kLaneDp doubles after
+// v, and its world inverse inertia (9 doubles, column by column) kLaneInvInertia doubles after v.
+constexpr int kLaneInvMass = 6, kLaneDq = 8, kLaneDp = 12, kLaneInvInertia = 15;
 struct LaneBodies {
   double* v = nullptr;
   int stride = 0;  // doubles
