@@ -94,8 +94,9 @@ struct SolverSettings {
   bool exact_joints = true;
   // Contact rows (and, as they move over, the joint parts) solved in float lanes, many
   // constraints at once (docs/physics.md, the wide solver): 1 solves every row alone in double
-  // (the reference); 0 takes the widest the CPU runs (8 with AVX2, else 4; the environment
-  // variable RAGDOLL_SIM_LANES=4|8 forces one), 4 or 8 force a width. 4 and 8 give the same bits.
+  // (the reference); 0 takes the widest the CPU runs (8 with AVX2, two blocks of 8 at once with
+  // AVX-512F, else 4; the environment variable RAGDOLL_SIM_LANES=4|8 forces one), 4 or 8 force a
+  // width. All give the same bits.
   int lanes = RAGDOLL_SIM_DEFAULT_LANES;
 };
 

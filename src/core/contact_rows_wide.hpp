@@ -36,6 +36,7 @@ struct alignas(32) ContactBlock {
   float inv_mass_a[kRowBlock], inv_mass_b[kRowBlock];  // 0 for a static body
   int32_t body_a[kRowBlock], body_b[kRowBlock];        // solver body, -1: not movable
   int32_t points;                                      // the most points of a lane
+  int32_t colour;                                      // of the constraint graph
   ContactPointLanes point[kBlockPoints];
 };
 
@@ -48,6 +49,12 @@ void solveContactBlocks(ContactBlock* blocks, int count, const LaneBodies& bodie
                         const NormalRowParams& params);
 }
 namespace kernel_w8 {
+void warmStartContactBlocks(ContactBlock* blocks, int count, const LaneBodies& bodies);
+void solveContactBlocks(ContactBlock* blocks, int count, const LaneBodies& bodies,
+                        const NormalRowParams& params);
+}
+// With AVX-512F (only when cpuHasAvx512()): the 8-lane blocks, two of a colour at once.
+namespace kernel_w16 {
 void warmStartContactBlocks(ContactBlock* blocks, int count, const LaneBodies& bodies);
 void solveContactBlocks(ContactBlock* blocks, int count, const LaneBodies& bodies,
                         const NormalRowParams& params);

@@ -21,6 +21,21 @@ void setVec(float (&field)[3][kRowBlock], int lane, const Vec3& x) {
 }
 
 bool wide8(int width) { return width == 8 && cpuHasAvx2(); }
+// The kernels of the width: with AVX-512F, the 8-lane one solves two blocks at once (the same
+// bits).
+void warmStartBlocks(int width, ContactBlock* blocks, int count, const LaneBodies& bodies) {
+  if (wide8(width) && cpuHasAvx512())
+    return kernel_w16::warmStartContactBlocks(blocks, count, bodies);
+  if (wide8(width)) kernel_w8::warmStartContactBlocks(blocks, count, bodies);
+  else kernel_w4::warmStartContactBlocks(blocks, count, bodies);
+}
+void solveBlocks(int width, ContactBlock* blocks, int count, const LaneBodies& bodies,
+                 const NormalRowParams& params) {
+  if (wide8(width) && cpuHasAvx512())
+    return kernel_w16::solveContactBlocks(blocks, count, bodies, params);
+  if (wide8(width)) kernel_w8::solveContactBlocks(blocks, count, bodies, params);
+  else kernel_w4::solveContactBlocks(blocks, count, bodies, params);
+}
 // The kernels write a movable body only (a static or sleeping one is shared between ranges).
 int writable(const std::vector<SolverBody>& bodies, int b) { return movable(bodies[b]) ? b : -1; }
 }  // namespace
@@ -73,7 +88,7 @@ void ContactBatch::build(std::vector<ContactConstraint>& cs, const StepContext& 
     }
     for (int j = 0; j < int(colour_slots_.size()); ++j) {
       const int slot = colour_slots_[j];
-      if (j % kRowBlock == 0) newBlock(cs[slot].count);
+      if (j % kRowBlock == 0) newBlock(cs[slot].count, c);
       const int lane_slot = (block_count_ - 1) * kRowBlock + j % kRowBlock;
       wide_.push_back(slot);
       lane_of_.push_back(lane_slot);
@@ -92,7 +107,7 @@ void ContactBatch::build(std::vector<ContactConstraint>& cs, const StepContext& 
   }
 }
 
-void ContactBatch::newBlock(int points) {
+void ContactBatch::newBlock(int points, int colour) {
   if (block_count_ == int(blocks_.size())) {
     blocks_.emplace_back();
     geometry_.emplace_back();
@@ -108,6 +123,7 @@ void ContactBatch::newBlock(int points) {
   for (int p = 0; p < points; ++p)
     std::memset(reinterpret_cast<char*>(&b.point[p]) + kRows, 0, sizeof(ContactPointLanes) - kRows);
   for (int l = 0; l < kRowBlock; ++l) b.body_a[l] = b.body_b[l] = -1;
+  b.colour = colour;
 }
 
 void ContactBatch::fillLane(const ContactConstraint& cc, const std::vector<SolverBody>& bodies,
@@ -159,8 +175,7 @@ void ContactBatch::warmStart(const StepContext& ctx, bool positions_moved) {
   if (positions_moved) updateSeparations(ctx);
   const LaneBodies view = laneBodies(ctx.bodies->data());
   const int n = block_count_;
-  if (wide8(ctx.lanes)) kernel_w8::warmStartContactBlocks(blocks_.data(), n, view);
-  else kernel_w4::warmStartContactBlocks(blocks_.data(), n, view);
+  warmStartBlocks(ctx.lanes, blocks_.data(), n, view);
 }
 
 void ContactBatch::solve(const StepContext& ctx, bool use_bias, bool positions_moved) {
@@ -178,13 +193,15 @@ void ContactBatch::solve(const StepContext& ctx, bool use_bias, bool positions_m
   const LaneBodies view = laneBodies(ctx.bodies->data());
   const int n = block_count_;
   const auto sweep = [&](ContactBlock* first, int count) {
-    if (wide8(ctx.lanes)) kernel_w8::solveContactBlocks(first, count, view, p);
-    else kernel_w4::solveContactBlocks(first, count, view, p);
+    solveBlocks(ctx.lanes, first, count, view, p);
   };
-  // The colours in reverse order: a block's colour-mates share no body, so this is the
-  // reversed colour order, the same bits at any width.
+  // The colours in reverse order, each colour's blocks in order (they share no body: the same
+  // bits in any order).
   if (use_bias && substep_ % 2 == 0) {
-    for (int k = n - 1; k >= 0; --k) sweep(&blocks_[k], 1);
+    for (int last = n - 1, first; last >= 0; last = first - 1) {
+      for (first = last; first > 0 && blocks_[first - 1].colour == blocks_[last].colour;) --first;
+      sweep(&blocks_[first], last - first + 1);
+    }
     return;
   }
   sweep(blocks_.data(), n);

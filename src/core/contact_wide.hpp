@@ -47,7 +47,7 @@ class ContactBatch {
   void updateSeparations(const StepContext& ctx);
   // The next block, zeroed for manifolds of up to `points` points; the blocks are kept from
   // step to step.
-  void newBlock(int points);
+  void newBlock(int points, int colour);
   void fillLane(const ContactConstraint& cc, const std::vector<SolverBody>& bodies, int lane_slot);
 
   int begin_ = 0, end_ = -1;

@@ -16,6 +16,15 @@ bool cpuHasAvx2() {
 #endif
 }
 
+bool cpuHasAvx512() {
+#if defined(RAGDOLL_SIM_HAVE_LANES16) && (defined(__x86_64__) || defined(__i386__))
+  static const bool has = cpuHasAvx2() && __builtin_cpu_supports("avx512f");
+  return has;
+#else
+  return false;
+#endif
+}
+
 int chooseLaneWidth(int requested, const char* env, bool has_avx2) {
   int width = requested;
   if (width != 0 && width != 4 && width != 8)

@@ -7,6 +7,9 @@ namespace ragdoll_sim {
 // True when the 8-lane kernels were built (an x86-64 compiler that takes -mavx2) and this CPU
 // runs AVX2.
 bool cpuHasAvx2();
+// True when the paired 8-lane kernels were built (a compiler that takes -mavx512f) and this CPU
+// runs AVX-512F: the 8-lane width then solves two blocks of a colour at once, with the same bits.
+bool cpuHasAvx512();
 
 // The width to use: `requested` (4 or 8, a WorldDef-style switch) when not 0, else the
 // environment variable RAGDOLL_SIM_LANES (4 or 8) when set and not empty, else the widest the

@@ -1,6 +1,8 @@
 // Float lanes for the wide solver: FloatW<W> holds W floats and MaskW<W> W lane masks, with the
 // operations the wide rows need. W = 4 is SSE2 (the x86-64 baseline), W = 8 is AVX (built only
 // in a kernel file compiled with -mavx2), any other W or a target without them is a plain array.
+// FloatPair16<S> (AVX-512F, built only in a file compiled with -mavx512f) holds the lanes of two
+// 8-lane records S floats apart, so that an 8-lane kernel solves two records at once.
 //
 // Every operation (sqrt included) is one correctly rounded IEEE float operation per lane (no reciprocal or
 // square-root estimates, no fused multiply-add), so a formula gives the same bits in each lane
@@ -26,7 +28,9 @@
 #include <immintrin.h>
 #endif
 
-#if defined(__AVX2__)
+#if defined(__AVX512F__)
+#define RAGDOLL_SIM_LANES_ISA lanes_avx512
+#elif defined(__AVX2__)
 #define RAGDOLL_SIM_LANES_ISA lanes_avx2
 #elif defined(__SSE2__)
 #define RAGDOLL_SIM_LANES_ISA lanes_sse2
@@ -240,6 +244,68 @@ struct Float8 {
   friend Mask8 operator==(Float8 a, Float8 b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_EQ_OQ)}; }
   friend Float8 select(Mask8 mask, Float8 a, Float8 b) {
     return {_mm256_blendv_ps(b.v, a.v, mask.m)};
+  }
+};
+#endif
+
+#if defined(__AVX512F__)
+struct Mask16 {
+  __mmask16 m;
+  friend Mask16 operator&(Mask16 a, Mask16 b) { return {__mmask16(a.m & b.m)}; }
+  friend Mask16 operator|(Mask16 a, Mask16 b) { return {__mmask16(a.m | b.m)}; }
+  friend Mask16 andNot(Mask16 a, Mask16 b) { return {__mmask16(a.m & ~b.m)}; }
+  int bits() const { return m; }
+  bool any() const { return m != 0; }
+  bool all() const { return m == 0xFFFF; }
+};
+
+// Lanes 0-7 at p, lanes 8-15 at p + S (the same field of the next record).
+template <int S>
+struct FloatPair16 {
+  static constexpr int kWidth = 16;
+  using Mask = Mask16;
+  __m512 v;
+
+  static FloatPair16 zero() { return {_mm512_setzero_ps()}; }
+  static FloatPair16 splat(float x) { return {_mm512_set1_ps(x)}; }
+  static FloatPair16 join(__m256 lo, __m256 hi) {
+    return {_mm512_castpd_ps(_mm512_insertf64x4(_mm512_castps_pd(_mm512_castps256_ps512(lo)),
+                                                _mm256_castps_pd(hi), 1))};
+  }
+  static FloatPair16 load(const float* p) {  // both runs 32-byte aligned
+    return join(_mm256_load_ps(p), _mm256_load_ps(p + S));
+  }
+  __m256 low() const { return _mm512_castps512_ps256(v); }
+  __m256 high() const { return _mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(v), 1)); }
+  void store(float* p) const {
+    _mm256_store_ps(p, low());
+    _mm256_store_ps(p + S, high());
+  }
+
+  friend FloatPair16 operator+(FloatPair16 a, FloatPair16 b) { return {_mm512_add_ps(a.v, b.v)}; }
+  friend FloatPair16 operator-(FloatPair16 a, FloatPair16 b) { return {_mm512_sub_ps(a.v, b.v)}; }
+  friend FloatPair16 operator*(FloatPair16 a, FloatPair16 b) { return {_mm512_mul_ps(a.v, b.v)}; }
+  friend FloatPair16 operator/(FloatPair16 a, FloatPair16 b) { return {_mm512_div_ps(a.v, b.v)}; }
+  friend FloatPair16 min(FloatPair16 a, FloatPair16 b) { return {_mm512_min_ps(a.v, b.v)}; }
+  friend FloatPair16 max(FloatPair16 a, FloatPair16 b) { return {_mm512_max_ps(a.v, b.v)}; }
+  friend FloatPair16 sqrt(FloatPair16 a) { return {_mm512_sqrt_ps(a.v)}; }
+  friend Mask16 operator<(FloatPair16 a, FloatPair16 b) {
+    return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_LT_OQ)};
+  }
+  friend Mask16 operator<=(FloatPair16 a, FloatPair16 b) {
+    return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_LE_OQ)};
+  }
+  friend Mask16 operator>(FloatPair16 a, FloatPair16 b) {
+    return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_GT_OQ)};
+  }
+  friend Mask16 operator>=(FloatPair16 a, FloatPair16 b) {
+    return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_GE_OQ)};
+  }
+  friend Mask16 operator==(FloatPair16 a, FloatPair16 b) {
+    return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_EQ_OQ)};
+  }
+  friend FloatPair16 select(Mask16 mask, FloatPair16 a, FloatPair16 b) {
+    return {_mm512_mask_blend_ps(mask.m, b.v, a.v)};
   }
 };
 #endif

@@ -193,6 +193,9 @@ void PointLanes::build(const IslandRange& p, Joint* const* js,
     const int count = packing.recordCount();
     R->blocks.assign(count, PointRowBlock{});
     R->frames.assign(count, PointFrameBlock{});
+    for (int c = 0; c < graph.colourCount(); ++c)
+      for (int r = packing.recordBegin(c); r < packing.recordBegin(c + 1); ++r)
+        R->blocks[r].colour = c;
     for (int r = 0; r < count; ++r) {
       PointRowBlock& blk = R->blocks[r];
       PointFrameBlock& frame = R->frames[r];

@@ -57,6 +57,7 @@ struct alignas(64) PointRowBlock {
   int32_t angle_rows;                              // rows [0, angle_rows) hold some lane's angle
   int32_t motor_rows;                              // nonzero: some lane has a motor or damping
   int32_t axis_rows;                               // nonzero: some lane holds a hinge
+  int32_t colour;                                  // of the constraint graph
 };
 static_assert(sizeof(PointRowBlock) % 64 == 0, "a block is whole cache lines");
 
@@ -80,6 +81,13 @@ void solvePointRows(PointRowBlock* blocks, int count, const LaneBodies& bodies,
                     const PointRowParams& params);
 }
 namespace kernel_w8 {
+void warmStartPointRows(PointRowBlock* blocks, int count, const LaneBodies& bodies);
+void solvePointRows(PointRowBlock* blocks, int count, const LaneBodies& bodies,
+                    const PointRowParams& params);
+}
+// With AVX-512F (only when cpuHasAvx512()): the 8-lane blocks, two of a colour with the same rows
+// at once; the same bits.
+namespace kernel_w16 {
 void warmStartPointRows(PointRowBlock* blocks, int count, const LaneBodies& bodies);
 void solvePointRows(PointRowBlock* blocks, int count, const LaneBodies& bodies,
                     const PointRowParams& params);
