@@ -2,14 +2,8 @@
 // (CMakeLists.txt) and called only where cpuHasAvx512(); see contact_rows_wide.inc. A compiler
 // without AVX-512F builds the names only, on the 8-lane kernels (the same bits).
 #if defined(__AVX512F__)
-#define RAGDOLL_SIM_KERNEL_WIDTH 8
-#define RAGDOLL_SIM_KERNEL_NS kernel_w16_eight
-#include "contact_rows_wide.inc"
-#undef RAGDOLL_SIM_KERNEL_WIDTH
-#undef RAGDOLL_SIM_KERNEL_NS
 #define RAGDOLL_SIM_KERNEL_WIDTH 16
 #define RAGDOLL_SIM_KERNEL_NS kernel_w16
-#define RAGDOLL_SIM_EIGHT_NS kernel_w16_eight
 #include "contact_rows_wide.inc"
 #else
 #include "contact_rows_wide.hpp"
