@@ -96,7 +96,7 @@ struct SolverSettings {
   // constraints at once (docs/physics.md, the wide solver): 1 solves every row alone in double
   // (the reference); 0 takes the widest the CPU runs (8 with AVX2, two blocks of 8 at once with
   // AVX-512F, else 4; the environment variable RAGDOLL_SIM_LANES=4|8 forces one), 4 or 8 force a
-  // width. All give the same bits.
+  // width. 0, 4 and 8 give the same bits (World::laneWidth says which runs).
   int lanes = RAGDOLL_SIM_DEFAULT_LANES;
 };
 
@@ -218,6 +218,9 @@ class World {
   void step(double dt);
   double time() const;
   const WorldDef& def() const;
+  // The width the solver's rows run at, as SolverSettings::lanes chose it on this CPU: 1
+  // (double rows), 4 or 8 (float lanes).
+  int laneWidth() const;
   void setGravity(const Vec3& g);
   // Changes the solver settings on the running world without rebuilding it: warm starts carry
   // over (rescaled to a new substep, solver_context.hpp) and no body wakes. Throws

@@ -67,6 +67,7 @@ void World::step(double dt) {
 
 double World::time() const { return impl_->time; }
 const WorldDef& World::def() const { return impl_->def; }
+int World::laneWidth() const { return impl_->lane_width; }
 void World::setGravity(const Vec3& g) { impl_->def.gravity = g; }
 
 void World::setSolverSettings(const SolverSettings& solver) {

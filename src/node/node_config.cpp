@@ -347,6 +347,7 @@ bool loadNodeConfig(const ros::NodeHandle& node, NodeConfig* c, std::string* err
             read(pnh, "publish_rate", "a number (Hz)", &c->publish_rate, error) &&
             read(pnh, "substeps", "an integer", &c->scene.world.solver.substeps, error) &&
             read(pnh, "threads", "an integer", &c->scene.world.threads, error) &&
+            read(pnh, "lanes", "an integer", &c->scene.world.solver.lanes, error) &&
             read(pnh, "gravity", "a list of 3 numbers (m/s^2)", &gravity, error) &&
             read(pnh, "spawn/x", "a number (m)", &c->spawn.x, error) &&
             read(pnh, "spawn/y", "a number (m)", &c->spawn.y, error) &&

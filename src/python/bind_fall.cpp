@@ -12,6 +12,7 @@
 #include "py_scene.hpp"
 #include "ragdoll_sim/fall_record.hpp"
 #include "ragdoll_sim/fall_run.hpp"
+#include "ragdoll_sim/world.hpp"
 
 namespace py = pybind11;
 
@@ -32,11 +33,14 @@ FallRecord runOne(const PyModel& model, const py::object& world, const std::stri
                   const py::handle& linear_velocity, const py::handle& angular_velocity,
                   const std::string& push_link, const py::handle& push_impulse, double friction,
                   double restitution, double contact_hertz, double dt, long steps,
-                  const FallRecordDef& record) {
+                  const FallRecordDef& record, int lanes) {
   FallRunDef d;
   if (!(std::isfinite(dt) && dt > 0.0 && dt <= 1.0))
     throw std::invalid_argument("dt must be in (0, 1] s, got " + std::to_string(dt));
   d.scene.dt_ns = std::llround(dt * 1e9);
+  d.scene.world.solver.lanes = lanes;
+  const std::string bad_lanes = solverSettingsError(d.scene.world.solver);
+  if (!bad_lanes.empty()) throw std::invalid_argument(bad_lanes);
   Material surface = defaultSurface();
   surface.static_friction = surface.kinetic_friction = finiteArg(friction, "friction");
   surface.restitution = finiteArg(restitution, "restitution");
@@ -152,14 +156,14 @@ C++). ValueError naming an unknown ragdoll or torso link.
         py::arg("push_impulse") = py::make_tuple(0.0, 0.0, 0.0), py::arg("friction") = 0.8,
         py::arg("restitution") = 0.0, py::arg("contact_hertz") = 0.0, py::arg("dt") = 0.001,
         py::arg("steps") = 3000,
-        py::arg("record") = FallRecordDef(), R"doc(
+        py::arg("record") = FallRecordDef(), py::arg("lanes") = 1, R"doc(
 One fall in C++ (the GIL released): a Scene of step dt (s) with `world` (a WorldFile, or None:
 the ground plane), every surface of friction (static = kinetic), restitution and contact_hertz
 (Hz, the contact's spring-damper at damping ratio 1; 0 = rigid), `model` (a
 Model) spawned as `name` at position (m) and rpy (rad) moving at linear_velocity (m/s) and
 angular_velocity (rad/s), pushed by push_impulse (N s, world axes) at the centre of mass of
-push_link ("" = no push), then `steps` steps. Returns its FallRecord. ValueError naming what
-the scene refused.
+push_link ("" = no push), then `steps` steps, its rows solved as Scene's `lanes` says. Returns
+its FallRecord. ValueError naming what the scene refused.
 )doc");
 }
 

@@ -20,7 +20,7 @@ namespace python {
 namespace {
 
 SceneDef sceneDef(double dt, const py::handle& gravity, bool ground, bool sleep, int threads,
-                  bool impacts, bool injury, const std::string& spawn_overlap) {
+                  bool impacts, bool injury, const std::string& spawn_overlap, int lanes) {
   if (!(std::isfinite(dt) && dt > 0.0 && dt <= 1.0))
     throw std::invalid_argument("dt must be in (0, 1] s, got " + std::to_string(dt));
   SceneDef def;
@@ -29,6 +29,7 @@ SceneDef sceneDef(double dt, const py::handle& gravity, bool ground, bool sleep,
   def.ground = ground;
   def.world.sleep.enabled = sleep;
   def.world.threads = threads;
+  def.world.solver.lanes = lanes;
   def.impacts.enabled = impacts;
   def.injury.enabled = injury;
   if (spawn_overlap == "lift")
@@ -96,19 +97,21 @@ Errors: ValueError for bad arguments (unknown ragdoll, link or joint, a bad pose
 use), RuntimeError for files that do not load; the message names what is wrong.
 )doc"));
   cls.def(py::init([](double dt, const py::object& gravity, bool ground, bool sleep, int threads,
-                      bool impacts, bool injury, const std::string& spawn_overlap) {
+                      bool impacts, bool injury, const std::string& spawn_overlap, int lanes) {
             return std::make_unique<PyScene>(sceneDef(dt, gravity, ground, sleep, threads, impacts,
-                                                      injury, spawn_overlap));
+                                                      injury, spawn_overlap, lanes));
           }),
           py::arg("dt") = 0.001, py::arg("gravity") = py::make_tuple(0.0, 0.0, -9.81),
           py::arg("ground") = true, py::arg("sleep") = true, py::arg("threads") = 1,
           py::arg("impacts") = false, py::arg("injury") = true,
-          py::arg("spawn_overlap") = "lift", pydoc(R"doc(
+          py::arg("spawn_overlap") = "lift", py::arg("lanes") = 1, pydoc(R"doc(
 dt: the fixed step, s. gravity: (x, y, z), m/s^2. ground: a static plane z = 0. sleep: resting
 islands sleep (cheaper; off: every body is solved every step). threads: islands solved in
 parallel (0: all cores); the result does not depend on it. impacts: record impact events
 (impacts()). injury: keep each ragdoll's head injury record. spawn_overlap: 'lift' a model
-spawned into static geometry out of it, or 'refuse' it.
+spawned into static geometry out of it, or 'refuse' it. lanes: 1 solves every constraint row
+alone in double; 0 solves contacts and joint anchors in float lanes, many at once, the widest
+the CPU runs (faster; lane_width says which); 4 or 8 force a width, with the same result as 0.
 )doc"));
   cls.def(
       "load_world",
@@ -165,6 +168,9 @@ then hold what happened in these n steps.
                             "Steps taken.");
   cls.def_property_readonly("dt", [](const PyScene& s) { return s.scene().dt(); },
                             "The fixed step, s.");
+  cls.def_property_readonly(
+      "lane_width", [](const PyScene& s) { return s.scene().world().laneWidth(); },
+      "The width the solver's rows run at on this CPU: 1 (double rows), 4 or 8 (float lanes).");
   cls.def_property_readonly(
       "names",
       [](const PyScene& s) {

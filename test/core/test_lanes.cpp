@@ -12,6 +12,7 @@
 
 #include "lane_ops.hpp"
 #include "lane_width.hpp"
+#include "ragdoll_sim/world.hpp"
 
 namespace ragdoll_sim {
 namespace {
@@ -161,6 +162,25 @@ TEST(Lanes, ChooseLaneWidthReadsTheEnvironment) {
   unsetenv("RAGDOLL_SIM_LANES");
   EXPECT_EQ(chooseLaneWidth(0), cpuHasAvx2() ? 8 : 4);
   if (old) setenv("RAGDOLL_SIM_LANES", saved.c_str(), 1);
+}
+
+// The World says which width it runs, from its settings and as they change.
+TEST(Lanes, WorldLaneWidthFollowsTheSettings) {
+  const int widest = chooseLaneWidth(0);
+  WorldDef def;
+  def.solver.lanes = 1;
+  World w(def);
+  EXPECT_EQ(w.laneWidth(), 1);
+  SolverSettings s = w.def().solver;
+  for (const int lanes : {0, 4, 8, 1}) {
+    s.lanes = lanes;
+    w.setSolverSettings(s);
+    EXPECT_EQ(w.laneWidth(), lanes == 0 ? widest : lanes == 8 && !cpuHasAvx2() ? 4 : lanes)
+        << "lanes " << lanes;
+  }
+  s.lanes = 2;
+  EXPECT_THROW(w.setSolverSettings(s), std::invalid_argument);
+  EXPECT_EQ(w.laneWidth(), 1);  // unchanged
 }
 
 }  // namespace

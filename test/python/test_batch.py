@@ -104,6 +104,17 @@ def test_same_index_same_row_in_any_order_and_process(short, short_path):
     assert fresh.stdout.strip() == repr(forward[1])
 
 
+def test_lanes_widths_give_the_same_rows(short):
+    wide = dict(short, lanes=0)
+    four = dict(short, lanes=4)
+    rows = runner.run_chunk(wide, [0, 1])
+    assert [repr(r) for r in rows] == [repr(r) for r in runner.run_chunk(four, [0, 1])]
+    assert all(r["head_peak_g"] > 0 for r in rows)
+    # the lanes reach the runs: double rows round otherwise
+    double = runner.run_chunk(dict(short, lanes=1), [0, 1])
+    assert [repr(r) for r in rows] != [repr(r) for r in double]
+
+
 def test_csv_floats_round_trip(short, tmp_path):
     rows = runner.run_chunk(short, [3])
     out = tmp_path / "one.csv"
@@ -148,6 +159,7 @@ BAD = [
      'scenario: push.link: the model has no link "tail"'),
     ("seed: -3\n", "scenario: seed: expected an integer"),
     ("duration: [1]\n", "scenario: duration: expected a number of seconds"),
+    ("lanes: 2\n", "scenario: lanes: expected 0 (float lanes, the widest), 1 (double rows)"),
     ("push: {link: torso\n", "not YAML"),
 ]
 

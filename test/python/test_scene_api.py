@@ -138,8 +138,8 @@ def test_spawn_velocity_and_efforts(ragdoll, box):
     assert scene.clear_forces() >= 1
 
 
-def _hash_after(model, push, threads=1):
-    scene = ragdoll_sim.Scene(threads=threads)
+def _hash_after(model, push, threads=1, lanes=1):
+    scene = ragdoll_sim.Scene(threads=threads, lanes=lanes)
     scene.spawn("r", model, position=(0, 0, 1.2))
     scene.apply_impulse("r", "head", push)
     scene.step(300)
@@ -152,6 +152,18 @@ def test_identical_scenes_hash_equal_and_a_different_push_differs(ragdoll):
     assert _hash_after(ragdoll, (20.0, 0, 0)) == h
     assert _hash_after(ragdoll, (20.0, 0, 0), threads=2) == h
     assert _hash_after(ragdoll, (20.0, 1e-9, 0)) != h
+
+
+def test_lane_widths_agree_and_differ_from_double_rows(ragdoll):
+    assert ragdoll_sim.Scene().lane_width == 1
+    widest = ragdoll_sim.Scene(lanes=0).lane_width
+    assert widest in (4, 8)
+    assert ragdoll_sim.Scene(lanes=4).lane_width == 4
+    h = _hash_after(ragdoll, (20.0, 0, 0), lanes=4)
+    assert _hash_after(ragdoll, (20.0, 0, 0), lanes=0) == h
+    assert _hash_after(ragdoll, (20.0, 0, 0), lanes=0, threads=2) == h
+    # float rows round otherwise than double ones: another trajectory, not the same bits
+    assert _hash_after(ragdoll, (20.0, 0, 0)) != h
 
 
 def test_errors_name_the_problem_and_change_nothing(ragdoll, box):
@@ -199,6 +211,8 @@ def test_errors_name_the_problem_and_change_nothing(ragdoll, box):
         ragdoll_sim.Scene(dt=0)
     with pytest.raises(ValueError, match="threads"):
         ragdoll_sim.Scene(threads=-3)
+    with pytest.raises(ValueError, match="lanes must be 0 .*got 2"):
+        ragdoll_sim.Scene(lanes=2)
     assert scene.names == ["r"] and scene.steps == 10
     assert scene.state_hash() == h
     scene.step(10)

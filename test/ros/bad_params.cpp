@@ -1,7 +1,7 @@
 // rostest: the node binary started with one invalid parameter (on the command line, `_name:=`)
-// exits with code 1 and a FATAL message naming the parameter; with a valid ~threads it runs
-// (until `timeout` stops it) and its start-up line gives the World's thread count; the anatomy
-// parameters show in the ragdoll's start-up lines.
+// exits with code 1 and a FATAL message naming the parameter; with a valid ~threads or ~lanes it
+// runs (until `timeout` stops it) and its start-up line gives the World's thread count and lane
+// width; the anatomy parameters show in the ragdoll's start-up lines.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -29,6 +29,8 @@ TEST(BadParams, NodeExitsNonZeroNamingTheParameter) {
       {"_threads:=100000", {"~threads", "got 100000"}},
       {"_threads:=two", {"threads", "must be an integer"}},
       {"_substeps:=0", {"~substeps", "got 0"}},
+      {"_lanes:=2", {"~lanes", "0 (the widest), 1 (double rows), 4 or 8", "got 2"}},
+      {"_lanes:=wide", {"lanes", "must be an integer"}},
       {"_physics_rate:=-5.0", {"~physics_rate", "got -5"}},
       {"_gravity:=[0.0,-9.81]", {"gravity", "list of 3 numbers"}},
       {"_sleep/speed:=-0.5", {"~sleep/speed", "got -0.5"}},
@@ -69,9 +71,11 @@ TEST(BadParams, NodeExitsNonZeroNamingTheParameter) {
   }
 }
 
-TEST(BadParams, ThreadsRunTheNode) {
+TEST(BadParams, ThreadsAndLanesRunTheNode) {
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"_threads:=2", "substeps on 2 threads"}, {"_threads:=0", "substeps on all cores"}};
+      {"_threads:=2", "substeps on 2 threads (rows in double)"},
+      {"_threads:=0", "substeps on all cores"},
+      {"_lanes:=4", "(rows in float lanes, 4 wide)"}};
   int k = 0;
   for (const auto& [args, words] : cases) {
     std::string out;

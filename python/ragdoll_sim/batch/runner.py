@@ -119,7 +119,8 @@ def run_one(scenario, index):
         push_impulse=(size * p["push_dx"], size * p["push_dy"], size * p["push_dz"]),
         friction=p["friction"], restitution=p["restitution"],
         contact_hertz=p["contact_hertz"], dt=scenario["dt"],
-        steps=int(round(scenario["duration"] / scenario["dt"])), record=_record_def(scenario))
+        steps=int(round(scenario["duration"] / scenario["dt"])), record=_record_def(scenario),
+        lanes=scenario.get("lanes", 1))
     row = {"index": index}
     row.update(p)
     pos = rec.root_position

@@ -20,7 +20,8 @@ SPAWN_FIELDS = [("x", 0.0), ("y", 0.0), ("z", 1.1), ("roll", 0.0), ("pitch", 0.0
 # FallRecordDef fields a scenario may set (constants, >= 0): name -> default.
 RECORD_FIELDS = {"rest_speed": 0.05, "rest_angular_speed": 0.5, "min_rest": 0.2}
 MAX_PUSH = 1000.0  # N s: the scene's max_impulse
-TOP_FIELDS = ["seed", "duration", "dt", "world", "model", "spawn", "push", "material", "record"]
+TOP_FIELDS = ["seed", "duration", "dt", "lanes", "world", "model", "spawn", "push", "material",
+              "record"]
 
 
 def package_dir():
@@ -160,6 +161,11 @@ def validate(raw, base="."):
     out["dt"] = _require_number("dt", top.get("dt", 0.001), "a number of seconds")
     if not 1e-5 <= out["dt"] <= 0.1:
         _fail("dt", "must be in [1e-05, 0.1] s, got %s" % _show(out["dt"]))
+    lanes = top.get("lanes", 1)
+    if not isinstance(lanes, int) or isinstance(lanes, bool) or lanes not in (0, 1, 4, 8):
+        _fail("lanes", "expected 0 (float lanes, the widest), 1 (double rows), 4 or 8, got %s"
+              % _show(lanes))
+    out["lanes"] = lanes
     world = top.get("world")
     out["world"] = None if world is None else _resolve_file(
         "world", world, base, os.path.join(pkg, "worlds"), ".world")
