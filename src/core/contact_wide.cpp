@@ -197,7 +197,7 @@ void ContactBatch::solve(const StepContext& ctx, bool use_bias, bool positions_m
   };
   // The colours in reverse order, each colour's blocks in order (they share no body: the same
   // bits in any order).
-  if (use_bias && substep_ % 2 == 0) {
+  if (use_bias && (substep_ + int(ctx.odd_step)) % 2 == 0) {
     for (int last = n - 1, first; last >= 0; last = first - 1) {
       for (first = last; first > 0 && blocks_[first - 1].colour == blocks_[last].colour;) --first;
       sweep(&blocks_[first], last - first + 1);

@@ -34,10 +34,12 @@ class ContactBatch {
   // Once per substep, first. positions_moved: the double separations are recomputed (in the
   // blocks' geometry; the constraints keep prepare's) and rounded into the lanes first.
   void warmStart(const StepContext& ctx, bool positions_moved);
-  // The biased sweep takes the colours forward in the odd substeps of the step and backward
-  // in the even ones (counted by warmStart): solved always in one order, the contacts of the
-  // colour solved last take the push-out, and down a stack every other contact sinks to the
-  // linear slop while its neighbours stay shallow.
+  // The biased sweep takes the colours forward and backward in turn, substep by substep
+  // (counted by warmStart) and step by step (StepContext::odd_step): solved always in one
+  // order, the contacts of the colour solved last take the push-out, and down a stack every
+  // other contact sinks to the linear slop while its neighbours stay shallow; turned only by
+  // substep, the last substep of every step is a forward one, and its impulses (what the
+  // contact reports show) lean the same way step after step.
   void solve(const StepContext& ctx, bool use_bias, bool positions_moved);
   // The lanes' impulses (normal, tangents, largest normal increment) into the double
   // constraints, which stay the source for everything after the substeps.

@@ -46,6 +46,7 @@ StepContexts World::Impl::makeContexts(double dt) {
     c.relax = std::max(0, relax);
     c.track_impulses = track_contacts;
     c.lanes = lane_width;
+    c.odd_step = steps % 2 == 1;
     c.settings = &def.solver;
     c.bodies = &solver;
     c.motions = &motions;

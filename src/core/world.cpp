@@ -33,6 +33,7 @@ void World::step(double dt) {
     // Nothing built, woken, set or reset since a step found no body awake: only the time moves.
     if (!w.tracks.empty()) w.beginSamples(ctx, /*solved=*/false);
     w.finishStep();  // clears the forces, as a full step does
+    ++w.steps;
     w.time += dt;
     return;
   }
@@ -62,6 +63,7 @@ void World::step(double dt) {
   // Sleep: islands slow for long enough go to sleep.
   w.updateSleep(dt);
   w.settled = !any_awake;
+  ++w.steps;
   w.time += dt;
 }
 

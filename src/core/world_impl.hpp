@@ -51,6 +51,7 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
   int lane_width = 1;
   WorldTuning tuning;  // world_tuning.hpp
   double time = 0.0;
+  uint64_t steps = 0;  // World::step calls with dt > 0
   std::vector<Body> bodies;
   std::vector<BodyMotion> motions;
   std::vector<ShapeRef> shapes;

@@ -60,14 +60,15 @@ double stepImpulse(const ContactReport& r) {
 
 // A box, a sphere and a stack of three boxes settle on the ground: each ground pair's normal
 // forces sum to the weight it carries, each box of the stack carries the boxes above it, and
-// the forces on every body balance its weight. Full substeps to the end: in the rest substeps
-// (SleepDef::rest_substeps) one relax sweep leaves a manifold's last substep about 1 % off the
-// step's mean (the next test), and a sleeping pair keeps its last step's forces.
+// the forces on every body balance its weight. A report's forces are its last substep's, which
+// go up and down by a few per cent from step to step around the step's mean (the soft
+// contacts share the push-out between the substeps unevenly), so these hold on average over
+// the steps at rest (sleep off, the full substeps: the rest substeps' one relax sweep leaves
+// the last substep about 1 % off the mean, the next test).
 TEST(ContactReports, AtRestTheNormalForcesCarryTheWeight) {
   WorldDef def;
-  def.sleep.rest_substeps = 0;
+  def.sleep.enabled = false;
   World w(def);
-  w.setContactImpulseTracking(true);
   const Material m = surface(0.8, 0.8);
   const BodyId ground = addGround(w, m);
   const Vec3 half(0.2, 0.15, 0.1);
@@ -79,27 +80,47 @@ TEST(ContactReports, AtRestTheNormalForcesCarryTheWeight) {
     stack[k] = addBox(w, half, masses[k], Vec3(-1, 0, half.z() * (2 * k + 1)), m);
   for (int i = 0; i < 1000; ++i) w.step(kDt);
 
-  std::vector<ContactReport> reports;
-  w.contactReports(reports);
-  const auto expectCarries = [&](BodyId a, BodyId b, double mass, const char* what) {
-    const ContactReport* r = pairOf(reports, a, b);
-    ASSERT_NE(r, nullptr) << what;
-    const double weight = mass * kG;
-    EXPECT_NEAR(normalForce(*r), weight, 0.005 * weight) << what;
-    EXPECT_NEAR(std::abs(r->force_b.z()), weight, 0.005 * weight) << what;
-    std::printf("[ at rest  ] %s: normal force %.4f N (m g %.4f N)\n", what, normalForce(*r),
-                weight);
+  struct Pair {
+    BodyId a, b;
+    double mass;
+    const char* what;
+    double normal = 0.0, force_z = 0.0;  // sums over the steps, N
   };
-  expectCarries(ground, box, 4.0, "box");
-  expectCarries(ground, ball, 3.0, "sphere");
-  expectCarries(ground, stack[0], 10.0, "stack on the ground");
-  expectCarries(stack[0], stack[1], 5.0, "stack, upper two");
-  expectCarries(stack[1], stack[2], 2.0, "stack, top box");
-  for (const BodyId b : {box, ball, stack[0], stack[1], stack[2]}) {
-    const Load l = loadOn(reports, b);
-    const double weight = w.bodyDef(b).mass * kG;
-    EXPECT_NEAR((l.force + w.bodyDef(b).mass * Vec3(0, 0, -kG)).norm(), 0.0, 0.005 * weight);
-    EXPECT_LT(l.torque.norm(), 0.005 * weight * 0.2);
+  Pair pairs[5] = {{ground, box, 4.0, "box"},
+                   {ground, ball, 3.0, "sphere"},
+                   {ground, stack[0], 10.0, "stack on the ground"},
+                   {stack[0], stack[1], 5.0, "stack, upper two"},
+                   {stack[1], stack[2], 2.0, "stack, top box"}};
+  const BodyId bodies[5] = {box, ball, stack[0], stack[1], stack[2]};
+  Load loads[5];
+  constexpr int kSteps = 1000;
+  std::vector<ContactReport> reports;
+  for (int i = 0; i < kSteps; ++i) {
+    w.step(kDt);
+    w.contactReports(reports);
+    for (Pair& p : pairs) {
+      const ContactReport* r = pairOf(reports, p.a, p.b);
+      ASSERT_NE(r, nullptr) << p.what;
+      p.normal += normalForce(*r);
+      p.force_z += std::abs(r->force_b.z());
+    }
+    for (int k = 0; k < 5; ++k) {
+      const Load l = loadOn(reports, bodies[k]);
+      loads[k].force += l.force;
+      loads[k].torque += l.torque;
+    }
+  }
+  for (const Pair& p : pairs) {
+    const double weight = p.mass * kG;
+    EXPECT_NEAR(p.normal / kSteps, weight, 0.005 * weight) << p.what;
+    EXPECT_NEAR(p.force_z / kSteps, weight, 0.005 * weight) << p.what;
+    std::printf("[ at rest  ] %s: normal force %.4f N, mean of %d steps (m g %.4f N)\n", p.what,
+                p.normal / kSteps, kSteps, weight);
+  }
+  for (int k = 0; k < 5; ++k) {
+    const double mass = w.bodyDef(bodies[k]).mass, weight = mass * kG;
+    EXPECT_NEAR((loads[k].force / kSteps + mass * Vec3(0, 0, -kG)).norm(), 0.0, 0.005 * weight);
+    EXPECT_LT((loads[k].torque / kSteps).norm(), 0.005 * weight * 0.2);
   }
   // Only touching pairs: the speculative sphere-box pairs are not reported.
   for (const ContactReport& r : reports)
