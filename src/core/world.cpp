@@ -25,6 +25,7 @@ void World::step(double dt) {
   Impl& w = *impl_;
   if (!(dt > 0.0)) return;
   const StepContexts ctx = w.makeContexts(dt);  // the full and the rest substeps
+  ++w.steps;  // the contexts took the parity of the steps before this one
 
   // Fault guard: non-finite bodies go back to their last finite pose, speeds are clamped.
   w.guardInputs();
@@ -33,7 +34,6 @@ void World::step(double dt) {
     // Nothing built, woken, set or reset since a step found no body awake: only the time moves.
     if (!w.tracks.empty()) w.beginSamples(ctx, /*solved=*/false);
     w.finishStep();  // clears the forces, as a full step does
-    ++w.steps;
     w.time += dt;
     return;
   }
@@ -63,7 +63,6 @@ void World::step(double dt) {
   // Sleep: islands slow for long enough go to sleep.
   w.updateSleep(dt);
   w.settled = !any_awake;
-  ++w.steps;
   w.time += dt;
 }
 

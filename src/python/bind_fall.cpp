@@ -12,7 +12,6 @@
 #include "py_scene.hpp"
 #include "ragdoll_sim/fall_record.hpp"
 #include "ragdoll_sim/fall_run.hpp"
-#include "ragdoll_sim/world.hpp"
 
 namespace py = pybind11;
 
@@ -39,8 +38,6 @@ FallRecord runOne(const PyModel& model, const py::object& world, const std::stri
     throw std::invalid_argument("dt must be in (0, 1] s, got " + std::to_string(dt));
   d.scene.dt_ns = std::llround(dt * 1e9);
   d.scene.world.solver.lanes = lanes;
-  const std::string bad_lanes = solverSettingsError(d.scene.world.solver);
-  if (!bad_lanes.empty()) throw std::invalid_argument(bad_lanes);
   Material surface = defaultSurface();
   surface.static_friction = surface.kinetic_friction = finiteArg(friction, "friction");
   surface.restitution = finiteArg(restitution, "restitution");

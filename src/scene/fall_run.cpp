@@ -23,6 +23,8 @@ FallRecord runFall(const FallRunDef& d) {
   if (!d.model) throw std::invalid_argument("fall run: no model");
   if (d.steps < 0)
     throw std::invalid_argument("fall run: steps must be >= 0, got " + std::to_string(d.steps));
+  const std::string settings = worldDefError(d.scene.world);
+  if (!settings.empty()) throw std::invalid_argument("fall run: " + settings);
   LastProblem problems;
   Scene scene(d.scene, &problems);
   std::string error;

@@ -113,6 +113,9 @@ def test_lanes_widths_give_the_same_rows(short):
     # the lanes reach the runs: double rows round otherwise
     double = runner.run_chunk(dict(short, lanes=1), [0, 1])
     assert [repr(r) for r in rows] != [repr(r) for r in double]
+    # a width the solver has not is refused by the run, named
+    with pytest.raises(ValueError, match="fall run: lanes must be 0"):
+        runner._core().run_fall(runner.model(short["model"]), lanes=2, steps=1)
 
 
 def test_csv_floats_round_trip(short, tmp_path):
