@@ -50,7 +50,7 @@ BENCH_DEBS := libmujoco-dev libbullet-dev libode-dev libtinyxml2-dev liburdfdom-
 
 # Release build of bench/bench_ragdoll and of the peer benches (../shared/peers or PEERS_DIR),
 # ROUNDS (default 3) alternating rounds of scenes a, b, c, the scaling scene g and our p, s
-# (ours twice: the default lanes=1 and the float lanes, lanes=0);
+# (ours twice: the default float lanes, lanes=0, and the double rows, lanes=1);
 # writes bench/results_raw.txt, bench/RESULTS.md and bench/scaling.png (scripts/bench.sh).
 bench: deps
 	@scripts/deps.sh $(BENCH_DEBS)

@@ -10,14 +10,14 @@
 #     into .ws/bench/peers. Nothing is written to $PEERS_DIR.
 #  3. Runs ROUNDS rounds. In each round every scene is run by every engine back to back
 #     (round-robin, the engine order rotating from round to round), so all engines see the same
-#     machine load: scenes a, b, c (ours twice: sleeping off, the headline figure since the
-#     peers' benches do not sleep, and sleeping on, engine ragdoll_sim_sleep, right after it); the scaling scene g with N = $SCALING_NS ragdolls; then our
-#     own scenes p and s (no peer has them). Ours with the float lanes (--opt lanes=0, engine
-#     ragdoll_sim_lanes0, with its _sleep and _1thread runs) runs all of these as an engine of
-#     its own beside the default double rows (lanes=1). Then the scale of worlds: scenes f, w, v
-#     back to back (the bundled ragdoll on the plane, among 10 000 static boxes as bodies, as
-#     shapes of one body) and the load of generated worlds of dynamic primitives (scene l,
-#     bench_world_load, LOAD_RUNS).
+#     machine load: scenes a, b, c (ours twice: sleeping off, the headline figure since the peers'
+#     benches do not sleep, and sleeping on, engine ragdoll_sim_sleep, right after it); the scaling
+#     scene g with N = $SCALING_NS ragdolls; then our own scenes p and s (no peer has them). Ours
+#     with every row in double (--opt lanes=1, engine ragdoll_sim_lanes1, with its _sleep and
+#     _1thread runs) runs all of these as an engine of its own beside the default float lanes
+#     (lanes=0). Then the scale of worlds: scenes f, w, v back to back (the bundled ragdoll on the
+#     plane, among 10 000 static boxes as bodies, as shapes of one body) and the load of generated
+#     worlds of dynamic primitives (scene l, bench_world_load, LOAD_RUNS).
 #  4. Raw result lines (plus round=R) go to bench/results_raw.txt, and scripts/bench_report.py
 #     turns them into bench/RESULTS.md and bench/scaling.png.
 #
@@ -31,8 +31,8 @@
 #                            primitive; 0: every model its own, each parsed by SDFormat); "" skips
 #   SCALING_NS="1 4 16 64 256"   ragdoll counts for scene g ("" skips scaling)
 #   SCALING_STEPS=           steps for scene g (default: the scene's 3000)
-#   ENGINES="ragdoll_sim ragdoll_sim_lanes0 mujoco bullet ode"
-#                            ragdoll_sim_lanes0: ours with SolverSettings::lanes = 0 (float lanes)
+#   ENGINES="ragdoll_sim ragdoll_sim_lanes1 mujoco bullet ode"
+#                            ragdoll_sim_lanes1: ours with SolverSettings::lanes = 1 (double rows)
 #   RUN_TIMEOUT=1800         seconds before one run is killed (and reported as failed)
 #   OWN_THREADS=$(nproc)     threads our solver uses (WorldDef::threads: islands in parallel,
 #                            same result for any count); the peers are single-threaded.
@@ -41,14 +41,14 @@
 #   SLEEP_ON=1               also run ours with sleeping on in scenes a, b, c (0 skips it);
 #                            ours runs a, b, c, g and p with sleeping off (--opt sleep=0)
 #   SCALING_1THREAD=1        also run our scene g on one thread (ragdoll_sim_1thread and
-#                            ragdoll_sim_lanes0_1thread):
+#                            ragdoll_sim_lanes1_1thread):
 #                            the cost per body-step of the algorithm alone, the same thread
 #                            count at every N (N = 1 is one island, which runs on one core)
 #   FLOPS=1                  0 skips the flop count (scripts/flops.sh, valgrind, ~5 min)
-#   FLOPS_OPTS=sleep=0       --opt of the flop count's runs (lanes=4: the wide solver's)
+#   FLOPS_OPTS=sleep=0       --opt of the flop count's runs (lanes=1: the double rows')
 #   ENSEMBLE="b c"           chaotic scenes that our bench also runs as ENSEMBLE_COPIES (32)
 #                            yaw-perturbed copies after the timed rounds (scripts/bench_ensemble.sh;
-#                            once per engine of ours, lanes=0 with --opt lanes=0):
+#                            once per engine of ours, lanes=1 with --opt lanes=1):
 #                            at rest at 3 s and within each quality bar, counted over the copies
 #                            ("" skips it; the peers have no yaw option)
 set -euo pipefail
@@ -61,7 +61,7 @@ SCALE_SCENES="${SCALE_SCENES-f w v}"
 LOAD_RUNS="${LOAD_RUNS-3000:8 300:0}"
 SCALING_NS="${SCALING_NS-1 4 16 64 256}"
 SCALING_STEPS="${SCALING_STEPS:-}"
-ENGINES="${ENGINES:-ragdoll_sim ragdoll_sim_lanes0 mujoco bullet ode}"
+ENGINES="${ENGINES:-ragdoll_sim ragdoll_sim_lanes1 mujoco bullet ode}"
 RUN_TIMEOUT="${RUN_TIMEOUT:-1800}"
 BENCH_OUT="${BENCH_OUT:-$ROOT/bench}"
 OWN_THREADS="${OWN_THREADS:-$(env -u OMP_NUM_THREADS -u OMP_THREAD_LIMIT nproc)}"
@@ -89,7 +89,7 @@ declare -A PEER_LIBS=(
   [ode]="-lode -lurdfdom_model"
 )
 # engines of ours in ENGINES, and the --opt of each (bench_ragdoll prints engine=ragdoll_sim)
-declare -A OURS_OPTS=([ragdoll_sim]="" [ragdoll_sim_lanes0]="lanes=0")
+declare -A OURS_OPTS=([ragdoll_sim]="" [ragdoll_sim_lanes1]="lanes=1")
 engines=()
 for e in $ENGINES; do
   if [[ -n "${OURS_OPTS[$e]+x}" ]]; then engines+=("$e"); continue; fi

@@ -19,8 +19,8 @@
 #   STEPS=               --steps for every run (default: each scene's own)
 #   OPTS=                --opt for both binaries, k=v,... (hash=1: the table says whether both
 #                        binaries end every run on the same state hash)
-#   OLD_OPTS=, NEW_OPTS= --opt for one binary only (NEW_OPTS=lanes=0: a binary from before the
-#                        wide solver does not know lanes=)
+#   OLD_OPTS=, NEW_OPTS= --opt for one binary only (NEW_OPTS=lanes=1: the double rows against a
+#                        binary from before the wide solver, which does not know lanes=)
 #   URDF=../shared/peers/ragdoll15.urdf
 #   OUT_MD=              also write the table to this file
 #   OUT_RAW=.ws/compare/raw.txt   the raw result lines

@@ -2,10 +2,10 @@
 
 Ours runs twice in every round of `make bench`: sleeping off (engine ragdoll_sim, the headline:
 the peers' benches do not sleep) and sleeping on (ragdoll_sim_sleep), so the table gives both
-ratios against each peer and against the faster of Bullet and ODE. Ours with the float lanes
-(--opt lanes=0, engine ragdoll_sim_lanes0) runs the same way and gets a table and bars of its
-own. The bars are printed as lines with the measured value beside each, so a reader sees at once
-which hold.
+ratios against each peer and against the faster of Bullet and ODE; the default solver runs the
+float lanes (SolverSettings::lanes = 0). Ours with every row in double (--opt lanes=1, engine
+ragdoll_sim_lanes1) runs the same way and gets a table and bars of its own. The bars are printed
+as lines with the measured value beside each, so a reader sees at once which hold.
 """
 import statistics
 from collections import namedtuple
@@ -13,14 +13,14 @@ from collections import namedtuple
 OURS = "ragdoll_sim"
 OURS_SLEEP = "ragdoll_sim_sleep"  # ours with sleeping on, scenes a, b, c
 OURS_1T = "ragdoll_sim_1thread"  # ours on one thread, scene g
-OURS_L0 = "ragdoll_sim_lanes0"  # ours with SolverSettings::lanes = 0 (float lanes)
-OURS_L0_SLEEP = OURS_L0 + "_sleep"
-OURS_L0_1T = OURS_L0 + "_1thread"
+OURS_L1 = "ragdoll_sim_lanes1"  # ours with SolverSettings::lanes = 1 (every row in double)
+OURS_L1_SLEEP = OURS_L1 + "_sleep"
+OURS_L1_1T = OURS_L1 + "_1thread"
 # An engine of ours: its runs sleeping off, sleeping on and on one thread, its name in the
 # tables and its bench_ragdoll --opt.
 Ours = namedtuple("Ours", "off on one name opt")
 OURS_VARIANTS = [Ours(OURS, OURS_SLEEP, OURS_1T, "ours", ""),
-                 Ours(OURS_L0, OURS_L0_SLEEP, OURS_L0_1T, "ours lanes=0", "lanes=0")]
+                 Ours(OURS_L1, OURS_L1_SLEEP, OURS_L1_1T, "ours lanes=1", "lanes=1")]
 OURS_ALL = tuple(e for v in OURS_VARIANTS for e in (v.off, v.on, v.one))
 FASTER_OF = ("bullet", "ode")  # "the faster of Bullet and ODE", per round
 SLEEP_SCENES = ("a", "b", "c", "g")  # a line of ours with sleep=1 in these is OURS_SLEEP

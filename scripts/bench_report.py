@@ -16,7 +16,7 @@ import bench_flops_report  # flops per body-step and the peak
 import bench_raw  # the raw lines
 import bench_ratios  # ours / peers, sleep off and on; the bars
 import bench_scale_report  # scenes f, w, v, l
-from bench_ratios import OURS, OURS_ALL, OURS_L0, OURS_L0_SLEEP, OURS_SLEEP, OURS_VARIANTS
+from bench_ratios import OURS, OURS_ALL, OURS_L1, OURS_L1_SLEEP, OURS_SLEEP, OURS_VARIANTS
 from bench_raw import fnum
 
 ENGINE_ORDER = list(OURS_ALL) + ["mujoco", "bullet", "ode"]
@@ -278,8 +278,8 @@ def report(meta, runs, failures, png_name):
 
     # ---- our extras
     ours_groups = [(k, g) for k, g in groups.items() if k[0] == OURS]
-    extra_label = {OURS: "", OURS_SLEEP: " (sleep on)", OURS_L0: " (lanes=0)",
-                   OURS_L0_SLEEP: " (lanes=0, sleep on)"}
+    extra_label = {OURS: "", OURS_SLEEP: " (sleep on)", OURS_L1: " (lanes=1)",
+                   OURS_L1_SLEEP: " (lanes=1, sleep on)"}
     extra_groups = [(k, g) for k, g in groups.items() if k[0] in extra_label]
     if extra_groups:
         L.append("## ragdoll_sim: extra fields")
@@ -313,8 +313,8 @@ def report(meta, runs, failures, png_name):
                  "peer benches have no yaw option. Awake body-steps (bodies awake after each "
                  "step, summed) are what sleeping left to solve: against the scene's own count "
                  "(extra fields above) they show where the timed trajectory lies in the spread." +
-                 (" A scene with an option in brackets ran with that `--opt` (lanes=0: ours "
-                  "with the float lanes)." if any(e.get("opts", "-") != "-"
+                 (" A scene with an option in brackets ran with that `--opt` (lanes=1: ours "
+                  "with every row in double)." if any(e.get("opts", "-") != "-"
                                                   for e in meta["ensembles"]) else ""))
         L.append("")
         rows = []
@@ -362,7 +362,7 @@ def report(meta, runs, failures, png_name):
     L.append("```sh\nmake bench                      # ROUNDS=3, all scenes, scaling N = 1 4 16 64 256\n"
              "ROUNDS=5 make bench\n"
              "SCALING_NS=\"1 4 16\" OWN_SCENES= make bench   # quicker\n"
-             "ENGINES=\"ragdoll_sim mujoco bullet ode\" make bench   # without ours lanes=0\n"
+             "ENGINES=\"ragdoll_sim mujoco bullet ode\" make bench   # without ours lanes=1\n"
              "/usr/bin/python3 scripts/bench_report.py bench/results_raw.txt --md bench/RESULTS.md "
              "--png bench/scaling.png   # report only\n"
              ".ws/bench/bench_ragdoll g --ragdolls 64 --urdf ../shared/peers/ragdoll15.urdf\n"

@@ -14,7 +14,7 @@
 # window, the options, peak_gflops (cores x MHz x DP flops/cycle from the CPU flags: 32 with
 # AVX-512, 16 with AVX2+FMA, 4 else) and peak_gflops_float (twice that: SSE and AVX do twice as
 # many float as double operations per instruction).
-#   FLOPS_OPTS=sleep=0   bench_ragdoll --opt (e.g. sleep=0,lanes=4 for the wide solver)
+#   FLOPS_OPTS=sleep=0   bench_ragdoll --opt (e.g. sleep=0,lanes=1 for the double rows)
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
 N0="${FLOPS_N0:-1000}"

@@ -17,7 +17,7 @@
 // SolverSettings::lanes' default; a build may set it (CMake RAGDOLL_SIM_DEFAULT_LANES) to run
 // the whole test suite on the other path.
 #ifndef RAGDOLL_SIM_DEFAULT_LANES
-#define RAGDOLL_SIM_DEFAULT_LANES 1
+#define RAGDOLL_SIM_DEFAULT_LANES 0
 #endif
 
 namespace ragdoll_sim {

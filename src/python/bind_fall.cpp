@@ -153,7 +153,7 @@ C++). ValueError naming an unknown ragdoll or torso link.
         py::arg("push_impulse") = py::make_tuple(0.0, 0.0, 0.0), py::arg("friction") = 0.8,
         py::arg("restitution") = 0.0, py::arg("contact_hertz") = 0.0, py::arg("dt") = 0.001,
         py::arg("steps") = 3000,
-        py::arg("record") = FallRecordDef(), py::arg("lanes") = 1, R"doc(
+        py::arg("record") = FallRecordDef(), py::arg("lanes") = SolverSettings().lanes, R"doc(
 One fall in C++ (the GIL released): a Scene of step dt (s) with `world` (a WorldFile, or None:
 the ground plane), every surface of friction (static = kinetic), restitution and contact_hertz
 (Hz, the contact's spring-damper at damping ratio 1; 0 = rigid), `model` (a

@@ -104,7 +104,7 @@ use), RuntimeError for files that do not load; the message names what is wrong.
           py::arg("dt") = 0.001, py::arg("gravity") = py::make_tuple(0.0, 0.0, -9.81),
           py::arg("ground") = true, py::arg("sleep") = true, py::arg("threads") = 1,
           py::arg("impacts") = false, py::arg("injury") = true,
-          py::arg("spawn_overlap") = "lift", py::arg("lanes") = 1, pydoc(R"doc(
+          py::arg("spawn_overlap") = "lift", py::arg("lanes") = SolverSettings().lanes, pydoc(R"doc(
 dt: the fixed step, s. gravity: (x, y, z), m/s^2. ground: a static plane z = 0. sleep: resting
 islands sleep (cheaper; off: every body is solved every step). threads: islands solved in
 parallel (0: all cores); the result does not depend on it. impacts: record impact events

@@ -1,10 +1,11 @@
 """The benchmark's scripts on made-up inputs: bench_report.py's ratio table (sleeping off and on,
-the faster of Bullet and ODE, ours with lanes=0 beside the default), the issue's bars and the flop
-section; bench_compare_report.py's
-table; bench_compare.sh with two fake binaries (alternation, options, thread counts). No timing,
-no engine: each test runs in well under a second.
+the faster of Bullet and ODE, ours with lanes=1 beside the default float lanes), the issue's bars
+and the flop section; bench_compare_report.py's table; bench_compare.sh with two fake binaries
+(alternation, options, thread counts); bench.sh's engines of ours against the report's. No
+timing, no engine: each test runs in well under a second.
 """
 import os
+import re
 import stat
 import subprocess
 import sys
@@ -15,6 +16,7 @@ SCRIPTS = os.path.join(ROOT, "scripts")
 sys.path.insert(0, SCRIPTS)
 
 import bench_compare_report  # noqa: E402
+import bench_ratios  # noqa: E402
 import bench_report  # noqa: E402
 
 
@@ -111,51 +113,62 @@ def test_flops_section(tmp_path):
     assert rows == ["| b | 1000 | 528000 | 0.53 | 0.53 % | 0.26 % |"]
 
 
-# Ours with the float lanes (lanes=0) beside the default engine: scene b 2000 / 2400 steps/s
+# Ours with every row in double (lanes=1) beside the default engine: scene b 2000 / 2400 steps/s
 # sleeping off, 2200 / 2600 sleeping on; scene g on one thread 0.5 us per body-step at every N,
 # two threads 2x one thread at N = 16; and an ensemble of each engine.
-RAW_LANES0 = RAW + "\n".join([
-    line("ragdoll_sim_lanes0", "b", 2000, 1),
-    line("ragdoll_sim_lanes0_sleep", "b", 2200, 1, sleep=1),
-    line("ragdoll_sim_lanes0", "b", 2400, 2),
-    line("ragdoll_sim_lanes0_sleep", "b", 2600, 2, sleep=1),
-    line("ragdoll_sim_lanes0_1thread", "g", 1e6 / 0.5 / 60, 1, bodies=60, n=4),
-    line("ragdoll_sim_lanes0_1thread", "g", 1e6 / 0.5 / 240, 1, bodies=240, n=16),
-    line("ragdoll_sim_lanes0_1thread", "g", 1e6 / 0.5 / 960, 1, bodies=960, n=64),
-    line("ragdoll_sim_lanes0", "g", 2e6 / 0.5 / 240, 1, bodies=240, n=16),
+RAW_LANES1 = RAW + "\n".join([
+    line("ragdoll_sim_lanes1", "b", 2000, 1),
+    line("ragdoll_sim_lanes1_sleep", "b", 2200, 1, sleep=1),
+    line("ragdoll_sim_lanes1", "b", 2400, 2),
+    line("ragdoll_sim_lanes1_sleep", "b", 2600, 2, sleep=1),
+    line("ragdoll_sim_lanes1_1thread", "g", 1e6 / 0.5 / 60, 1, bodies=60, n=4),
+    line("ragdoll_sim_lanes1_1thread", "g", 1e6 / 0.5 / 240, 1, bodies=240, n=16),
+    line("ragdoll_sim_lanes1_1thread", "g", 1e6 / 0.5 / 960, 1, bodies=960, n=64),
+    line("ragdoll_sim_lanes1", "g", 2e6 / 0.5 / 240, 1, bodies=240, n=16),
     "# ensemble scene=b opts=- copies=32 at_rest_3s=31 (vmax_3s <= 0.01) vmax_3s=0..0.02",
-    "# ensemble scene=b opts=lanes=0 copies=32 at_rest_3s=30 (vmax_3s <= 0.01) vmax_3s=0..0.03",
+    "# ensemble scene=b opts=lanes=1 copies=32 at_rest_3s=30 (vmax_3s <= 0.01) vmax_3s=0..0.03",
 ]) + "\n"
 
 
-def test_lanes0_engine(tmp_path):
-    text = make_report(tmp_path, RAW_LANES0)
-    assert "ragdoll_sim_lanes0 (steps/s)" not in text and "÷ ragdoll_sim_lanes0" not in text
-    # the default engine's table is unchanged; lanes=0 gets one of its own below it
+def test_lanes1_engine(tmp_path):
+    text = make_report(tmp_path, RAW_LANES1)
+    assert "ragdoll_sim_lanes1 (steps/s)" not in text and "÷ ragdoll_sim_lanes1" not in text
+    # the default engine's table is unchanged; lanes=1 gets one of its own below it
     assert text.count("| scene | ours ÷ mujoco-2.2.2, sleep off | sleep on |") == 1
-    assert "| scene | ours lanes=0 ÷ mujoco-2.2.2, sleep off | sleep on |" in text
+    assert "| scene | ours lanes=1 ÷ mujoco-2.2.2, sleep off | sleep on |" in text
     rows = [l for l in text.splitlines() if l.startswith("| b | ")]
     assert [c.strip() for c in rows[0].strip("|").split("|")][1] == "8.80 (8.00–10.00)"
     b = [c.strip() for c in rows[1].strip("|").split("|")]
     # medians 2200 / 125 = 17.60 (20.00, 16.00); sleeping on 2400 / 125 = 19.20 (22.00, 17.33)
     assert b[1:3] == ["17.60 (16.00–20.00)", "19.20 (17.33–22.00)"]
     assert b[7] == "9.78 (9.60–10.00)"  # 2200 / 225; 10.00, 9.60
-    assert ("- b: ours lanes=0 ÷ mujoco-2.2.2 ≥ 8x: sleep off 17.60 (16.00–20.00), met; "
+    assert ("- b: ours lanes=1 ÷ mujoco-2.2.2 ≥ 8x: sleep off 17.60 (16.00–20.00), met; "
             "sleep on 19.20 (17.33–22.00)") in text
     assert "- b: ours ÷ mujoco-2.2.2 ≥ 8x: sleep off 8.80 (8.00–10.00), met" in text
-    assert ("- lanes=0, one thread, cost per body-step for N = 4, 16, 64: mean 0.500 µs, "
+    assert ("- lanes=1, one thread, cost per body-step for N = 4, 16, 64: mean 0.500 µs, "
             "largest deviation +0 % (N = 4); bar ±30 %: met") in text
-    assert "- lanes=0, 2 threads ÷ one thread, N = 16: 2.00 (2.00–2.00); bar ≥ 1.7x: met" in text
+    assert "- lanes=1, 2 threads ÷ one thread, N = 16: 2.00 (2.00–2.00); bar ≥ 1.7x: met" in text
     assert "- 2 threads ÷ one thread, N = 16: 1.80 (1.80–1.80)" in text
-    assert "| ours lanes=0 ÷ mujoco-2.2.2 (steps/s) |" in text
-    assert table_row(text, "b (lanes=0)")[1:3] == ["-", "0"]  # extra fields: substeps, sleep
-    assert table_row(text, "b (lanes=0, sleep on)")[2] == "1"
-    ens = [l for l in text.splitlines() if l.startswith("| b (lanes=0) | 32 | 30 of 32")]
+    assert "| ours lanes=1 ÷ mujoco-2.2.2 (steps/s) |" in text
+    assert table_row(text, "b (lanes=1)")[1:3] == ["-", "0"]  # extra fields: substeps, sleep
+    assert table_row(text, "b (lanes=1, sleep on)")[2] == "1"
+    ens = [l for l in text.splitlines() if l.startswith("| b (lanes=1) | 32 | 30 of 32")]
     assert ens and "| b | 32 | 31 of 32" in text
 
 
+def test_bench_sh_engines_match_report():
+    # bench.sh runs each engine of ours with the --opt that the report names it by
+    text = open(os.path.join(SCRIPTS, "bench.sh")).read()
+    decl = next(l for l in text.splitlines() if l.startswith("declare -A OURS_OPTS=("))
+    opts = dict(re.findall(r'\[(\w+)\]="([^"]*)"', decl))
+    assert opts == {v.off: v.opt for v in bench_ratios.OURS_VARIANTS}
+    assert opts == {"ragdoll_sim": "", "ragdoll_sim_lanes1": "lanes=1"}
+    default = re.search(r'^ENGINES="\$\{ENGINES:-([^}]*)\}"', text, re.M).group(1).split()
+    assert all(e in default for e in opts)
+
+
 COMPARE_RAW = "\n".join([
-    "# meta old_bin=/o", "# meta new_bin=/n", "# meta new_opts=lanes=0", "# meta rounds=2",
+    "# meta old_bin=/o", "# meta new_bin=/n", "# meta new_opts=lanes=1", "# meta rounds=2",
     line("ragdoll_sim", "p", 100, 1, side="old", label="p", run_threads=1),
     line("ragdoll_sim", "p", 150, 1, side="new", label="p", run_threads=1, max_ground_pen_m=0.004),
     line("ragdoll_sim", "p", 120, 2, side="new", label="p", run_threads=1, max_ground_pen_m=0.004),
@@ -171,7 +184,7 @@ COMPARE_RAW = "\n".join([
 def test_compare_table():
     meta, runs, failures = bench_compare_report.parse(COMPARE_RAW.splitlines())
     text = bench_compare_report.report(meta, runs, failures)
-    assert "new: `/n` --opt lanes=0" in text
+    assert "new: `/n` --opt lanes=1" in text
     p = table_row(text, "p")
     assert p[:6] == ["p", "1", "100 (100–100)", "135 (120–150)", "1.35 (1.20–1.50)", "≥ 1.35: met"]
     assert p[6:8] == ["0.0005 / 0.003 / 0.01", "0.0005 / 0.004 / 0.01"]
@@ -197,7 +210,7 @@ def test_compare_script_alternates_and_passes_options(tmp_path):
         b.write_text(FAKE % log)
         b.chmod(b.stat().st_mode | stat.S_IXUSR)
         bins.append(str(b))
-    env = dict(os.environ, SCENES="b g1", THREADS="1 2", NEW_OPTS="lanes=0", OPTS="substeps=3",
+    env = dict(os.environ, SCENES="b g1", THREADS="1 2", NEW_OPTS="lanes=1", OPTS="substeps=3",
                STEPS="7", OUT_RAW=str(tmp_path / "raw.txt"), OUT_MD=str(tmp_path / "t.md"),
                URDF="u.urdf")
     out = subprocess.run([os.path.join(SCRIPTS, "bench_compare.sh"), bins[0], bins[1], "2"],
@@ -206,14 +219,14 @@ def test_compare_script_alternates_and_passes_options(tmp_path):
     calls = log.read_text().splitlines()
     base = "--urdf u.urdf --opt sleep=0,threads=%d --steps 7 --opt substeps=3"
     assert calls == [
-        "old_bench b " + base % 1, "new_bench b " + base % 1 + " --opt lanes=0",
-        "old_bench b " + base % 2, "new_bench b " + base % 2 + " --opt lanes=0",
+        "old_bench b " + base % 1, "new_bench b " + base % 1 + " --opt lanes=1",
+        "old_bench b " + base % 2, "new_bench b " + base % 2 + " --opt lanes=1",
         "old_bench g --urdf u.urdf --opt sleep=0,threads=1 --ragdolls 1 --steps 7 --opt substeps=3",
-        "new_bench g --urdf u.urdf --opt sleep=0,threads=1 --ragdolls 1 --steps 7 --opt substeps=3 --opt lanes=0",
+        "new_bench g --urdf u.urdf --opt sleep=0,threads=1 --ragdolls 1 --steps 7 --opt substeps=3 --opt lanes=1",
         # round 2: new first
-        "new_bench b " + base % 1 + " --opt lanes=0", "old_bench b " + base % 1,
-        "new_bench b " + base % 2 + " --opt lanes=0", "old_bench b " + base % 2,
-        "new_bench g --urdf u.urdf --opt sleep=0,threads=1 --ragdolls 1 --steps 7 --opt substeps=3 --opt lanes=0",
+        "new_bench b " + base % 1 + " --opt lanes=1", "old_bench b " + base % 1,
+        "new_bench b " + base % 2 + " --opt lanes=1", "old_bench b " + base % 2,
+        "new_bench g --urdf u.urdf --opt sleep=0,threads=1 --ragdolls 1 --steps 7 --opt substeps=3 --opt lanes=1",
         "old_bench g --urdf u.urdf --opt sleep=0,threads=1 --ragdolls 1 --steps 7 --opt substeps=3",
     ]
     assert (tmp_path / "t.md").read_text() in out.stdout

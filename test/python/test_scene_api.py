@@ -158,6 +158,7 @@ def test_lane_widths_agree_and_differ_from_double_rows(ragdoll):
     assert ragdoll_sim.Scene(lanes=1).lane_width == 1
     widest = ragdoll_sim.Scene(lanes=0).lane_width
     assert widest in (4, 8)
+    assert ragdoll_sim.Scene().lane_width == widest  # the float lanes by default
     assert ragdoll_sim.Scene(lanes=4).lane_width == 4
     h = _hash_after(ragdoll, (20.0, 0, 0), lanes=4)
     assert _hash_after(ragdoll, (20.0, 0, 0), lanes=0) == h
