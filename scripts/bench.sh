@@ -45,7 +45,7 @@
 #                            the cost per body-step of the algorithm alone, the same thread
 #                            count at every N (N = 1 is one island, which runs on one core)
 #   FLOPS=1                  0 skips the flop count (scripts/flops.sh, valgrind, ~5 min)
-#   FLOPS_OPTS=sleep=0       --opt of the flop count's runs (lanes=1: the double rows')
+#   FLOPS_OPTS=sleep=0,lanes=1   --opt of the flop count's runs (scripts/flops.sh: the double rows)
 #   ENSEMBLE="b c"           chaotic scenes that our bench also runs as ENSEMBLE_COPIES (32)
 #                            yaw-perturbed copies after the timed rounds (scripts/bench_ensemble.sh;
 #                            once per engine of ours, lanes=1 with --opt lanes=1):

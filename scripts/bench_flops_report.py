@@ -34,6 +34,11 @@ def section(meta, ours_groups, md_table, label):
                  "a V256 (AVX) op up to 8, masks included. Flops per body-step = F64 + F32 + "
                  "4 V128 + 8 V256 = %.0f, an upper bound." % (
                      ", ".join("%s %s" % (k, v) for k, v in kinds), flops))
+    if "lanes=1" in (meta.get("flops_opts") or ""):
+        L.append("The count is of the double rows (`lanes=1`): the float lanes solve the same rows, "
+                 "so it is the solver's work, and the GFLOP/s below are that work per second at "
+                 "each run's speed; counted in the lanes themselves, lackey would add their "
+                 "padding lanes, selects and conversions.")
     L.append("Peak: %s = %.1f GFLOP/s in double; in float %.1f GFLOP/s, assuming %d float "
              "operations per cycle for each double one (an SSE or AVX register holds twice as "
              "many floats)." % (meta.get("peak_basis", "?").replace("_", " "), peak, peak_f,

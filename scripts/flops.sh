@@ -14,7 +14,10 @@
 # window, the options, peak_gflops (cores x MHz x DP flops/cycle from the CPU flags: 32 with
 # AVX-512, 16 with AVX2+FMA, 4 else) and peak_gflops_float (twice that: SSE and AVX do twice as
 # many float as double operations per instruction).
-#   FLOPS_OPTS=sleep=0   bench_ragdoll --opt (e.g. sleep=0,lanes=1 for the double rows)
+#   FLOPS_OPTS=sleep=0,lanes=1   bench_ragdoll --opt. The double rows by default: they are the
+#                        float lanes' rows one at a time, so their count is the solver's work; in
+#                        the lanes lackey would also count the padding lanes, selects and
+#                        conversions (lanes=0: an upper bound ~2.7 times as large)
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
 N0="${FLOPS_N0:-1000}"
@@ -23,7 +26,7 @@ URDF="${URDF:-$ROOT/../shared/peers/ragdoll15.urdf}"
 BUILD="$WS/flops"
 build_bench_ragdoll "$BUILD" \
   "-DCMAKE_CXX_FLAGS=-O2 -mfpmath=387 -fno-tree-vectorize -fno-tree-slp-vectorize -DEIGEN_DONT_VECTORIZE"
-OPTS="${FLOPS_OPTS-sleep=0}"
+OPTS="${FLOPS_OPTS-sleep=0,lanes=1}"
 # counts STEPS: "F64 F32 V128 V256", lackey's arithmetic ops of each type over STEPS steps
 counts() {
   valgrind --tool=lackey --detailed-counts=yes "$BUILD/bench_ragdoll" a --steps "$1" --no-metrics \

@@ -111,6 +111,11 @@ def test_flops_section(tmp_path):
     # scene b sleeping off only (the sleeping-on runs are left out)
     rows = [l for l in text.splitlines() if l.startswith("| b | 1000 |")]
     assert rows == ["| b | 1000 | 528000 | 0.53 | 0.53 % | 0.26 % |"]
+    assert "The count is of the double rows" not in text  # no flops_opts: not said
+    text = make_report(tmp_path, RAW.replace("# meta own_threads=2",
+                                             "# meta own_threads=2\n# meta flops_opts=sleep=0,lanes=1"))
+    assert "options `sleep=0,lanes=1`" in text
+    assert "The count is of the double rows (`lanes=1`): the float lanes solve the same rows" in text
 
 
 # Ours with every row in double (lanes=1) beside the default engine: scene b 2000 / 2400 steps/s
