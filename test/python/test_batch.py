@@ -109,6 +109,9 @@ def test_lanes_widths_give_the_same_rows(short):
     four = dict(short, lanes=4)
     rows = runner.run_chunk(wide, [0, 1])
     assert [repr(r) for r in rows] == [repr(r) for r in runner.run_chunk(four, [0, 1])]
+    # a scenario without lanes runs the solver's default, the float lanes
+    assert short["lanes"] is None
+    assert [repr(r) for r in rows] == [repr(r) for r in runner.run_chunk(short, [0, 1])]
     assert all(r["head_peak_g"] > 0 for r in rows)
     # the lanes reach the runs: double rows round otherwise
     double = runner.run_chunk(dict(short, lanes=1), [0, 1])

@@ -120,7 +120,7 @@ def run_one(scenario, index):
         friction=p["friction"], restitution=p["restitution"],
         contact_hertz=p["contact_hertz"], dt=scenario["dt"],
         steps=int(round(scenario["duration"] / scenario["dt"])), record=_record_def(scenario),
-        lanes=scenario["lanes"])
+        **({} if scenario["lanes"] is None else {"lanes": scenario["lanes"]}))
     row = {"index": index}
     row.update(p)
     pos = rec.root_position

@@ -161,8 +161,9 @@ def validate(raw, base="."):
     out["dt"] = _require_number("dt", top.get("dt", 0.001), "a number of seconds")
     if not 1e-5 <= out["dt"] <= 0.1:
         _fail("dt", "must be in [1e-05, 0.1] s, got %s" % _show(out["dt"]))
-    lanes = top.get("lanes", 0)
-    if not isinstance(lanes, int) or isinstance(lanes, bool) or lanes not in (0, 1, 4, 8):
+    lanes = top.get("lanes")  # None: the solver's default (SolverSettings::lanes)
+    if lanes is not None and (not isinstance(lanes, int) or isinstance(lanes, bool)
+                              or lanes not in (0, 1, 4, 8)):
         _fail("lanes", "expected 0 (float lanes, the widest), 1 (double rows), 4 or 8, got %s"
               % _show(lanes))
     out["lanes"] = lanes
