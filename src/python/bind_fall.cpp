@@ -12,6 +12,7 @@
 #include "py_scene.hpp"
 #include "ragdoll_sim/fall_record.hpp"
 #include "ragdoll_sim/fall_run.hpp"
+#include "ragdoll_sim/world.hpp"
 
 namespace py = pybind11;
 

@@ -109,6 +109,8 @@ def run_one(scenario, index):
     """The row dict of run `index` (keys = columns(scenario), in order)."""
     p = parameters(scenario, index)
     size = p["push_size"]
+    # a scenario without lanes takes run_fall's default, the solver's
+    lanes = {} if scenario["lanes"] is None else {"lanes": scenario["lanes"]}
     rec = _core().run_fall(
         model(scenario["model"]), world(scenario["world"]),
         position=(p["spawn_x"], p["spawn_y"], p["spawn_z"]),
@@ -120,7 +122,7 @@ def run_one(scenario, index):
         friction=p["friction"], restitution=p["restitution"],
         contact_hertz=p["contact_hertz"], dt=scenario["dt"],
         steps=int(round(scenario["duration"] / scenario["dt"])), record=_record_def(scenario),
-        **({} if scenario["lanes"] is None else {"lanes": scenario["lanes"]}))
+        **lanes)
     row = {"index": index}
     row.update(p)
     pos = rec.root_position
