@@ -247,6 +247,10 @@ void ContactSolver::syncImpulses(int begin, int end) {
 }
 
 namespace {
+// m: far above the rounding of a separation (1e-15 m for lever arms of metres), far below the
+// slop.
+constexpr double kSeparationMargin = 1e-9;
+
 // No impulse carried on any point or on rolling: warm starting and the rows of an idle manifold
 // (idleIn) would only add zeros.
 bool noImpulse(const ContactConstraint& cc) {
@@ -410,10 +414,20 @@ bool ContactSolver::project(const StepContext& ctx, int begin, int end, int swee
   auto& bodies = *ctx.bodies;
   const SolverSettings& settings = *ctx.settings;
   bool moved = false;
+  // The first sweep starts at the positions of the last relax sweep's separations in the lanes:
+  // a constraint whose bodies no projection has moved yet, with every point apart by more than
+  // -linear_slop there, would compute C = 0 below and is passed over. The margin covers the
+  // last bits by which those separations (the normal turned into each body's frame) differ
+  // from the ones below (the lever arms turned into the world).
+  const ContactBatch* batch = sweep == 1 ? batchOf(ctx, begin, end) : nullptr;
+  const double clear = -settings.linear_slop + kSeparationMargin;
   for (int k = begin; k < end; ++k) {
     ContactConstraint& cc = constraints_[k];
     SolverBody &A = bodies[cc.a], &B = bodies[cc.b];
     if (cc.compliant || unchangedSince(sweep, cc.moved_sweep, A, B)) continue;
+    if (batch && A.moved_sweep != sweep && B.moved_sweep != sweep &&
+        batch->apartAtLastUpdate(k, clear))
+      continue;
     for (int i = 0; i < cc.count; ++i) {
       const ContactConstraintPoint& p = cc.points[i];
       const Vec3 rA = A.dq * p.rA, rB = B.dq * p.rB;

@@ -46,6 +46,8 @@ void ContactBatch::build(std::vector<ContactConstraint>& cs, const StepContext& 
   begin_ = begin;
   end_ = end;
   substep_ = 0;
+  separations_settled_ = false;
+  lane_of_slot_.assign(end - begin, -1);
   scalar_.clear();
   wide_.clear();
   lane_of_.clear();
@@ -92,6 +94,7 @@ void ContactBatch::build(std::vector<ContactConstraint>& cs, const StepContext& 
       const int lane_slot = (block_count_ - 1) * kRowBlock + j % kRowBlock;
       wide_.push_back(slot);
       lane_of_.push_back(lane_slot);
+      lane_of_slot_[slot - begin] = lane_slot;
       fillLane(cs[slot], bodies, lane_slot);
     }
   }
@@ -164,6 +167,17 @@ void ContactBatch::fillLane(const ContactConstraint& cc, const std::vector<Solve
   }
 }
 
+bool ContactBatch::apartAtLastUpdate(int slot, double separation) const {
+  if (!separations_settled_) return false;
+  const int lane_slot = lane_of_slot_[slot - begin_];
+  if (lane_slot < 0) return false;
+  const ContactGeometryBlock& g = geometry_[lane_slot / kRowBlock];
+  const int l = lane_slot % kRowBlock;
+  for (int p = 0; p < g.count[l]; ++p)
+    if (!(g.separation[p][l] >= separation)) return false;
+  return true;
+}
+
 void ContactBatch::updateSeparations(const StepContext& ctx) {
   updateBlockSeparations(geometry_.data(), blocks_.data(), block_count_,
                          laneBodies(ctx.bodies->data()));
@@ -179,6 +193,9 @@ void ContactBatch::warmStart(const StepContext& ctx, bool positions_moved) {
 }
 
 void ContactBatch::solve(const StepContext& ctx, bool use_bias, bool positions_moved) {
+  // The positions advance after the biased sweep; a relax sweep's update is at the new ones.
+  if (use_bias) separations_settled_ = false;
+  else if (positions_moved) separations_settled_ = true;
   if (block_count_ == 0) return;
   if (positions_moved) updateSeparations(ctx);
   const SolverSettings& s = *ctx.settings;

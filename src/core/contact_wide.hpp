@@ -44,6 +44,11 @@ class ContactBatch {
   // The lanes' impulses (normal, tangents, largest normal increment) into the double
   // constraints, which stay the source for everything after the substeps.
   void syncImpulses(std::vector<ContactConstraint>& cs) const;
+  // Whether every point of the constraint in slot `slot` (in the blocks) lies at least
+  // `separation` apart at the separations of the last update, when that update came after the
+  // last position change: a relax sweep's, and no biased sweep (after which the positions
+  // advance) since. False for a slot the blocks do not hold.
+  bool apartAtLastUpdate(int slot, double separation) const;
 
  private:
   void updateSeparations(const StepContext& ctx);
@@ -54,9 +59,11 @@ class ContactBatch {
 
   int begin_ = 0, end_ = -1;
   int substep_ = 0;  // the warm starts since build: the substep, from 1
+  bool separations_settled_ = false;  // the last update follows the last position change
   std::vector<int> scalar_;
   std::vector<int> wide_;     // the slots in blocks
   std::vector<int> lane_of_;  // of wide_[i]: block * kRowBlock + lane
+  std::vector<int> lane_of_slot_;  // of slot begin_ + i: block * kRowBlock + lane, -1: scalar
   std::vector<ContactBlock> blocks_;  // [0, block_count_) this step's
   std::vector<ContactGeometryBlock> geometry_;  // of blocks_[k]
   int block_count_ = 0;

@@ -207,5 +207,89 @@ TEST(ContactBatches, TheLanesAgreeWithTheDoubleRows) {
   }
 }
 
+// Boxes 1 and 2 stacked on the ground (body 0) as contacts {stack, ground} or {ground}: the
+// stack's points `stack_depth` deep, box 1's ground points apart by 0.1 mm.
+struct Stack {
+  std::vector<BodyMotion> motions{3};
+  std::vector<SolverBody> bodies{3};
+  std::vector<Contact> contacts;
+};
+Stack makeStack(double stack_depth) {
+  Stack p;
+  for (int b = 1; b <= 2; ++b) {
+    p.motions[b].awake = true;
+    p.motions[b].x = Vec3(0.0, 0.0, kHalf * (2 * b - 1));
+    p.bodies[b].inv_mass = 1.0;
+    p.bodies[b].inv_inertia = 150.0 * Mat3::Identity();
+  }
+  const auto square = [&](int a, int b, double z, double separation) {
+    Contact c;
+    c.body_a = a;
+    c.body_b = b;
+    c.origin = p.motions[b].x;
+    c.manifold.normal = Vec3::UnitZ();
+    c.manifold.count = 4;
+    for (int k = 0; k < 4; ++k) {
+      c.manifold.points[k].point = Vec3(k & 1 ? kHalf : -kHalf, k & 2 ? kHalf : -kHalf, z);
+      c.manifold.points[k].separation = separation;
+    }
+    c.static_friction = c.kinetic_friction = 0.5;
+    return c;
+  };
+  if (stack_depth > 0.0) p.contacts.push_back(square(1, 2, -kHalf, -stack_depth));
+  p.contacts.push_back(square(0, 1, -kHalf, 0.0001));
+  return p;
+}
+
+// Box 1 after the first position sweep (relaxed: a relax sweep updated the separations after
+// the positions moved by `sink`), with the contacts in lanes or in double.
+SolverBody firstSweep(int lanes, double stack_depth, double sink, bool relaxed) {
+  Stack p = makeStack(stack_depth);
+  SolverSettings settings;
+  StepContext ctx;
+  ctx.dt = ctx.h = 1e-3;
+  ctx.inv_h = 1.0 / ctx.h;
+  ctx.substeps = ctx.relax = 1;
+  ctx.lanes = lanes;
+  ctx.contact_softness = Softness::make(30.0, 10.0, ctx.h);
+  ctx.settings = &settings;
+  ctx.bodies = &p.bodies;
+  ctx.motions = &p.motions;
+  ContactSolver solver;
+  const int n = int(solver.selectActive(p.contacts, p.motions).size());
+  solver.resize(1);
+  solver.prepare(p.contacts, ctx, 0, n);
+  solver.warmStart(ctx, 0, n, true);
+  solver.solve(ctx, true, 0, n, false);
+  p.bodies[1].dp = Vec3(0.0, 0.0, -sink);  // the positions advance
+  p.bodies[2].dp = Vec3(0.0, 0.0, -sink);
+  if (relaxed) solver.solve(ctx, false, 0, n, true);
+  solver.project(ctx, 0, n, 1);
+  return p.bodies[1];
+}
+
+// The first position sweep passes over the wide constraints whose points the lanes' last
+// relax sweep found apart beyond -linear_slop (ContactBatch::apartAtLastUpdate). It must move
+// the bodies exactly as the double rows' sweep, which looks at every point: box 1's ground
+// contact, apart at the last update, is pushed into the ground by the stack's projection
+// before the sweep reaches it; and alone, it sank after the last update (no relax sweep since).
+TEST(ContactBatches, TheFirstPositionSweepMovesAsTheDoubleRows) {
+  struct Case {
+    double stack_depth, sink;
+    bool relaxed, moves;  // moves: the ground contact moves box 1
+  };
+  for (const Case& c : {Case{0.006, 0.0, true, true}, Case{0.0, 0.002, false, true},
+                        Case{0.0, 0.0, true, false}}) {
+    const SolverBody d = firstSweep(1, c.stack_depth, c.sink, c.relaxed);
+    EXPECT_EQ(d.dp.z() != -c.sink, c.moves) << c.stack_depth;
+    for (int lanes : {4, 8}) {
+      const SolverBody f = firstSweep(lanes, c.stack_depth, c.sink, c.relaxed);
+      for (int i = 0; i < 3; ++i) EXPECT_EQ(d.dp[i], f.dp[i]) << c.stack_depth << " " << lanes;
+      for (int i = 0; i < 4; ++i)
+        EXPECT_EQ(d.dq.coeffs()[i], f.dq.coeffs()[i]) << c.stack_depth << " " << lanes;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace ragdoll_sim
