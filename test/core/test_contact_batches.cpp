@@ -26,19 +26,26 @@ struct Pile {
   std::vector<Contact> contacts;
 };
 
-Contact groundContact(const Pile& p, int b) {
+// Box b's four bottom corners (kHalf below its centre, `origin`) against body a, along +z.
+Contact squareContact(int a, int b, const Vec3& origin, double separation) {
   Contact c;
-  c.body_a = 0;
+  c.body_a = a;
   c.body_b = b;
-  c.origin = p.motions[b].x;
+  c.origin = origin;
   c.manifold.normal = Vec3::UnitZ();
   c.manifold.count = 4;
   for (int k = 0; k < 4; ++k) {
     c.manifold.points[k].point = Vec3(k & 1 ? kHalf : -kHalf, k & 2 ? kHalf : -kHalf, -kHalf);
-    c.manifold.points[k].separation = -0.001 * (1 + (b + k) % 3);
+    c.manifold.points[k].separation = separation;
   }
   c.static_friction = 0.6;
   c.kinetic_friction = 0.5;
+  return c;
+}
+
+Contact groundContact(const Pile& p, int b) {
+  Contact c = squareContact(0, b, p.motions[b].x, 0.0);
+  for (int k = 0; k < 4; ++k) c.manifold.points[k].separation = -0.001 * (1 + (b + k) % 3);
   // last step's impulses, so that the warm start and the friction rows carry something
   for (int k = 0; k < 4; ++k) {
     c.normal_impulse[k] = 0.002 * (1 + k);
@@ -222,22 +229,8 @@ Stack makeStack(double stack_depth) {
     p.bodies[b].inv_mass = 1.0;
     p.bodies[b].inv_inertia = 150.0 * Mat3::Identity();
   }
-  const auto square = [&](int a, int b, double z, double separation) {
-    Contact c;
-    c.body_a = a;
-    c.body_b = b;
-    c.origin = p.motions[b].x;
-    c.manifold.normal = Vec3::UnitZ();
-    c.manifold.count = 4;
-    for (int k = 0; k < 4; ++k) {
-      c.manifold.points[k].point = Vec3(k & 1 ? kHalf : -kHalf, k & 2 ? kHalf : -kHalf, z);
-      c.manifold.points[k].separation = separation;
-    }
-    c.static_friction = c.kinetic_friction = 0.5;
-    return c;
-  };
-  if (stack_depth > 0.0) p.contacts.push_back(square(1, 2, -kHalf, -stack_depth));
-  p.contacts.push_back(square(0, 1, -kHalf, 0.0001));
+  if (stack_depth > 0.0) p.contacts.push_back(squareContact(1, 2, p.motions[2].x, -stack_depth));
+  p.contacts.push_back(squareContact(0, 1, p.motions[1].x, 0.0001));
   return p;
 }
 
