@@ -12,6 +12,7 @@
 //      (every step a full one), 5 000 steps: f on the plane alone; w among 10 000 static boxes,
 //      each its own body; v the same boxes as shapes of one static body (static_world.hpp)
 //   Every line also gives the cost per step in the first and the last second (p, s: asleep).
+// `bench_ragdoll sync` prints what two threads' handoffs cost instead (sync_probe.hpp).
 // dt = 1 ms, gravity -9.81 z, ground z = 0, friction 0.8. Only World::step is timed. The
 // metrics are computed here from link poses and the URDF joint data alone (anchor error,
 // ground penetration of the analytic shapes, joint angles vs limits, rest state at 3 s).
@@ -28,6 +29,7 @@
 #include "ragdoll_sim/urdf_loader.hpp"
 #include "scaling_grid.hpp"
 #include "static_world.hpp"
+#include "sync_probe.hpp"
 #include "world_tuning.hpp"
 
 using namespace ragdoll_sim;
@@ -193,6 +195,11 @@ struct Metrics {
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc == 2 && std::strcmp(argv[1], "sync") == 0) {
+    const SyncCost c = measureSync();
+    std::printf("region_us=%.3f barrier_us=%.3f\n", c.region_us, c.barrier_us);
+    return 0;
+  }
   char scenario = 'a';
   int steps = -1, n_ragdolls = -1;
   WorldDef wd;

@@ -186,6 +186,8 @@ rotated() {
 t0=$SECONDS
 for r in $(seq "$ROUNDS"); do
   echo "bench: round $r of $ROUNDS ($((SECONDS - t0)) s so far)"
+  # what two threads' handoffs cost in this round (bench_ragdoll sync, bench/sync_probe.hpp)
+  echo "# meta sync_round_$r=$(cd "$BUILD" && ./bench_ragdoll sync)" >>"$RAW_TMP"
   mapfile -t order < <(rotated "$r")
   for s in $SCENES; do
     for e in "${order[@]}"; do

@@ -1,8 +1,8 @@
 """The benchmark's scripts on made-up inputs: bench_report.py's ratio table (sleeping off and on,
-the faster of Bullet and ODE, ours with lanes=1 beside the default float lanes), the issue's bars
-and the flop section; bench_compare_report.py's table; bench_compare.sh with two fake binaries
-(alternation, options, thread counts); bench.sh's engines of ours against the report's. No
-timing, no engine: each test runs in well under a second.
+the faster of Bullet and ODE, ours with lanes=1 beside the default float lanes), the issue's bars,
+the flop section and the two-thread handoffs by round; bench_compare_report.py's table;
+bench_compare.sh with two fake binaries (alternation, options, thread counts); bench.sh's engines
+of ours against the report's. No timing, no engine: each test runs in well under a second.
 """
 import os
 import re
@@ -102,6 +102,15 @@ def test_bars(tmp_path):
     assert ("- one thread, cost per body-step for N = 4, 16, 64: mean 1.133 µs, largest "
             "deviation +24 % (N = 16); bar ±30 %: met") in text
     assert "- 2 threads ÷ one thread, N = 16: 1.80 (1.80–1.80); bar ≥ 1.7x: met" in text
+
+
+def test_sync_by_round(tmp_path):
+    raw = ("# meta sync_round_2=region_us=1.240 barrier_us=0.300\n"
+           "# meta sync_round_1=region_us=0.435 barrier_us=0.024\n" + RAW)
+    text = make_report(tmp_path, raw)
+    assert ("(an empty parallel region / a TeamBarrier wait, µs; `bench_ragdoll sync`): "
+            "round 1 0.435 / 0.024, round 2 1.240 / 0.300.") in text
+    assert "TeamBarrier" not in make_report(tmp_path)  # an older raw file has none
 
 
 def test_flops_section(tmp_path):
