@@ -203,7 +203,7 @@ int main(int argc, char** argv) {
   char scenario = 'a';
   int steps = -1, n_ragdolls = -1;
   WorldDef wd;
-  WorldTuning tuning;  // --opt cache_distance (internal: world_tuning.hpp)
+  WorldTuning tuning;  // --opt cache_distance, range_reserve (internal: world_tuning.hpp)
   bool metrics = true;
   double rolling = 0.0;
   double yaw = 0.0;  // --opt yaw=R: every root turned R rad about z (round-off variants of a scene)
@@ -263,6 +263,7 @@ int main(int argc, char** argv) {
         else if (k == "angular_slop") wd.solver.angular_slop = v;
         else if (k == "speculative") wd.solver.speculative_distance = v;
         else if (k == "cache_distance") tuning.manifold_cache_distance = v;
+        else if (k == "range_reserve") tuning.range_reserve = int(v);
         else if (k == "rolling") rolling = v;
         else if (k == "yaw") yaw = v;
         else if (k == "trace") trace = int(v);

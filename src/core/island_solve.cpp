@@ -1,6 +1,7 @@
 // The island solve: solver bodies, the substep sequence of one island (IslandPass), and the
 // islands spread over the threads. Data and the sequence in words: island_solve.hpp.
 #include <algorithm>
+#include <chrono>
 #include <utility>
 
 #include "parallel_for.hpp"
@@ -9,13 +10,13 @@
 namespace ragdoll_sim {
 
 // (island_solve.hpp)
-bool extendsRange(IslandRange& c, const IslandRange& r, int k, int left) {
+bool extendsRange(IslandRange& c, const IslandRange& r, int k, int left, int fill) {
   const bool follows = k == c.island_end && r.body_begin == c.body_end &&
                        r.joint_begin == c.joint_end && r.contact_begin == c.contact_end &&
                        r.resting == c.resting;
   const int work = c.work() + r.work();
   if (!follows || work > kLaneRangeWork ||
-      (work > kLaneRangeFill && c.island_end - c.island_begin >= left))
+      (work > fill && c.island_end - c.island_begin >= left))
     return false;
   c.body_end = r.body_end;
   c.joint_end = r.joint_end;
@@ -25,6 +26,16 @@ bool extendsRange(IslandRange& c, const IslandRange& r, int k, int left) {
 }
 
 namespace {
+// The reserve of islands to steal costs the lanes' fill: ranges end at kLaneRangeFill instead of
+// kLaneRangeWork, and the last islands of a run go alone. It is kept for kReserveSteps once the
+// first thread to end its run has waited, on average over about kImbalanceSteps steps without
+// the reserve, more than 1 / kImbalance of the parallel region (a thread slowed by its core or
+// by the other's caches); otherwise the threads' runs, cut by work, end together, and the
+// reserve would only cost.
+constexpr int kReserveSteps = 64;
+constexpr int kImbalance = 12;
+constexpr int kImbalanceSteps = 8;
+
 // This thread's number and the team's size in the enclosing parallel region ({0, 1} outside).
 std::pair<int, int> teamSlot() {
 #ifdef _OPENMP
@@ -408,6 +419,10 @@ void World::Impl::solveIslands(const StepContexts& ctx) {
   // rows fill the lanes together; an island's arithmetic does not depend on the islands that
   // share its range (docs/physics.md, the wide solver), only the lanes' fill does.
   const bool chunks = ctx.full.lanes != 1;
+  const int reserve_mode = tuning.range_reserve;
+  const bool reserve = reserve_mode > 0 || (reserve_mode < 0 && reserve_steps > 0);
+  const int fill = reserve ? kLaneRangeFill : kLaneRangeWork;
+  if (reserve_steps > 0) --reserve_steps;
   run_queue.reset(island_runs);
   const auto solveRun = [&](int t) {
     // Alone (no team, or a team of one) nobody steals: the ranges need not shrink.
@@ -422,7 +437,7 @@ void World::Impl::solveIslands(const StepContexts& ctx) {
     for (int k; (k = run_queue.take(t)) >= 0;) {
       const IslandRange& r = island_ranges[k];
       if (r.split || r.attached) continue;
-      if (chunks && open && extendsRange(chunk, r, k, left(k))) continue;
+      if (chunks && open && extendsRange(chunk, r, k, left(k), fill)) continue;
       flush();
       chunk = r;
       chunk.island_begin = k;
@@ -436,8 +451,26 @@ void World::Impl::solveIslands(const StepContexts& ctx) {
   const bool team = splitOverThreads(int(island_bodies.size()), threadCount());
   if (run_work > 0 && count > 1 && team) {
 #ifdef _OPENMP
+    using Clock = std::chrono::steady_clock;
+    run_ends.resize(threadCount());
+    const Clock::time_point start = Clock::now();
 #pragma omp parallel num_threads(threadCount())
-    solveRun(omp_get_thread_num());
+    {
+      solveRun(omp_get_thread_num());
+      run_ends[omp_get_thread_num()].at = Clock::now();
+    }
+    const Clock::time_point end = Clock::now();
+    const auto first = std::min_element(
+        run_ends.begin(), run_ends.end(),
+        [](const RunEnd& a, const RunEnd& b) { return a.at < b.at; });
+    if (reserve_mode < 0 && chunks && !reserve && end > start) {
+      const double waited = std::chrono::duration<double>(end - first->at) / (end - start);
+      idle_average += (waited - idle_average) / kImbalanceSteps;
+      if (kImbalance * idle_average > 1.0) {
+        reserve_steps = kReserveSteps;
+        idle_average = 0.0;
+      }
+    }
 #else
     solveRun(0);  // threadCount() is 1
 #endif

@@ -13,6 +13,7 @@
 // rotation, q += h/2 (0,w) q, renormalised, with the gyroscopic update in integratePositions).
 #pragma once
 
+#include <chrono>
 #include <vector>
 
 #include "body.hpp"
@@ -28,17 +29,19 @@ namespace ragdoll_sim {
 // With lanes, a thread solves consecutive whole islands of its run as one range (solveIslands):
 // the most work (IslandRange::work) of such a range, enough for full lanes.
 constexpr int kLaneRangeWork = 512;
-// The work a range may take before it must leave islands to steal: a lone ragdoll's joints fill
-// about half the lanes of each colour's blocks, three fill them.
+// The work a range may take before it must leave islands to steal, while the threads keep a
+// reserve (SolveData::reserve_steps): a lone ragdoll's joints fill about half the lanes of each
+// colour's blocks, three fill them.
 constexpr int kLaneRangeFill = 160;
 
 // Appends island r (index k in island_ranges) to range c when it follows c directly in the body,
 // joint and contact arrays, takes the same substeps, keeps c within kLaneRangeWork and either
-// keeps it within kLaneRangeFill or leaves at least as many islands untaken as c then holds
-// (left: the islands of the run after r); false (c unchanged) otherwise. A thread takes a
-// range's islands before it solves any of them, so the last rule shrinks the ranges towards the
-// end of its run, down to kLaneRangeFill, and leaves the other threads islands to steal.
-bool extendsRange(IslandRange& c, const IslandRange& r, int k, int left);
+// keeps it within fill or leaves at least as many islands untaken as c then holds (left: the
+// islands of the run after r); false (c unchanged) otherwise. A thread takes a range's islands
+// before it solves any of them, so the last rule shrinks the ranges towards the end of its run,
+// down to fill, and leaves the other threads islands to steal.
+bool extendsRange(IslandRange& c, const IslandRange& r, int k, int left,
+                  int fill = kLaneRangeFill);
 
 // The step's two substep sequences: the full one, and the rest substeps of islands whose bodies
 // have all been slow for SleepDef::rest_time (full again when rest_mode is off).
@@ -66,6 +69,17 @@ struct SolveData {
   JointTree joint_tree;  // exact anchors (SolverSettings::exact_joints)
   PointLanes point_lanes;  // the joint anchors in float lanes (SolverSettings::lanes != 1)
   TeamBarrier team_barrier;  // the two threads of a split island
+  // Steps left on which the threads' ranges of islands keep a reserve to steal (kLaneRangeFill;
+  // else they grow to kLaneRangeWork), set once the threads end their runs far apart: the
+  // running average of the share of the parallel region that the first to end waited
+  // (solveIslands).
+  int reserve_steps = 0;
+  double idle_average = 0.0;
+  // When each thread ended its run of islands in the last step, a cache line each.
+  struct alignas(64) RunEnd {
+    std::chrono::steady_clock::time_point at;
+  };
+  std::vector<RunEnd> run_ends;
   // Whether each thread of a split island moved a body in a position sweep, by the sweep's
   // parity (IslandPass::projectPositions).
   char position_moved[2][2] = {};

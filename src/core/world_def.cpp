@@ -65,7 +65,8 @@ std::string worldDefError(const WorldDef& d) {
 }
 
 std::string worldTuningError(const WorldTuning& t) {
-  return nonNegativeError("manifold_cache_distance", t.manifold_cache_distance);
+  return firstError({nonNegativeError("manifold_cache_distance", t.manifold_cache_distance),
+                     intRangeError("range_reserve", t.range_reserve, -1, 1)});
 }
 
 }  // namespace ragdoll_sim

@@ -26,6 +26,10 @@ struct WorldTuning {
   bool lane_angles_kept = true;
   // m, manifold_cache.hpp; 0 (or a value not below speculative_distance) turns the cache off.
   double manifold_cache_distance = kManifoldCacheDistance;
+  // The threads' ranges of islands in the lanes keep a reserve to steal: -1 once the threads
+  // end their runs far apart (SolveData::reserve_steps), 0 never, 1 always. The same bits
+  // whichever.
+  int range_reserve = -1;
 };
 
 // "" or what is wrong with the first field ("manifold_cache_distance must be ...").

@@ -219,6 +219,23 @@ TEST(JointLanes, HingeChainSameBitsAtFourAndEightLanesAndAnyThreads) {
   std::printf("[ chain    ] hash %016llx (avx2 %d)\n", (unsigned long long)h4, int(cpuHasAvx2()));
 }
 
+// The threads' ranges of islands keep a reserve to steal always, never, or after an uneven step
+// (WorldTuning::range_reserve): eight chains (eight islands, 56 bodies: solved in parallel) on
+// two threads give the bits of one thread whichever.
+TEST(JointLanes, RangeReserveChangesNoBit) {
+  const auto run = [](int threads, int reserve) {
+    World w(laneDef(8, threads));
+    WorldTuning tuning = WorldInternals::tuning(w);
+    tuning.range_reserve = reserve;
+    WorldInternals::setTuning(w, tuning);
+    for (int c = 0; c < 8; ++c) addHingeChain(w, Vec3(2.0 * c, 0, 4), 7);
+    for (int i = 0; i < 200; ++i) w.step(1.0 / 240.0);
+    return hashStates(w);
+  };
+  const uint64_t one = run(1, -1);
+  for (const int reserve : {-1, 0, 1}) EXPECT_EQ(one, run(2, reserve)) << "reserve " << reserve;
+}
+
 // A beam along its hinge's axis, spinning about it on a static post: the axis rows alone hold
 // its weight's torque m g L about the horizontal, and in the lanes they keep the axis as
 // straight as the scalar rows do; the torque reported comes from the lanes' impulses.

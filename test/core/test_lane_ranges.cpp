@@ -1,6 +1,6 @@
 // The ranges of islands a thread solves together with lanes (extendsRange, island_solve.hpp):
-// consecutive islands up to kLaneRangeWork, and, when other threads may steal, beyond
-// kLaneRangeFill never more islands than the run still leaves after them.
+// consecutive islands up to kLaneRangeWork, and, when other threads may steal and the threads
+// keep a reserve, beyond kLaneRangeFill never more islands than the run still leaves after them.
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -21,14 +21,15 @@ std::vector<IslandRange> islands(int count, int work) {
 }
 
 // The sizes of the ranges that solveIslands' loop cuts a run [0, n) into; shared: other
-// threads may steal from its back.
-std::vector<int> rangeSizes(const std::vector<IslandRange>& rs, bool shared) {
+// threads may steal from its back; fill: kLaneRangeFill with the reserve, else kLaneRangeWork.
+std::vector<int> rangeSizes(const std::vector<IslandRange>& rs, bool shared,
+                            int fill = kLaneRangeFill) {
   std::vector<int> sizes;
   const int n = int(rs.size());
   IslandRange c;
   bool open = false;
   for (int k = 0; k < n; ++k) {
-    if (open && extendsRange(c, rs[k], k, shared ? n - k - 1 : n)) continue;
+    if (open && extendsRange(c, rs[k], k, shared ? n - k - 1 : n, fill)) continue;
     if (open) sizes.push_back(c.island_end - c.island_begin);
     c = rs[k];
     c.island_begin = k;
@@ -51,6 +52,12 @@ TEST(LaneRanges, SharedTheRangesShrinkTowardsTheEndOfTheRun) {
   EXPECT_EQ(rangeSizes(islands(40, per), true), (std::vector<int>{8, 8, 8, 8, 4, 2, 2}));
   const int half_fill = kLaneRangeFill / 2;  // a ragdoll of ragdoll15 with its contacts
   EXPECT_EQ(rangeSizes(islands(10, half_fill), true), (std::vector<int>{5, 2, 2, 1}));
+}
+
+// Without the reserve (a step after runs that ended together) they fill up to the work.
+TEST(LaneRanges, SharedWithoutTheReserveTheRangesFillUpToTheWork) {
+  const int half_fill = kLaneRangeFill / 2;
+  EXPECT_EQ(rangeSizes(islands(10, half_fill), true, kLaneRangeWork), (std::vector<int>{6, 4}));
 }
 
 // ... but not below kLaneRangeFill: one island alone would fill the lanes by half.

@@ -165,3 +165,15 @@ TEST(WorldTuningRanges, CacheDistanceIsCheckedAndNamed) {
   WorldInternals::setTuning(w, t);
   EXPECT_EQ(WorldInternals::tuning(w).manifold_cache_distance, 0.0);
 }
+
+TEST(WorldTuningRanges, RangeReserveIsCheckedAndNamed) {
+  WorldTuning t;
+  for (const int ok : {-1, 0, 1}) {
+    t.range_reserve = ok;
+    EXPECT_EQ(worldTuningError(t), "") << ok;
+  }
+  for (const int bad : {-2, 2}) {
+    t.range_reserve = bad;
+    EXPECT_NE(worldTuningError(t).find("range_reserve"), std::string::npos) << bad;
+  }
+}
