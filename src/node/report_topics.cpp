@@ -58,8 +58,10 @@ std::string injurySummary(const InjuryReport& r) {
 
 ReportTopics::ReportTopics(NodeContext& ctx) : ctx_(ctx) {
   ros::NodeHandle& pnh = ctx_.pnh;
-  contacts_pub_ = pnh.advertise<ragdoll_sim::ContactsState>("contacts", 10);
-  link_loads_pub_ = pnh.advertise<ragdoll_sim::LinkLoads>("link_loads", 10);
+  // A ~step call publishes a burst, one message per rate period of the steps it runs, faster
+  // than a loaded machine's transport sends them: the queues hold a second of them at 100 Hz.
+  contacts_pub_ = pnh.advertise<ragdoll_sim::ContactsState>("contacts", 100);
+  link_loads_pub_ = pnh.advertise<ragdoll_sim::LinkLoads>("link_loads", 100);
   // Events: a fall can hit with many links in one step.
   impacts_pub_ = pnh.advertise<ragdoll_sim::Impact>("impacts", 100);
   injury_pub_ = pnh.advertise<ragdoll_sim::Injury>("injury", 20);
