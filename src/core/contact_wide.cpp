@@ -50,7 +50,6 @@ void ContactBatch::build(std::vector<ContactConstraint>& cs, const StepContext& 
   lane_of_slot_.assign(end - begin, -1);
   scalar_.clear();
   wide_.clear();
-  lane_of_.clear();
   block_count_ = 0;
   std::vector<int>& candidates = candidates_;
   candidates.clear();
@@ -93,7 +92,6 @@ void ContactBatch::build(std::vector<ContactConstraint>& cs, const StepContext& 
       if (j % kRowBlock == 0) newBlock(cs[slot].count, c);
       const int lane_slot = (block_count_ - 1) * kRowBlock + j % kRowBlock;
       wide_.push_back(slot);
-      lane_of_.push_back(lane_slot);
       lane_of_slot_[slot - begin] = lane_slot;
       fillLane(cs[slot], bodies, lane_slot);
     }
@@ -104,8 +102,9 @@ void ContactBatch::build(std::vector<ContactConstraint>& cs, const StepContext& 
   prepareBlockRows(geometry_.data(), blocks_.data(), block_count_, laneBodies(ctx.bodies->data()));
   for (size_t i = 0; i < wide_.size(); ++i) {  // for the position projection
     ContactConstraint& cc = cs[wide_[i]];
-    const ContactGeometryBlock& g = geometry_[lane_of_[i] / kRowBlock];
-    const int l = lane_of_[i] % kRowBlock;
+    const int lane_slot = lane_of_slot_[wide_[i] - begin_];
+    const ContactGeometryBlock& g = geometry_[lane_slot / kRowBlock];
+    const int l = lane_slot % kRowBlock;
     for (int p = 0; p < cc.count; ++p) cc.points[p].normal_row.mass = g.normal_mass[p][l];
   }
 }
@@ -227,8 +226,9 @@ void ContactBatch::solve(const StepContext& ctx, bool use_bias, bool positions_m
 void ContactBatch::syncImpulses(std::vector<ContactConstraint>& cs) const {
   for (size_t i = 0; i < wide_.size(); ++i) {
     ContactConstraint& cc = cs[wide_[i]];
-    const ContactBlock& b = blocks_[lane_of_[i] / kRowBlock];
-    const int l = lane_of_[i] % kRowBlock;
+    const int lane_slot = lane_of_slot_[wide_[i] - begin_];
+    const ContactBlock& b = blocks_[lane_slot / kRowBlock];
+    const int l = lane_slot % kRowBlock;
     for (int p = 0; p < cc.count; ++p) {
       const ContactPointLanes& q = b.point[p];
       cc.points[p].normal_impulse = q.impulse[0][l];

@@ -61,8 +61,7 @@ class ContactBatch {
   int substep_ = 0;  // the warm starts since build: the substep, from 1
   bool separations_settled_ = false;  // the last update follows the last position change
   std::vector<int> scalar_;
-  std::vector<int> wide_;     // the slots in blocks
-  std::vector<int> lane_of_;  // of wide_[i]: block * kRowBlock + lane
+  std::vector<int> wide_;  // the slots in blocks
   std::vector<int> lane_of_slot_;  // of slot begin_ + i: block * kRowBlock + lane, -1: scalar
   std::vector<ContactBlock> blocks_;  // [0, block_count_) this step's
   std::vector<ContactGeometryBlock> geometry_;  // of blocks_[k]

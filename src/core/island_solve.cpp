@@ -422,7 +422,7 @@ void World::Impl::solveIslands(const StepContexts& ctx) {
   const int reserve_mode = tuning.range_reserve;
   const bool reserve = reserve_mode > 0 || (reserve_mode < 0 && reserve_steps > 0);
   const int fill = reserve ? kLaneRangeFill : kLaneRangeWork;
-  if (reserve_steps > 0) --reserve_steps;
+  if (chunks && reserve_steps > 0) --reserve_steps;
   run_queue.reset(island_runs);
   const auto solveRun = [&](int t) {
     // Alone (no team, or a team of one) nobody steals: the ranges need not shrink.

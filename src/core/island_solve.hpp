@@ -40,8 +40,7 @@ constexpr int kLaneRangeFill = 160;
 // islands of the run after r); false (c unchanged) otherwise. A thread takes a range's islands
 // before it solves any of them, so the last rule shrinks the ranges towards the end of its run,
 // down to fill, and leaves the other threads islands to steal.
-bool extendsRange(IslandRange& c, const IslandRange& r, int k, int left,
-                  int fill = kLaneRangeFill);
+bool extendsRange(IslandRange& c, const IslandRange& r, int k, int left, int fill);
 
 // The step's two substep sequences: the full one, and the rest substeps of islands whose bodies
 // have all been slow for SleepDef::rest_time (full again when rest_mode is off).
