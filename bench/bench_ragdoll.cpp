@@ -203,7 +203,8 @@ int main(int argc, char** argv) {
   char scenario = 'a';
   int steps = -1, n_ragdolls = -1;
   WorldDef wd;
-  WorldTuning tuning;  // --opt cache_distance, range_reserve (internal: world_tuning.hpp)
+  // --opt cache_distance, range_reserve, lane_exact_angles (internal: world_tuning.hpp)
+  WorldTuning tuning;
   bool metrics = true;
   double rolling = 0.0;
   double yaw = 0.0;  // --opt yaw=R: every root turned R rad about z (round-off variants of a scene)
@@ -264,6 +265,7 @@ int main(int argc, char** argv) {
         else if (k == "speculative") wd.solver.speculative_distance = v;
         else if (k == "cache_distance") tuning.manifold_cache_distance = v;
         else if (k == "range_reserve") tuning.range_reserve = int(v);
+        else if (k == "lane_exact_angles") tuning.lane_exact_angles = v != 0.0;
         else if (k == "rolling") rolling = v;
         else if (k == "yaw") yaw = v;
         else if (k == "trace") trace = int(v);

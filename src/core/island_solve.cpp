@@ -57,6 +57,7 @@ StepContexts World::Impl::makeContexts(double dt) {
     c.relax = std::max(0, relax);
     c.track_impulses = track_contacts;
     c.lanes = lane_width;
+    c.angles_in_lanes = lane_width != 1 && tuning.lane_exact_angles;
     c.odd_step = steps % 2 == 1;
     c.settings = &def.solver;
     c.bodies = &solver;
@@ -133,6 +134,7 @@ class World::Impl::IslandPass {
   void integrateAndWarmStart(int sub, bool moved) {
     parts([&](const IslandRange& p) {
       w.integrateVelocities(ctx.h, p.body_begin, p.body_end);
+      if (ctx.angles_in_lanes) w.point_lanes.exactAngles(p, w.solver, ctx, sub == 0);
       joints(p, [&](Joint& j) { warmStartJoint(j, ctx, sub == 0); });
       if (wide)
         w.point_lanes.load(p, w.solver, ctx, sub == 0, sub == 0 || !w.tuning.lane_angles_kept);

@@ -1,4 +1,6 @@
 // Joint angles from the relative rotation of the two joint frames, and their rate Jacobians.
+// The hinge and Euler angles are computed by joint_angles_kernel.hpp (one joint or several at a
+// time, the same bits); the derivations are here.
 //
 // Hinge: theta = signed angle about the axis a between a perpendicular u carried by frame A
 // and the same u carried by frame B; theta_dot = a . (wB - wA). (The cheaper twist angle of
@@ -33,17 +35,46 @@
 
 #include <Eigen/Dense>
 
+#include "joint_angles_lanes.hpp"
 #include "ragdoll_sim/math.hpp"
 
 namespace ragdoll_sim {
 
-// a = frame_a * axis (the angle's row) and u = anyPerpendicular(axis), which the solver keeps.
-inline double hingeAngle(const Quat& frame_a, const Quat& frame_b, const Vec3& a, const Vec3& u) {
-  const Vec3 uA = frame_a * u, uB = frame_b * u;
-  return std::atan2(a.dot(uA.cross(uB)), uA.dot(uB));
+// The frames of a joint between bodies A and B as the angle kernels take them: (dq_a q_a) frame_a
+// and (dq_b q_b) frame_b; joint frames alone with the identity for the rest.
+static_assert(sizeof(std::array<Vec3, 3>) == 9 * sizeof(double), "the kernels' rows: 9 doubles");
+inline const double* identityQuat() {
+  static const double q[4] = {0.0, 0.0, 0.0, 1.0};
+  return q;
+}
+inline JointFrameInputs frameInputs(const Quat& dq_a, const Quat& q_a, const Quat& frame_a,
+                                    const Quat& dq_b, const Quat& q_b, const Quat& frame_b) {
+  return {dq_a.coeffs().data(), q_a.coeffs().data(), frame_a.coeffs().data(),
+          dq_b.coeffs().data(), q_b.coeffs().data(), frame_b.coeffs().data()};
+}
+// Joint j's frames at its solver bodies' current deltas (JointBase, SolverBody, BodyMotion).
+template <class Joint, class Body, class Motions>
+JointFrameInputs currentFrames(const Joint& j, const Body& A, const Body& B, const Motions& m) {
+  return frameInputs(A.dq, m[j.a].q, j.frame_a.q, B.dq, m[j.b].q, j.frame_b.q);
+}
+inline JointFrameInputs frameInputs(const Quat& frame_a, const Quat& frame_b) {
+  return {identityQuat(), identityQuat(), frame_a.coeffs().data(),
+          identityQuat(), identityQuat(), frame_b.coeffs().data()};
+}
+
+// The hinge angle about axis (joint frame; perp = anyPerpendicular(axis), which the solver
+// keeps) and its row frame_a * axis (joint_angles_lanes.hpp).
+inline double hingeAngle(const JointFrameInputs& in, const Vec3& axis, const Vec3& perp,
+                         Vec3* row = nullptr) {
+  Vec3 r;
+  double angle;
+  const HingeAngleJob job{in, axis.data(), perp.data(), r.data(), &angle};
+  hingeAngles(&job, 1);
+  if (row) *row = r;
+  return angle;
 }
 inline double hingeAngle(const Quat& frame_a, const Quat& frame_b, const Vec3& axis) {
-  return hingeAngle(frame_a, frame_b, frame_a * axis, anyPerpendicular(axis));
+  return hingeAngle(frameInputs(frame_a, frame_b), axis, anyPerpendicular(axis));
 }
 
 struct EulerBasis {
@@ -65,26 +96,21 @@ struct EulerBasis {
     qP = Quat(Mat3(svd.matrixU() * svd.matrixV().transpose())).normalized();
   }
 
-  // Angles (t0, t1, t2) of the relative rotation frame_a^-1 frame_b; with rows != nullptr also
-  // their world Jacobian rows j_i (t_i dot = j_i . (wB - wA)), false near gimbal lock.
+  // Angles (t0, t1, t2) of the relative rotation of the joint frames; with rows != nullptr also
+  // their world Jacobian rows j_i (t_i dot = j_i . (wB - wA)), false near gimbal lock
+  // (joint_angles_lanes.hpp).
+  bool angles(const JointFrameInputs& in, Vec3& t, std::array<Vec3, 3>* rows = nullptr) const {
+    std::array<Vec3, 3> r;
+    double ok;
+    const EulerAngleJob job{in, qP.coeffs().data(), &s, t.data(), r[0].data(), &ok};
+    eulerAngles(&job, 1);
+    if (!rows || ok == 0.0) return ok != 0.0 || !rows;
+    *rows = r;
+    return true;
+  }
   bool angles(const Quat& frame_a, const Quat& frame_b, Vec3& t,
               std::array<Vec3, 3>* rows = nullptr) const {
-    const Quat q = qP.conjugate() * (frame_a.conjugate() * frame_b) * qP;
-    const double w = q.w(), x = q.x(), y = q.y(), z = q.z();
-    const double r00 = 1.0 - 2.0 * (y * y + z * z), r01 = 2.0 * (x * y - w * z);
-    const double r02 = std::clamp(2.0 * (x * z + w * y), -1.0, 1.0);
-    const double r12 = 2.0 * (y * z - w * x), r22 = 1.0 - 2.0 * (x * x + y * y);
-    t = Vec3(std::atan2(-r12, r22), std::asin(r02), s * std::atan2(-r01, r00));
-    if (!rows) return true;
-    const double c1 = std::hypot(r12, r22);
-    if (c1 < 1e-3) return false;
-    const double c0 = r22 / c1, s0 = -r12 / c1, s1 = r02;
-    const Mat3 Q = (frame_a * qP).toRotationMatrix();
-    const Vec3 v = c0 * Q.col(2) - s0 * Q.col(1);
-    (*rows)[0] = Q.col(0) - (s1 / c1) * v;
-    (*rows)[1] = c0 * Q.col(1) + s0 * Q.col(2);
-    (*rows)[2] = (s / c1) * v;
-    return true;
+    return angles(frameInputs(frame_a, frame_b), t, rows);
   }
   Vec3 angles(const Quat& frame_a, const Quat& frame_b) const {
     Vec3 t;

@@ -36,12 +36,12 @@ void BallJoint::updateAngles(const JointBase& j, const SolverBody& A, const Solv
   const bool euler_rows = axes.rowsNeeded();
   if (!euler_rows && !swing_twist_limits) return;
   const auto& m = *ctx.motions;
-  const Quat fa = j.frameRotationA(A.dq * m[j.a].q);
-  const Quat fb = j.frameRotationB(B.dq * m[j.b].q);
-  if (swing_twist_limits) swing_twist.update(fa, fb, twist_axis, cone);
+  if (swing_twist_limits)
+    swing_twist.update(j.frameRotationA(A.dq * m[j.a].q), j.frameRotationB(B.dq * m[j.b].q),
+                       twist_axis, cone);
   if (!euler_rows) return;
   Vec3 t;
-  axes.count = euler.angles(fa, fb, t, &axes.rows) ? 3 : 0;
+  axes.count = euler.angles(currentFrames(j, A, B, m), t, &axes.rows) ? 3 : 0;
   axes.angles = {t[0], t[1], t[2]};
   axes.updateMass(A, B);
 }
@@ -51,8 +51,10 @@ void BallJoint::updateAngles(const JointBase& j, const SolverBody& A, const Solv
 // anchors advance() refreshed after the last position update: only velocities changed since.
 void BallJoint::warmStart(JointBase& j, SolverBody& A, SolverBody& B, const StepContext& ctx,
                           bool first_substep) {
-  // Swing-twist rows turn with the swing plane: always recomputed.
-  if (first_substep || swing_twist_limits || !axes.limitsOpen(A, B, ctx.h))
+  // Swing-twist rows turn with the swing plane: always recomputed. Euler angles in the lanes
+  // are recomputed there, by the same rule (PointLanes::exactAngles).
+  const bool in_lanes = ctx.angles_in_lanes && axes.in_lanes && !swing_twist_limits;
+  if (!in_lanes && (first_substep || swing_twist_limits || !axes.limitsOpen(A, B, ctx.h)))
     updateAngles(j, A, B, ctx);
   axes.warmStart(A, B);
   if (swing_twist_limits) swing_twist.warmStart(A, B);

@@ -25,11 +25,7 @@ void HingeJoint::updateAngle(const JointBase& j, const SolverBody& A, const Solv
   axes.count = 0;
   axes.fresh = true;
   if (!axes.rowsNeeded()) return;
-  const auto& m = *ctx.motions;
-  const Quat fa = j.frameRotationA(A.dq * m[j.a].q);
-  const Quat fb = j.frameRotationB(B.dq * m[j.b].q);
-  axes.rows[0] = fa * axis;
-  axes.angles[0] = hingeAngle(fa, fb, axes.rows[0], perp);
+  axes.angles[0] = hingeAngle(currentFrames(j, A, B, *ctx.motions), axis, perp, &axes.rows[0]);
   axes.count = 1;
   axes.updateMass(A, B);
 }
@@ -40,7 +36,9 @@ void HingeJoint::updateAngle(const JointBase& j, const SolverBody& A, const Solv
 // velocities changed since.
 void HingeJoint::warmStart(JointBase& j, SolverBody& A, SolverBody& B, const StepContext& ctx,
                            bool first_substep) {
-  if (first_substep || !axes.limitsOpen(A, B, ctx.h)) updateAngle(j, A, B, ctx);
+  // an angle in the lanes is recomputed there, by the same rule (PointLanes::exactAngles)
+  const bool in_lanes = ctx.angles_in_lanes && axes.in_lanes;
+  if (!in_lanes && (first_substep || !axes.limitsOpen(A, B, ctx.h))) updateAngle(j, A, B, ctx);
   const bool current = !first_substep;
   axes.warmStart(A, B);
   // The axis goes into the lanes with the anchor; there its refresh, K^-1 and warm start are

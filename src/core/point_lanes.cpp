@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "joint.hpp"
+#include "joint_angles.hpp"
 #include "softness.hpp"
 
 namespace ragdoll_sim {
@@ -274,6 +276,57 @@ void PointLanes::refreshFrames(Range& R, std::vector<SolverBody>& bodies, bool a
     l.axis->u1 = frameAt(frame.u1, i);
     l.axis->u2 = frameAt(frame.u2, i);
     l.axis->C = {frame.axis_c[0][i], frame.axis_c[1][i]};
+  }
+}
+
+void PointLanes::exactAngles(const IslandRange& p, std::vector<SolverBody>& bodies,
+                             const StepContext& ctx, bool first_substep) {
+  Range* R = rangeOf(p);
+  if (!R || R->blocks.empty()) return;
+  thread_local std::vector<HingeAngleJob> hinges;
+  thread_local std::vector<EulerAngleJob> balls;
+  thread_local std::vector<double> ok;
+  hinges.clear();
+  balls.clear();
+  ok.resize(R->lanes.size());
+  const std::vector<BodyMotion>& m = *ctx.motions;
+  // the joints whose warm start would recompute them (BallJoint, HingeJoint::warmStart)
+  const auto recomputes = [&](const Lane& l) {
+    if (!l.angle_rows || !l.joint->sweeps_in_lanes) return false;
+    bool open = false;
+    if (!first_substep)
+      withAngleAxes(*l.joint,
+                    [&](auto& ax) { open = ax.limitsOpen(bodies[l.a], bodies[l.b], ctx.h); });
+    return !open;
+  };
+  thread_local std::vector<char> chosen;
+  chosen.resize(R->lanes.size());
+  for (size_t k = 0; k < R->lanes.size(); ++k) chosen[k] = recomputes(R->lanes[k]);
+  for (size_t k = 0; k < R->lanes.size(); ++k) {
+    if (!chosen[k]) continue;
+    const Lane& l = R->lanes[k];
+    const JointFrameInputs in = currentFrames(*l.joint, bodies[l.a], bodies[l.b], m);
+    if (HingeJoint* h = std::get_if<HingeJoint>(&l.joint->kind)) {
+      hinges.push_back({in, h->axis.data(), h->perp.data(), h->axes.rows[0].data(),
+                        &h->axes.angles[0]});
+    } else if (BallJoint* b = std::get_if<BallJoint>(&l.joint->kind)) {
+      balls.push_back({in, b->euler.qP.coeffs().data(), &b->euler.s, b->axes.angles.data(),
+                       b->axes.rows[0].data(), &ok[balls.size()]});
+    }
+  }
+  hingeAngles(hinges.data(), int(hinges.size()));
+  eulerAngles(balls.data(), int(balls.size()));
+  // (AngleAxes::k is left: only the scalar rows use it, and the projection recomputes it)
+  size_t ball = 0;
+  for (size_t k = 0; k < R->lanes.size(); ++k) {
+    if (!chosen[k]) continue;
+    withAngleAxes(*R->lanes[k].joint, [&](auto& ax) {
+      if constexpr (std::is_same_v<std::decay_t<decltype(ax)>, AngleAxes<3>>)
+        ax.count = ok[ball++] != 0.0 ? 3 : 0;
+      else
+        ax.count = 1;
+      ax.fresh = true;
+    });
   }
 }
 

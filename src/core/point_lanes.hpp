@@ -54,6 +54,13 @@ class PointLanes {
   // After the range's joints are prepared (ctx.lanes != 1): the blocks, and the joints they
   // hold marked in_lanes.
   void build(const IslandRange& p, Joint* const* js, const std::vector<SolverBody>& bodies);
+  // Before the range's joints warm start: the exact angles and rows of the joints whose angle
+  // rows are all in the lanes (hinges, Euler ball joints) and which their warm start would
+  // recompute (all at the first substep; later, those whose limits are not open), W joints at a
+  // time (joint_angles_lanes.hpp), with the bits of their own updateAngle, which their warm
+  // start then leaves out.
+  void exactAngles(const IslandRange& p, std::vector<SolverBody>& bodies, const StepContext& ctx,
+                   bool first_substep);
   // After the range's joints warm started: the impulses into the blocks, and the anchors and
   // errors at the step's first position state (anchors_moved: the first substep; later ones
   // keep what refreshAnchors formed after the last position update); then K^-1 and the warm

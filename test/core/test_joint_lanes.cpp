@@ -306,60 +306,80 @@ TEST(JointLanes, SwingTwistBallKeepsItsExactAngles) {
   }
 }
 
+// Chains of Euler-limited balls and limited hinges, some driven or damped, swinging into their
+// limits for 400 steps with the tuning set by `tune`: the state's hash, and the worst excess of
+// a hinge past its limits into *worst_limit.
+template <class Tune>
+uint64_t limitedChains(int lanes, Tune&& tune, double* worst_limit) {
+  WorldDef def;
+  def.sleep.enabled = false;
+  def.solver.lanes = lanes;
+  World w(def);
+  WorldTuning tuning = WorldInternals::tuning(w);
+  tune(tuning);
+  WorldInternals::setTuning(w, tuning);
+  addGround(w);
+  const Vec3 half(0.1, 0.05, 0.05);
+  std::vector<JointId> hinges;
+  for (int c = 0; c < 3; ++c) {
+    BodyId prev = addBox(w, half, 1.0, Vec3(0, 0.5 * c, 1.0));
+    for (int k = 1; k < 10; ++k) {
+      const BodyId b = addBox(w, half, 1.0 + 0.1 * k, Vec3(0.2 * k, 0.5 * c, 1.0 + 0.01 * k));
+      if ((k + c) % 2) {
+        BallJointDef j;
+        j.body_a = prev, j.body_b = b;
+        j.frame_a.p = Vec3(0.1, 0, 0), j.frame_b.p = Vec3(-0.1, 0, 0);
+        j.enable_limits = true;
+        j.lower = {-0.3, -0.2, -0.4}, j.upper = {0.3, 0.25, 0.1};
+        if (k % 3 == 0) j.motors[2].damping = 0.1;
+        if (k % 4 == 0) j.motors[0] = {true, 0.2, 0.0, 3.0, 1.0, 4.0, 0.0};
+        w.createBallJoint(j);
+      } else {
+        HingeJointDef j;
+        j.body_a = prev, j.body_b = b;
+        j.frame_a.p = Vec3(0.1, 0, 0), j.frame_b.p = Vec3(-0.1, 0, 0);
+        j.axis = Vec3::UnitY();
+        j.enable_limit = true, j.lower = -0.5, j.upper = 0.35;
+        if (k % 3 == 1) j.motor = {true, 0.0, 1.0, 0.0, 1.0, 2.0, 0.0};
+        hinges.push_back(w.createHingeJoint(j));
+      }
+      prev = b;
+    }
+  }
+  for (int i = 0; i < 400; ++i) {
+    w.step(1e-3);
+    for (const JointId h : hinges) {
+      const double a = w.hingeAngle(h);
+      *worst_limit = std::max(*worst_limit, std::max(-0.5 - a, a - 0.35));
+    }
+  }
+  return hashStates(w);
+}
+
 // After the first substep the wide pass keeps the angles it advanced and takes only those the
-// joints recomputed (a limit within reach, a motor): chains of Euler-limited balls and limited
-// hinges, some driven or damped, swing into their limits, and the state must be the one of
+// joints recomputed (a limit within reach, a motor): the chains' state must be the one of
 // putting every angle in at every substep.
 TEST(JointLanes, KeptLaneAnglesChangeNoBit) {
-  const auto run = [](int lanes, bool kept, double* worst_limit) {
-    WorldDef def;
-    def.sleep.enabled = false;
-    def.solver.lanes = lanes;
-    World w(def);
-    WorldTuning tuning = WorldInternals::tuning(w);
-    tuning.lane_angles_kept = kept;
-    WorldInternals::setTuning(w, tuning);
-    addGround(w);
-    const Vec3 half(0.1, 0.05, 0.05);
-    std::vector<JointId> hinges;
-    for (int c = 0; c < 3; ++c) {
-      BodyId prev = addBox(w, half, 1.0, Vec3(0, 0.5 * c, 1.0));
-      for (int k = 1; k < 10; ++k) {
-        const BodyId b = addBox(w, half, 1.0 + 0.1 * k, Vec3(0.2 * k, 0.5 * c, 1.0 + 0.01 * k));
-        if ((k + c) % 2) {
-          BallJointDef j;
-          j.body_a = prev, j.body_b = b;
-          j.frame_a.p = Vec3(0.1, 0, 0), j.frame_b.p = Vec3(-0.1, 0, 0);
-          j.enable_limits = true;
-          j.lower = {-0.3, -0.2, -0.4}, j.upper = {0.3, 0.25, 0.1};
-          if (k % 3 == 0) j.motors[2].damping = 0.1;
-          if (k % 4 == 0) j.motors[0] = {true, 0.2, 0.0, 3.0, 1.0, 4.0, 0.0};
-          w.createBallJoint(j);
-        } else {
-          HingeJointDef j;
-          j.body_a = prev, j.body_b = b;
-          j.frame_a.p = Vec3(0.1, 0, 0), j.frame_b.p = Vec3(-0.1, 0, 0);
-          j.axis = Vec3::UnitY();
-          j.enable_limit = true, j.lower = -0.5, j.upper = 0.35;
-          if (k % 3 == 1) j.motor = {true, 0.0, 1.0, 0.0, 1.0, 2.0, 0.0};
-          hinges.push_back(w.createHingeJoint(j));
-        }
-        prev = b;
-      }
-    }
-    for (int i = 0; i < 400; ++i) {
-      w.step(1e-3);
-      for (const JointId h : hinges) {
-        const double a = w.hingeAngle(h);
-        *worst_limit = std::max(*worst_limit, std::max(-0.5 - a, a - 0.35));
-      }
-    }
-    return hashStates(w);
-  };
   for (const int lanes : {4, 8}) {
     double reach = -1.0;
-    const uint64_t kept = run(lanes, true, &reach), all = run(lanes, false, &reach);
+    const auto keep = [](bool kept) { return [kept](WorldTuning& t) { t.lane_angles_kept = kept; }; };
+    const uint64_t kept = limitedChains(lanes, keep(true), &reach);
+    const uint64_t all = limitedChains(lanes, keep(false), &reach);
     EXPECT_EQ(kept, all) << "lanes " << lanes;
+    EXPECT_GT(reach, -0.01) << "lanes " << lanes << ": no hinge came within 0.01 rad of a limit";
+  }
+}
+
+// The joints' exact angles computed in the lanes, several at a time, at every substep where a
+// joint's warm start would recompute its own (PointLanes::exactAngles), give the chains' state
+// of each joint computing its own.
+TEST(JointLanes, ExactAnglesInLanesChangeNoBit) {
+  for (const int lanes : {4, 8}) {
+    double reach = -1.0;
+    const auto exact = [](bool on) { return [on](WorldTuning& t) { t.lane_exact_angles = on; }; };
+    const uint64_t batched = limitedChains(lanes, exact(true), &reach);
+    const uint64_t own = limitedChains(lanes, exact(false), &reach);
+    EXPECT_EQ(batched, own) << "lanes " << lanes;
     EXPECT_GT(reach, -0.01) << "lanes " << lanes << ": no hinge came within 0.01 rad of a limit";
   }
 }

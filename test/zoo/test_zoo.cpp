@@ -97,6 +97,10 @@ const std::map<std::string, std::vector<std::string>> kKnownFails = {
     {"deepmimic_humanoid.urdf", {"not at rest"}},         // still rolling at 3 s
     {"anymal_bullet.urdf", {"exploded"}},                 // unlimited, undamped legs whip out
     {"valkyrie_sim.urdf", {"exploded", "not at rest"}},   // 10 g finger links whip on landing
+    // Limbs held against their limits (legs folded, the head pressed into the ground) jitter
+    // within the angular slop for seconds; round-off decides whether below the bar at 3 s.
+    {"atlas_v4_bullet.urdf", {"not at rest"}},
+    {"poppy_humanoid.urdf", {"not at rest"}},
     // Contact points on the feet only: the torso passes through the ground as it topples.
     {"atlas_drake_minimal_contact.urdf", {"fell through", "exploded", "not at rest"}},
 };

@@ -1,0 +1,23 @@
+// The joint angles four lanes at a time in AVX registers, compiled with -mavx2 -mno-fma
+// (CMakeLists.txt) and called only on a CPU with AVX2; see joint_angles_kernel.hpp. Without
+// those flags it runs two lanes at a time, with the same bits.
+#include "joint_angles_kernel.hpp"
+
+namespace ragdoll_sim {
+namespace joint_angles_w4 {
+
+#if defined(__AVX__)
+using Lanes = double_lanes::Double4;
+#else
+using Lanes = double_lanes::Double2;
+#endif
+
+int hingeAngles(const HingeAngleJob* jobs, int count) {
+  return joint_angles::hingeBlocks<Lanes>(jobs, count);
+}
+int eulerAngles(const EulerAngleJob* jobs, int count) {
+  return joint_angles::eulerBlocks<Lanes>(jobs, count);
+}
+
+}  // namespace joint_angles_w4
+}  // namespace ragdoll_sim
