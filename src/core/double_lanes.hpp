@@ -55,6 +55,29 @@ inline void storeFloats(Double2 x, float* p) {
 inline void storeFloats(Double4 x, float* p) { _mm_storeu_ps(p, _mm256_cvtpd_ps(__m256d(x))); }
 #endif
 
+// Vectors of three lanes (any D above, or double): a x b componentwise a1 b2 - a2 b1, ...;
+// a . b = a0 b0 + (a1 b1 + a2 b2) (Eigen's unrolled reduction); q v (q: x, y, z, w) as Eigen's
+// _transformVector: uv = q.vec x v, uv = uv + uv, then (v + q.w uv) + q.vec x uv.
+template <class D>
+inline void cross(const D a[3], const D b[3], D out[3]) {
+  out[0] = a[1] * b[2] - a[2] * b[1];
+  out[1] = a[2] * b[0] - a[0] * b[2];
+  out[2] = a[0] * b[1] - a[1] * b[0];
+}
+template <class D>
+inline D dot(const D a[3], const D b[3]) {
+  return a[0] * b[0] + (a[1] * b[1] + a[2] * b[2]);
+}
+// out = q v (q: x, y, z, w).
+template <class D>
+inline void rotate(const D q[4], const D v[3], D out[3]) {
+  D uv[3], t[3];
+  cross(q, v, uv);
+  for (int j = 0; j < 3; ++j) uv[j] = uv[j] + uv[j];
+  cross(q, uv, t);
+  for (int j = 0; j < 3; ++j) out[j] = (v[j] + q[3] * uv[j]) + t[j];
+}
+
 // The lanes of W bodies' arrays: out[j] = {p[0][j], ..., p[W-1][j]}, and back.
 inline double lane(double x, int) { return x; }
 template <class D>

@@ -27,7 +27,10 @@ namespace ragdoll_sim {
 namespace joint_angles {
 inline namespace RAGDOLL_SIM_ANGLES_ISA {
 
+using double_lanes::cross;
+using double_lanes::dot;
 using double_lanes::gather;
+using double_lanes::rotate;
 using double_lanes::scatter;
 using double_lanes::squareRoot;
 
@@ -99,26 +102,6 @@ inline void conjugate(const D q[4], D out[4]) {
   for (int j = 0; j < 3; ++j) out[j] = -q[j];
   out[3] = q[3];
 }
-template <class D>
-inline void cross(const D a[3], const D b[3], D out[3]) {
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
-template <class D>
-inline D dot(const D a[3], const D b[3]) {
-  return a[0] * b[0] + (a[1] * b[1] + a[2] * b[2]);
-}
-// out = q v.
-template <class D>
-inline void rotate(const D q[4], const D v[3], D out[3]) {
-  D uv[3], t[3];
-  cross(q, v, uv);
-  for (int j = 0; j < 3; ++j) uv[j] = uv[j] + uv[j];
-  cross(q, uv, t);
-  for (int j = 0; j < 3; ++j) out[j] = (v[j] + q[3] * uv[j]) + t[j];
-}
-
 // The lanes' joint frames fa, fb.
 template <class D, int W>
 inline void jointFrames(const JointFrameInputs* const in[W], D fa[4], D fb[4]) {

@@ -27,8 +27,11 @@ namespace ragdoll_sim {
 namespace point_frames {
 inline namespace RAGDOLL_SIM_FRAMES_ISA {
 
+using double_lanes::cross;
+using double_lanes::dot;
 using double_lanes::gather;
 using double_lanes::lane;
+using double_lanes::rotate;
 using double_lanes::storeFloats;
 
 template <class D>
@@ -52,26 +55,6 @@ template <int W>
 inline void laneFields(const LaneBodies& bodies, const int32_t* ids, int offset,
                        const double* out[W]) {
   for (int l = 0; l < W; ++l) out[l] = bodies.v + long(ids[l]) * bodies.stride + offset;
-}
-
-template <class D>
-inline void cross(const D a[3], const D b[3], D out[3]) {
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
-template <class D>
-inline D dot(const D a[3], const D b[3]) {
-  return a[0] * b[0] + (a[1] * b[1] + a[2] * b[2]);
-}
-// out = q v (q: x, y, z, w).
-template <class D>
-inline void rotate(const D q[4], const D v[3], D out[3]) {
-  D uv[3], t[3];
-  cross(q, v, uv);
-  for (int j = 0; j < 3; ++j) uv[j] = uv[j] + uv[j];
-  cross(q, uv, t);
-  for (int j = 0; j < 3; ++j) out[j] = (v[j] + q[3] * uv[j]) + t[j];
 }
 
 // field[0..2][o, o + W) of a frame, rotated by q.
