@@ -7,8 +7,9 @@
 #
 # Every round runs each scene at each thread count with both binaries back to back, the one that
 # goes first swapping from round to round. Sleeping is off in every run (--opt sleep=0: the
-# solver's cost, not how soon a scene falls asleep). scripts/bench_compare_report.py prints the
-# Markdown table: steps/s median (min-max) of each binary, new / old (ratio of the medians and
+# solver's cost, not how soon a scene falls asleep); before each round the new binary times the
+# two threads' handoffs (`bench_ragdoll sync`). scripts/bench_compare_report.py prints them and
+# the Markdown table: steps/s median (min-max) of each binary, new / old (ratio of the medians and
 # min-max of the per-round ratios) and each binary's quality line.
 #
 # Settings (environment):
@@ -83,6 +84,10 @@ run_one() {
 }
 
 for r in $(seq "$ROUNDS"); do
+  # The two threads' handoffs before the round (`bench_ragdoll sync`; an older binary has none).
+  if probe="$("$NEW_BIN" sync 2>/dev/null)" && [[ "$probe" == region_us=* ]]; then
+    echo "# meta sync_round_$r=$probe" >>"$OUT_RAW"
+  fi
   if ((r % 2)); then pair=(old new); else pair=(new old); fi
   read -r -a counts <<<"$THREADS"
   for label in $SCENES; do

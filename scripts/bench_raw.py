@@ -38,3 +38,18 @@ def parse(lines):
         elif line.startswith("engine="):
             runs.append(parse_kv(line))
     return meta, runs, failures
+
+
+def sync_lines(meta):
+    """The two-thread handoffs measured before each round (bench.sh, bench_compare.sh:
+    `# meta sync_round_R`), as a list item; none in an older raw file."""
+    rounds = sorted((int(k[len("sync_round_"):]), parse_kv(v))
+                    for k, v in meta.items() if k.startswith("sync_round_"))
+    if not rounds:
+        return []
+    cells = ["round %d %s / %s" % (r, kv.get("region_us", "?"), kv.get("barrier_us", "?"))
+             for r, kv in rounds]
+    return ["- two-thread handoffs before each round (an empty parallel region / a TeamBarrier "
+            "wait, µs; `bench_ragdoll sync`): " + ", ".join(cells) + ". Where they cost more, "
+            "the threads talk over a slower link (on a VM: vCPUs on different core complexes) "
+            "and that round's two-thread figures are lower."]

@@ -149,20 +149,6 @@ def failure_for(failures, engine, scene, n):
     return None
 
 
-def sync_lines(meta):
-    """The two-thread handoffs measured before each round (bench.sh: `# meta sync_round_R`)."""
-    rounds = sorted((int(k[len("sync_round_"):]), bench_raw.parse_kv(v))
-                    for k, v in meta.items() if k.startswith("sync_round_"))
-    if not rounds:
-        return []
-    cells = ["round %d %s / %s" % (r, kv.get("region_us", "?"), kv.get("barrier_us", "?"))
-             for r, kv in rounds]
-    return ["- two-thread handoffs before each round (an empty parallel region / a TeamBarrier "
-            "wait, µs; `bench_ragdoll sync`): " + ", ".join(cells) + ". Where they cost more, "
-            "the threads talk over a slower link (on a VM: vCPUs on different core complexes) "
-            "and that round's two-thread figures are lower."]
-
-
 def report(meta, runs, failures, png_name):
     runs, load_runs = bench_scale_report.split_runs(runs)
     groups = build_groups(runs)
@@ -188,7 +174,7 @@ def report(meta, runs, failures, png_name):
                      ("loadavg_end", "load average at end"), ("total_s", "run time (s)")]:
         if k in meta:
             L.append("- %s: %s" % (label, meta[k].replace("_", " ") if k == "worktree" else meta[k]))
-    L += sync_lines(meta)
+    L += bench_raw.sync_lines(meta)
     L.append("")
     L.append("All engines ran in this one sitting, alternating: in every round each scene is run by "
              "every engine back to back (the engine order rotates from round to round). Steps/s is "

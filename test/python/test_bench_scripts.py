@@ -1,8 +1,8 @@
 """The benchmark's scripts on made-up inputs: bench_report.py's ratio table (sleeping off and on,
 the faster of Bullet and ODE, ours with lanes=1 beside the default float lanes), the issue's bars,
 the flop section and the two-thread handoffs by round; bench_compare_report.py's table;
-bench_compare.sh with two fake binaries (alternation, options, thread counts); bench.sh's engines
-of ours against the report's. No timing, no engine: each test runs in well under a second.
+bench_compare.sh with two fake binaries (alternation, options, thread counts, handoffs);
+bench.sh's engines of ours against the report's. No timing, no engine: each test runs in well under a second.
 """
 import os
 import re
@@ -211,6 +211,7 @@ def test_compare_table():
 
 FAKE = """#!/bin/bash
 echo "$(basename "$0") $*" >> "%s"
+[[ "$1" == sync ]] && { echo "region_us=0.4 barrier_us=0.05"; exit 0; }
 sps=1000; [[ "$0" == *new* ]] && sps=1500
 echo "engine=ragdoll_sim scenario=$1 steps_per_s=$sps max_anchor_err_m=0 max_ground_pen_m=0 max_limit_viol_rad=0"
 """
@@ -233,16 +234,19 @@ def test_compare_script_alternates_and_passes_options(tmp_path):
     calls = log.read_text().splitlines()
     base = "--urdf u.urdf --opt sleep=0,threads=%d --steps 7 --opt substeps=3"
     assert calls == [
+        "new_bench sync",  # the handoffs before each round
         "old_bench b " + base % 1, "new_bench b " + base % 1 + " --opt lanes=1",
         "old_bench b " + base % 2, "new_bench b " + base % 2 + " --opt lanes=1",
         "old_bench g --urdf u.urdf --opt sleep=0,threads=1 --ragdolls 1 --steps 7 --opt substeps=3",
         "new_bench g --urdf u.urdf --opt sleep=0,threads=1 --ragdolls 1 --steps 7 --opt substeps=3 --opt lanes=1",
         # round 2: new first
+        "new_bench sync",
         "new_bench b " + base % 1 + " --opt lanes=1", "old_bench b " + base % 1,
         "new_bench b " + base % 2 + " --opt lanes=1", "old_bench b " + base % 2,
         "new_bench g --urdf u.urdf --opt sleep=0,threads=1 --ragdolls 1 --steps 7 --opt substeps=3 --opt lanes=1",
         "old_bench g --urdf u.urdf --opt sleep=0,threads=1 --ragdolls 1 --steps 7 --opt substeps=3",
     ]
     assert (tmp_path / "t.md").read_text() in out.stdout
+    assert "`bench_ragdoll sync`): round 1 0.4 / 0.05, round 2 0.4 / 0.05." in out.stdout
     assert "| b | 2 | 1,000 (1,000–1,000) | 1,500 (1,500–1,500) | 1.50 (1.50–1.50) |" in out.stdout
     assert "| g N=1 | 1 | 1,000 (1,000–1,000) | 1,500 (1,500–1,500) | 1.50 (1.50–1.50) | ≥ 1.20: met |" in out.stdout
