@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <type_traits>
 
 #include "joint.hpp"
 #include "joint_angles.hpp"
@@ -279,55 +278,77 @@ void PointLanes::refreshFrames(Range& R, std::vector<SolverBody>& bodies, bool a
   }
 }
 
+namespace {
+// After the kernel: the axes' row count (a ball's 0 at gimbal lock), marked recomputed.
+template <int N>
+void takeExactAngles(AngleAxes<N>& ax, bool rows) {
+  ax.count = rows ? N : 0;
+  ax.fresh = true;
+}
+}  // namespace
+
 void PointLanes::exactAngles(const IslandRange& p, std::vector<SolverBody>& bodies,
                              const StepContext& ctx, bool first_substep) {
   Range* R = rangeOf(p);
   if (!R || R->blocks.empty()) return;
+  AngleJobs& J = R->angle_jobs;
+  if (first_substep) {
+    J.hinges.clear();
+    J.balls.clear();
+    J.hinge_lanes.clear();
+    J.ball_lanes.clear();
+    J.ok.resize(R->lanes.size());
+    const std::vector<BodyMotion>& m = *ctx.motions;
+    for (const Lane& l : R->lanes) {
+      if (!l.angle_rows || !l.joint->sweeps_in_lanes) continue;
+      const JointFrameInputs in = currentFrames(*l.joint, bodies[l.a], bodies[l.b], m);
+      if (HingeJoint* h = std::get_if<HingeJoint>(&l.joint->kind)) {
+        J.hinges.push_back({in, h->axis.data(), h->perp.data(), h->axes.rows[0].data(),
+                            &h->axes.angles[0]});
+        J.hinge_lanes.push_back(&l);
+      } else if (BallJoint* b = std::get_if<BallJoint>(&l.joint->kind)) {
+        J.balls.push_back({in, b->euler.qP.coeffs().data(), &b->euler.s, b->axes.angles.data(),
+                           b->axes.rows[0].data(), &J.ok[J.balls.size()]});
+        J.ball_lanes.push_back(&l);
+      }
+    }
+    hingeAngles(J.hinges.data(), int(J.hinges.size()));
+    eulerAngles(J.balls.data(), int(J.balls.size()));
+    for (const Lane* l : J.hinge_lanes)
+      takeExactAngles(std::get<HingeJoint>(l->joint->kind).axes, true);
+    for (size_t k = 0; k < J.balls.size(); ++k)
+      takeExactAngles(std::get<BallJoint>(J.ball_lanes[k]->joint->kind).axes, J.ok[k] != 0.0);
+    return;
+  }
+  // Later substeps: the joints whose limits are not open (BallJoint, HingeJoint::warmStart).
   thread_local std::vector<HingeAngleJob> hinges;
   thread_local std::vector<EulerAngleJob> balls;
-  thread_local std::vector<double> ok;
+  thread_local std::vector<int> hinge_at, ball_at;
   hinges.clear();
   balls.clear();
-  ok.resize(R->lanes.size());
-  const std::vector<BodyMotion>& m = *ctx.motions;
-  // the joints whose warm start would recompute them (BallJoint, HingeJoint::warmStart)
-  const auto recomputes = [&](const Lane& l) {
-    if (!l.angle_rows || !l.joint->sweeps_in_lanes) return false;
-    bool open = false;
-    if (!first_substep)
-      withAngleAxes(*l.joint,
-                    [&](auto& ax) { open = ax.limitsOpen(bodies[l.a], bodies[l.b], ctx.h); });
-    return !open;
+  hinge_at.clear();
+  ball_at.clear();
+  const auto closed = [&](const Lane& l, const auto& ax) {
+    return !ax.limitsOpen(bodies[l.a], bodies[l.b], ctx.h);
   };
-  thread_local std::vector<char> chosen;
-  chosen.resize(R->lanes.size());
-  for (size_t k = 0; k < R->lanes.size(); ++k) chosen[k] = recomputes(R->lanes[k]);
-  for (size_t k = 0; k < R->lanes.size(); ++k) {
-    if (!chosen[k]) continue;
-    const Lane& l = R->lanes[k];
-    const JointFrameInputs in = currentFrames(*l.joint, bodies[l.a], bodies[l.b], m);
-    if (HingeJoint* h = std::get_if<HingeJoint>(&l.joint->kind)) {
-      hinges.push_back({in, h->axis.data(), h->perp.data(), h->axes.rows[0].data(),
-                        &h->axes.angles[0]});
-    } else if (BallJoint* b = std::get_if<BallJoint>(&l.joint->kind)) {
-      balls.push_back({in, b->euler.qP.coeffs().data(), &b->euler.s, b->axes.angles.data(),
-                       b->axes.rows[0].data(), &ok[balls.size()]});
-    }
+  for (size_t k = 0; k < J.hinges.size(); ++k) {
+    const Lane& l = *J.hinge_lanes[k];
+    if (!closed(l, std::get<HingeJoint>(l.joint->kind).axes)) continue;
+    hinges.push_back(J.hinges[k]);
+    hinge_at.push_back(int(k));
+  }
+  for (size_t k = 0; k < J.balls.size(); ++k) {
+    const Lane& l = *J.ball_lanes[k];
+    if (!closed(l, std::get<BallJoint>(l.joint->kind).axes)) continue;
+    balls.push_back(J.balls[k]);
+    ball_at.push_back(int(k));
   }
   hingeAngles(hinges.data(), int(hinges.size()));
   eulerAngles(balls.data(), int(balls.size()));
-  // (AngleAxes::k is left: only the scalar rows use it, and the projection recomputes it)
-  size_t ball = 0;
-  for (size_t k = 0; k < R->lanes.size(); ++k) {
-    if (!chosen[k]) continue;
-    withAngleAxes(*R->lanes[k].joint, [&](auto& ax) {
-      if constexpr (std::is_same_v<std::decay_t<decltype(ax)>, AngleAxes<3>>)
-        ax.count = ok[ball++] != 0.0 ? 3 : 0;
-      else
-        ax.count = 1;
-      ax.fresh = true;
-    });
-  }
+  for (const int k : hinge_at)
+    takeExactAngles(std::get<HingeJoint>(J.hinge_lanes[k]->joint->kind).axes, true);
+  for (const int k : ball_at)
+    takeExactAngles(std::get<BallJoint>(J.ball_lanes[k]->joint->kind).axes, J.ok[k] != 0.0);
 }
 
 void PointLanes::load(const IslandRange& p, std::vector<SolverBody>& bodies,

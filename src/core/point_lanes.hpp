@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "constraint_graph.hpp"
+#include "joint_angles_lanes.hpp"
 #include "island_schedule.hpp"
 #include "point_frames.hpp"
 #include "point_row_wide.hpp"
@@ -88,6 +89,14 @@ class PointLanes {
     int block, lane;
     int angle_rows;  // the joint's angle rows in the lane this step (0: none)
   };
+  // The exact-angle jobs of a range's lanes whose angle rows are all there (exactAngles): formed
+  // at the first substep (the bodies, the joints and the lanes stay put within the step).
+  struct AngleJobs {
+    std::vector<HingeAngleJob> hinges;
+    std::vector<EulerAngleJob> balls;
+    std::vector<const Lane*> hinge_lanes, ball_lanes;
+    std::vector<double> ok;  // a ball's rows formed (not at gimbal lock)
+  };
   struct alignas(64) Range {  // its own cache lines (allocated by the thread that builds it)
     std::vector<Lane> lanes;
     std::vector<PointRowBlock> blocks;
@@ -95,6 +104,7 @@ class PointLanes {
     // What the layout was coloured from: a step with the same anchors on the same bodies keeps it.
     std::vector<AnchorPart*> anchors;
     std::vector<GraphEdge> edges;
+    AngleJobs angle_jobs;
   };
   Range* rangeOf(const IslandRange& p) const;
   // The anchors and axes at the bodies' current deltas into the blocks, and back to the parts;
