@@ -16,7 +16,8 @@
 // (point_frames.hpp) with the bits of the parts' own refresh, and copied back to the parts
 // (the joint trees, the limit projection and the reports read them there; the parts leave the
 // refresh to the lanes). Each substep the blocks take the impulses (and the angles' rows,
-// errors, motor terms and impulses, the angles computed in double by the joint's warm start),
+// errors, motor terms and impulses; the angles computed in double where the joint's warm
+// start would, several joints at once: exactAngles),
 // and the kernel forms K^-1 from the anchors (and axes) and applies the warm start, colour by
 // colour, in place of the joints' scalar ones.
 // The kernels read and write the double solver bodies themselves (the impulse reaches v
@@ -35,8 +36,8 @@
 #include <vector>
 
 #include "constraint_graph.hpp"
-#include "joint_angles_lanes.hpp"
 #include "island_schedule.hpp"
+#include "joint_angles_lanes.hpp"
 #include "point_frames.hpp"
 #include "point_row_wide.hpp"
 #include "solver_context.hpp"
