@@ -78,6 +78,34 @@ inline void rotate(const D q[4], const D v[3], D out[3]) {
   for (int j = 0; j < 3; ++j) out[j] = (v[j] + q[3] * uv[j]) + t[j];
 }
 
+// out = a b (Eigen's quat_product), quaternions x, y, z, w.
+template <class D>
+inline void quatProduct(const D a[4], const D b[4], D out[4]) {
+  out[3] = a[3] * b[3] - a[0] * b[0] - a[1] * b[1] - a[2] * b[2];
+  out[0] = a[3] * b[0] + a[0] * b[3] + a[1] * b[2] - a[2] * b[1];
+  out[1] = a[3] * b[1] + a[1] * b[3] + a[2] * b[0] - a[0] * b[2];
+  out[2] = a[3] * b[2] + a[2] * b[3] + a[0] * b[1] - a[1] * b[0];
+}
+
+// R of the unit quaternion c (Eigen's toRotationMatrix), column-major.
+template <class D>
+inline void rotationMatrix(const D c[4], D R[9]) {
+  const D two = D() + 2.0, one = D() + 1.0;
+  const D tx = two * c[0], ty = two * c[1], tz = two * c[2];
+  const D twx = tx * c[3], twy = ty * c[3], twz = tz * c[3];
+  const D txx = tx * c[0], txy = ty * c[0], txz = tz * c[0];
+  const D tyy = ty * c[1], tyz = tz * c[1], tzz = tz * c[2];
+  R[0] = one - (tyy + tzz);
+  R[3] = txy - twz;
+  R[6] = txz + twy;
+  R[1] = txy + twz;
+  R[4] = one - (txx + tzz);
+  R[7] = tyz - twx;
+  R[2] = txz - twy;
+  R[5] = tyz + twx;
+  R[8] = one - (txx + tyy);
+}
+
 // The lanes of W bodies' arrays: out[j] = {p[0][j], ..., p[W-1][j]}, and back.
 inline double lane(double x, int) { return x; }
 template <class D>

@@ -46,6 +46,8 @@ using double_lanes::Double4;
 #endif
 using double_lanes::gather;
 using double_lanes::lane;
+using double_lanes::quatProduct;
+using double_lanes::rotationMatrix;
 using double_lanes::roundToInteger;
 using double_lanes::scatter;
 
@@ -82,34 +84,6 @@ inline void worldProduct(const D R[9], const D M[9], D x[3]) {
   mulTransposed(R, x, t);
   mul(M, t, u);
   mul(R, u, x);
-}
-
-// out = a b (Eigen's quat_product), quaternions x, y, z, w.
-template <class D>
-inline void quatProduct(const D a[4], const D b[4], D out[4]) {
-  out[3] = a[3] * b[3] - a[0] * b[0] - a[1] * b[1] - a[2] * b[2];
-  out[0] = a[3] * b[0] + a[0] * b[3] + a[1] * b[2] - a[2] * b[1];
-  out[1] = a[3] * b[1] + a[1] * b[3] + a[2] * b[0] - a[0] * b[2];
-  out[2] = a[3] * b[2] + a[2] * b[3] + a[0] * b[1] - a[1] * b[0];
-}
-
-// R of the unit quaternion c (Eigen's toRotationMatrix), column-major.
-template <class D>
-inline void rotationMatrix(const D c[4], D R[9]) {
-  const D two = D() + 2.0, one = D() + 1.0;
-  const D tx = two * c[0], ty = two * c[1], tz = two * c[2];
-  const D twx = tx * c[3], twy = ty * c[3], twz = tz * c[3];
-  const D txx = tx * c[0], txy = ty * c[0], txz = tz * c[0];
-  const D tyy = ty * c[1], tyz = tz * c[1], tzz = tz * c[2];
-  R[0] = one - (tyy + tzz);
-  R[3] = txy - twz;
-  R[6] = txz + twy;
-  R[1] = txy + twz;
-  R[4] = one - (txx + tzz);
-  R[7] = tyz - twx;
-  R[2] = txz - twy;
-  R[5] = tyz + twx;
-  R[8] = one - (txx + tyy);
 }
 
 // The world inverse inertia R I^-1 R^T as Eigen evaluates R * I^-1 * R.transpose(): R I^-1 into

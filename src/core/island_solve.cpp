@@ -57,7 +57,6 @@ StepContexts World::Impl::makeContexts(double dt) {
     c.relax = std::max(0, relax);
     c.track_impulses = track_contacts;
     c.lanes = lane_width;
-    c.angles_in_lanes = lane_width != 1 && tuning.lane_exact_angles;
     c.odd_step = steps % 2 == 1;
     c.settings = &def.solver;
     c.bodies = &solver;
@@ -134,7 +133,7 @@ class World::Impl::IslandPass {
   void integrateAndWarmStart(int sub, bool moved) {
     parts([&](const IslandRange& p) {
       w.integrateVelocities(ctx.h, p.body_begin, p.body_end);
-      if (ctx.angles_in_lanes) w.point_lanes.exactAngles(p, w.solver, ctx, sub == 0);
+      if (wide && w.tuning.lane_exact_angles) w.point_lanes.exactAngles(p, w.solver, ctx, sub == 0);
       joints(p, [&](Joint& j) { warmStartJoint(j, ctx, sub == 0); });
       if (wide)
         w.point_lanes.load(p, w.solver, ctx, sub == 0, sub == 0 || !w.tuning.lane_angles_kept);
@@ -462,10 +461,10 @@ void World::Impl::solveIslands(const StepContexts& ctx) {
       run_ends[omp_get_thread_num()].at = Clock::now();
     }
     const Clock::time_point end = Clock::now();
-    const auto first = std::min_element(
-        run_ends.begin(), run_ends.end(),
-        [](const RunEnd& a, const RunEnd& b) { return a.at < b.at; });
     if (reserve_mode < 0 && chunks && !reserve && end > start) {
+      const auto first = std::min_element(
+          run_ends.begin(), run_ends.end(),
+          [](const RunEnd& a, const RunEnd& b) { return a.at < b.at; });
       const double waited = std::chrono::duration<double>(end - first->at) / (end - start);
       idle_average += (waited - idle_average) / kImbalanceSteps;
       if (kImbalance * idle_average > 1.0) {

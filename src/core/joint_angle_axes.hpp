@@ -20,6 +20,9 @@ struct AngleAxes {
   bool limits_enabled = false;
   // The sweeps leave the motor and limit rows to the wide pass (point_lanes.hpp), set per step.
   bool in_lanes = false;
+  // This step's exact angles are computed with other joints' (PointLanes::exactAngles), by the
+  // rule of recomputes; set per step.
+  bool exact_in_lanes = false;
   std::array<JointMotor, N> motors;
   std::array<double, N> lower{}, upper{};
   std::array<AngleMotorPart, N> motor_parts;
@@ -69,6 +72,12 @@ struct AngleAxes {
         return false;
     }
     return true;
+  }
+
+  // Whether a substep's warm start computes the angles and rows exactly: at the first substep
+  // (the last step's projection moved the bodies), later unless limitsOpen.
+  bool recomputes(const SolverBody& A, const SolverBody& B, double h, bool first_substep) const {
+    return first_substep || !limitsOpen(A, B, h);
   }
 
   void warmStart(SolverBody& A, SolverBody& B) {

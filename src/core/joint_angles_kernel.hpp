@@ -30,7 +30,9 @@ inline namespace RAGDOLL_SIM_ANGLES_ISA {
 using double_lanes::cross;
 using double_lanes::dot;
 using double_lanes::gather;
+using double_lanes::quatProduct;
 using double_lanes::rotate;
+using double_lanes::rotationMatrix;
 using double_lanes::scatter;
 using double_lanes::squareRoot;
 
@@ -89,30 +91,19 @@ inline D asinLanes(D s) {
   return atan2Lanes(s, squareRoot((1.0 - s) * (1.0 + s)));
 }
 
-// out = a b (x, y, z, w).
-template <class D>
-inline void quatProduct(const D a[4], const D b[4], D out[4]) {
-  out[0] = ((a[3] * b[0] + a[0] * b[3]) + a[1] * b[2]) - a[2] * b[1];
-  out[1] = ((a[3] * b[1] + a[1] * b[3]) + a[2] * b[0]) - a[0] * b[2];
-  out[2] = ((a[3] * b[2] + a[2] * b[3]) + a[0] * b[1]) - a[1] * b[0];
-  out[3] = ((a[3] * b[3] - a[0] * b[0]) - a[1] * b[1]) - a[2] * b[2];
-}
 template <class D>
 inline void conjugate(const D q[4], D out[4]) {
   for (int j = 0; j < 3; ++j) out[j] = -q[j];
   out[3] = q[3];
 }
-// The lanes' joint frames fa, fb.
-template <class D, int W>
-inline void jointFrames(const JointFrameInputs* const in[W], D fa[4], D fb[4]) {
+// The joint frames fa, fb of jobs[0, W).
+template <class D, int W, class Job>
+inline void jointFrames(const Job* jobs, D fa[4], D fb[4]) {
   const double *dqa[W], *qa[W], *la[W], *dqb[W], *qb[W], *lb[W];
   for (int l = 0; l < W; ++l) {
-    dqa[l] = in[l]->dq_a;
-    qa[l] = in[l]->q_a;
-    la[l] = in[l]->frame_a;
-    dqb[l] = in[l]->dq_b;
-    qb[l] = in[l]->q_b;
-    lb[l] = in[l]->frame_b;
+    const JointFrameInputs& in = jobs[l].in;
+    dqa[l] = in.dq_a, qa[l] = in.q_a, la[l] = in.frame_a;
+    dqb[l] = in.dq_b, qb[l] = in.q_b, lb[l] = in.frame_b;
   }
   D dq[4], q[4], l4[4], t[4];
   gather<4>(dqa, dq);
@@ -131,18 +122,14 @@ inline void jointFrames(const JointFrameInputs* const in[W], D fa[4], D fb[4]) {
 template <class D>
 inline void hingeLanes(const HingeAngleJob* jobs) {
   constexpr int W = sizeof(D) / sizeof(double);
-  const JointFrameInputs* in[W];
   const double *axis[W], *perp[W];
   double *row_out[W], *angle_out[W];
   for (int l = 0; l < W; ++l) {
-    in[l] = &jobs[l].in;
-    axis[l] = jobs[l].axis;
-    perp[l] = jobs[l].perp;
-    row_out[l] = jobs[l].row;
-    angle_out[l] = jobs[l].angle;
+    axis[l] = jobs[l].axis, perp[l] = jobs[l].perp;
+    row_out[l] = jobs[l].row, angle_out[l] = jobs[l].angle;
   }
   D fa[4], fb[4], a[3], u[3], row[3], ua[3], ub[3], n[3];
-  jointFrames<D, W>(in, fa, fb);
+  jointFrames<D, W>(jobs, fa, fb);
   gather<3>(axis, a);
   gather<3>(perp, u);
   rotate(fa, a, row);
@@ -157,19 +144,14 @@ inline void hingeLanes(const HingeAngleJob* jobs) {
 template <class D>
 inline void eulerLanes(const EulerAngleJob* jobs) {
   constexpr int W = sizeof(D) / sizeof(double);
-  const JointFrameInputs* in[W];
   const double *basis[W], *sign[W];
   double *angles_out[W], *rows_out[W], *ok_out[W];
   for (int l = 0; l < W; ++l) {
-    in[l] = &jobs[l].in;
-    basis[l] = jobs[l].basis;
-    sign[l] = jobs[l].sign;
-    angles_out[l] = jobs[l].angles;
-    rows_out[l] = jobs[l].rows;
-    ok_out[l] = jobs[l].ok;
+    basis[l] = jobs[l].basis, sign[l] = jobs[l].sign;
+    angles_out[l] = jobs[l].angles, rows_out[l] = jobs[l].rows, ok_out[l] = jobs[l].ok;
   }
   D fa[4], fb[4], qp[4], s[1], c[4], rel[4], t[4], q[4];
-  jointFrames<D, W>(in, fa, fb);
+  jointFrames<D, W>(jobs, fa, fb);
   gather<4>(basis, qp);
   gather<1>(sign, s);
   // q = qP^-1 (fa^-1 fb) qP
@@ -191,16 +173,11 @@ inline void eulerLanes(const EulerAngleJob* jobs) {
   scatter<1>(ok, ok_out);
   const D inv_c1 = one / c1;
   const D c0 = r22 * inv_c1, s0 = -r12 * inv_c1, s1 = r02;
-  // Q = the matrix of fa qP, by columns (Eigen's toRotationMatrix)
-  D g[4];
+  // Q = the matrix of fa qP (column-major: its columns q0, q1, q2)
+  D g[4], Q[9];
   quatProduct(fa, qp, g);
-  const D tx = 2.0 * g[0], ty = 2.0 * g[1], tz = 2.0 * g[2];
-  const D twx = tx * g[3], twy = ty * g[3], twz = tz * g[3];
-  const D txx = tx * g[0], txy = ty * g[0], txz = tz * g[0];
-  const D tyy = ty * g[1], tyz = tz * g[1], tzz = tz * g[2];
-  const D q0[3] = {1.0 - (tyy + tzz), txy + twz, txz - twy};
-  const D q1[3] = {txy - twz, 1.0 - (txx + tzz), tyz + twx};
-  const D q2[3] = {txz + twy, tyz - twx, 1.0 - (txx + tyy)};
+  rotationMatrix(g, Q);
+  const D *q0 = Q, *q1 = Q + 3, *q2 = Q + 6;
   const D k0 = s1 * inv_c1, k2 = s[0] * inv_c1;
   D rows[9];
   for (int j = 0; j < 3; ++j) {

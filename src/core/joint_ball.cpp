@@ -25,7 +25,7 @@ BallJoint::BallJoint(const BallJointDef& def) : euler(def.axes) {
 }
 
 void BallJoint::prepare(JointBase& j, const StepContext& ctx) {
-  axes.in_lanes = false;
+  axes.in_lanes = axes.exact_in_lanes = false;
   anchor.prepare(j, ctx);
 }
 
@@ -51,10 +51,9 @@ void BallJoint::updateAngles(const JointBase& j, const SolverBody& A, const Solv
 // anchors advance() refreshed after the last position update: only velocities changed since.
 void BallJoint::warmStart(JointBase& j, SolverBody& A, SolverBody& B, const StepContext& ctx,
                           bool first_substep) {
-  // Swing-twist rows turn with the swing plane: always recomputed. Euler angles in the lanes
-  // are recomputed there, by the same rule (PointLanes::exactAngles).
-  const bool in_lanes = ctx.angles_in_lanes && axes.in_lanes && !swing_twist_limits;
-  if (!in_lanes && (first_substep || swing_twist_limits || !axes.limitsOpen(A, B, ctx.h)))
+  // Swing-twist rows turn with the swing plane: always recomputed.
+  if (!axes.exact_in_lanes &&
+      (swing_twist_limits || axes.recomputes(A, B, ctx.h, first_substep)))
     updateAngles(j, A, B, ctx);
   axes.warmStart(A, B);
   if (swing_twist_limits) swing_twist.warmStart(A, B);

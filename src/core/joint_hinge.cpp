@@ -15,7 +15,7 @@ HingeJoint::HingeJoint(const HingeJointDef& def)
 
 void HingeJoint::prepare(JointBase& j, const StepContext& ctx) {
   const auto& m = *ctx.motions;
-  axes.in_lanes = false;
+  axes.in_lanes = axes.exact_in_lanes = false;
   anchor.prepare(j, ctx);
   hinge_axis.prepare(m[j.a], m[j.b], axis_in_a, axis_in_b);
 }
@@ -36,9 +36,8 @@ void HingeJoint::updateAngle(const JointBase& j, const SolverBody& A, const Solv
 // velocities changed since.
 void HingeJoint::warmStart(JointBase& j, SolverBody& A, SolverBody& B, const StepContext& ctx,
                            bool first_substep) {
-  // an angle in the lanes is recomputed there, by the same rule (PointLanes::exactAngles)
-  const bool in_lanes = ctx.angles_in_lanes && axes.in_lanes;
-  if (!in_lanes && (first_substep || !axes.limitsOpen(A, B, ctx.h))) updateAngle(j, A, B, ctx);
+  if (!axes.exact_in_lanes && axes.recomputes(A, B, ctx.h, first_substep))
+    updateAngle(j, A, B, ctx);
   const bool current = !first_substep;
   axes.warmStart(A, B);
   // The axis goes into the lanes with the anchor; there its refresh, K^-1 and warm start are

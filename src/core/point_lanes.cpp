@@ -278,25 +278,21 @@ void PointLanes::refreshFrames(Range& R, std::vector<SolverBody>& bodies, bool a
   }
 }
 
-namespace {
-// After the kernel: the axes' row count (a ball's 0 at gimbal lock), marked recomputed.
-template <int N>
-void takeExactAngles(AngleAxes<N>& ax, bool rows) {
-  ax.count = rows ? N : 0;
-  ax.fresh = true;
-}
-}  // namespace
-
 void PointLanes::exactAngles(const IslandRange& p, std::vector<SolverBody>& bodies,
                              const StepContext& ctx, bool first_substep) {
   Range* R = rangeOf(p);
   if (!R || R->blocks.empty()) return;
   AngleJobs& J = R->angle_jobs;
+  // after the kernel: the row count (a ball's 0 at gimbal lock), marked recomputed
+  const auto take = [](auto& ax, bool rows) {
+    ax.count = rows ? int(ax.angles.size()) : 0;
+    ax.fresh = true;
+  };
   if (first_substep) {
     J.hinges.clear();
     J.balls.clear();
-    J.hinge_lanes.clear();
-    J.ball_lanes.clear();
+    J.hinge_of.clear();
+    J.ball_of.clear();
     J.ok.resize(R->lanes.size());
     const std::vector<BodyMotion>& m = *ctx.motions;
     for (const Lane& l : R->lanes) {
@@ -305,50 +301,40 @@ void PointLanes::exactAngles(const IslandRange& p, std::vector<SolverBody>& bodi
       if (HingeJoint* h = std::get_if<HingeJoint>(&l.joint->kind)) {
         J.hinges.push_back({in, h->axis.data(), h->perp.data(), h->axes.rows[0].data(),
                             &h->axes.angles[0]});
-        J.hinge_lanes.push_back(&l);
+        J.hinge_of.push_back({&h->axes, l.a, l.b});
+        h->axes.exact_in_lanes = true;
       } else if (BallJoint* b = std::get_if<BallJoint>(&l.joint->kind)) {
         J.balls.push_back({in, b->euler.qP.coeffs().data(), &b->euler.s, b->axes.angles.data(),
                            b->axes.rows[0].data(), &J.ok[J.balls.size()]});
-        J.ball_lanes.push_back(&l);
+        J.ball_of.push_back({&b->axes, l.a, l.b});
+        b->axes.exact_in_lanes = true;
       }
     }
     hingeAngles(J.hinges.data(), int(J.hinges.size()));
     eulerAngles(J.balls.data(), int(J.balls.size()));
-    for (const Lane* l : J.hinge_lanes)
-      takeExactAngles(std::get<HingeJoint>(l->joint->kind).axes, true);
-    for (size_t k = 0; k < J.balls.size(); ++k)
-      takeExactAngles(std::get<BallJoint>(J.ball_lanes[k]->joint->kind).axes, J.ok[k] != 0.0);
+    for (const auto& of : J.hinge_of) take(*of.axes, true);
+    for (size_t k = 0; k < J.balls.size(); ++k) take(*J.ball_of[k].axes, J.ok[k] != 0.0);
     return;
   }
-  // Later substeps: the joints whose limits are not open (BallJoint, HingeJoint::warmStart).
+  // Later substeps: the jobs of the joints that recompute (their limits not open).
   thread_local std::vector<HingeAngleJob> hinges;
   thread_local std::vector<EulerAngleJob> balls;
   thread_local std::vector<int> hinge_at, ball_at;
-  hinges.clear();
-  balls.clear();
-  hinge_at.clear();
-  ball_at.clear();
-  const auto closed = [&](const Lane& l, const auto& ax) {
-    return !ax.limitsOpen(bodies[l.a], bodies[l.b], ctx.h);
+  const auto choose = [&](const auto& jobs, const auto& of, auto& chosen, std::vector<int>& at) {
+    chosen.clear();
+    at.clear();
+    for (size_t k = 0; k < jobs.size(); ++k) {
+      if (!of[k].axes->recomputes(bodies[of[k].a], bodies[of[k].b], ctx.h, false)) continue;
+      chosen.push_back(jobs[k]);
+      at.push_back(int(k));
+    }
   };
-  for (size_t k = 0; k < J.hinges.size(); ++k) {
-    const Lane& l = *J.hinge_lanes[k];
-    if (!closed(l, std::get<HingeJoint>(l.joint->kind).axes)) continue;
-    hinges.push_back(J.hinges[k]);
-    hinge_at.push_back(int(k));
-  }
-  for (size_t k = 0; k < J.balls.size(); ++k) {
-    const Lane& l = *J.ball_lanes[k];
-    if (!closed(l, std::get<BallJoint>(l.joint->kind).axes)) continue;
-    balls.push_back(J.balls[k]);
-    ball_at.push_back(int(k));
-  }
+  choose(J.hinges, J.hinge_of, hinges, hinge_at);
+  choose(J.balls, J.ball_of, balls, ball_at);
   hingeAngles(hinges.data(), int(hinges.size()));
   eulerAngles(balls.data(), int(balls.size()));
-  for (const int k : hinge_at)
-    takeExactAngles(std::get<HingeJoint>(J.hinge_lanes[k]->joint->kind).axes, true);
-  for (const int k : ball_at)
-    takeExactAngles(std::get<BallJoint>(J.ball_lanes[k]->joint->kind).axes, J.ok[k] != 0.0);
+  for (const int k : hinge_at) take(*J.hinge_of[k].axes, true);
+  for (const int k : ball_at) take(*J.ball_of[k].axes, J.ok[k] != 0.0);
 }
 
 void PointLanes::load(const IslandRange& p, std::vector<SolverBody>& bodies,

@@ -47,6 +47,8 @@ namespace ragdoll_sim {
 struct Joint;
 struct AnchorPart;
 struct HingeAxisPart;
+template <int N>
+struct AngleAxes;
 
 class PointLanes {
  public:
@@ -57,10 +59,10 @@ class PointLanes {
   // hold marked in_lanes.
   void build(const IslandRange& p, Joint* const* js, const std::vector<SolverBody>& bodies);
   // Before the range's joints warm start: the exact angles and rows of the joints whose angle
-  // rows are all in the lanes (hinges, Euler ball joints) and which their warm start would
-  // recompute (all at the first substep; later, those whose limits are not open), W joints at a
-  // time (joint_angles_lanes.hpp), with the bits of their own updateAngle, which their warm
-  // start then leaves out.
+  // rows are all in the lanes (hinges, Euler ball joints) where their warm start would compute
+  // them (AngleAxes::recomputes), W joints at a time (joint_angles_lanes.hpp), with the bits of
+  // their own updateAngle; the first substep marks them (AngleAxes::exact_in_lanes), so that
+  // their warm start leaves it out.
   void exactAngles(const IslandRange& p, std::vector<SolverBody>& bodies, const StepContext& ctx,
                    bool first_substep);
   // After the range's joints warm started: the impulses into the blocks, and the anchors and
@@ -93,9 +95,15 @@ class PointLanes {
   // The exact-angle jobs of a range's lanes whose angle rows are all there (exactAngles): formed
   // at the first substep (the bodies, the joints and the lanes stay put within the step).
   struct AngleJobs {
+    template <int N>
+    struct Of {  // a job's joint axes and bodies
+      AngleAxes<N>* axes;
+      int a, b;
+    };
     std::vector<HingeAngleJob> hinges;
     std::vector<EulerAngleJob> balls;
-    std::vector<const Lane*> hinge_lanes, ball_lanes;
+    std::vector<Of<1>> hinge_of;
+    std::vector<Of<3>> ball_of;
     std::vector<double> ok;  // a ball's rows formed (not at gimbal lock)
   };
   struct alignas(64) Range {  // its own cache lines (allocated by the thread that builds it)

@@ -19,8 +19,6 @@ struct StepContext {
   int relax = 0;          // contact relax sweeps per substep (the first joint_relax_iterations also relax the joints)
   bool track_impulses = false;  // World::setContactImpulseTracking
   int lanes = 1;          // SolverSettings::lanes resolved: 1 (double rows), 4 or 8
-  // The angles of joints in the lanes come from PointLanes::exactAngles, not their warm start.
-  bool angles_in_lanes = false;
   bool odd_step = false;  // the World's steps so far are odd in number (contact_wide.hpp)
   Softness contact_softness;
   Softness joint_softness;
