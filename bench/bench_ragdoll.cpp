@@ -16,6 +16,7 @@
 // dt = 1 ms, gravity -9.81 z, ground z = 0, friction 0.8. Only World::step is timed. The
 // metrics are computed here from link poses and the URDF joint data alone (anchor error,
 // ground penetration of the analytic shapes, joint angles vs limits, rest state at 3 s).
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -35,6 +36,14 @@
 using namespace ragdoll_sim;
 
 namespace {
+
+// --opt profile=1's fields, in the line's order.
+constexpr std::array<double StepProfile::*, 9> kProfileFields = {
+    &StepProfile::step,    &StepProfile::guard,   &StepProfile::collide,
+    &StepProfile::boxes,   &StepProfile::pairs,   &StepProfile::narrowphase,
+    &StepProfile::islands, &StepProfile::solve,   &StepProfile::finish};
+constexpr std::array<const char*, 9> kProfileNames = {
+    "step", "guard", "collide", "boxes", "pairs", "narrowphase", "islands", "solve", "finish"};
 
 struct Scene {
   char id;
@@ -221,6 +230,8 @@ int main(int argc, char** argv) {
   // --opt track=1: contact impulse tracking on; reports=1: and World::contactReports after
   // every step, timed with it (what a contacts subscriber costs the loop)
   bool track = false, reports = false;
+  // --opt profile=1: World::stepProfile's phases, mean µs per step, at the end of the line
+  bool profile = false;
   std::string urdf = "../shared/peers/ragdoll15.urdf";
   for (int i = 1; i < argc; ++i) {
     const std::string s = argv[i];
@@ -274,6 +285,7 @@ int main(int argc, char** argv) {
         else if (k == "joint_friction") joint_friction = v;
         else if (k == "track") track = v != 0.0;
         else if (k == "reports") reports = track = v != 0.0;
+        else if (k == "profile") profile = v != 0.0;
         else {
           std::fprintf(stderr, "unknown option %s\n", k.c_str());
           return 2;
@@ -358,6 +370,8 @@ int main(int argc, char** argv) {
   long resting_body_steps = 0;  // of those, in islands on the rest substeps (SleepDef::rest_substeps)
   uint64_t state_hash = kFnvOffsetBasis;
   const int window = std::min(1000, steps);
+  world.setProfiling(profile);
+  StepProfile phases;  // summed over the steps
   const auto loop0 = std::chrono::steady_clock::now();
   for (int step = 1; step <= steps; ++step) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -372,6 +386,10 @@ int main(int argc, char** argv) {
     if (step > steps - window) wall_last += dt_wall;
     wall_trace += dt_wall;
     if (hash) state_hash = hashStates(world, state_hash);
+    if (profile) {
+      const StepProfile& p = world.stepProfile();
+      for (double StepProfile::*f : kProfileFields) phases.*f += p.*f;
+    }
     awake_body_steps += world.awakeBodyCount();
     resting_body_steps += world.islandCounters().resting_bodies;
     if (trace > 0 && step % trace == 0) {
@@ -433,6 +451,14 @@ int main(int argc, char** argv) {
     std::snprintf(buf, sizeof buf, " track=1 reports=%d reported_points=%zu", reports ? 1 : 0,
                   reported_points);
     extra += buf;
+  }
+  if (profile) {
+    char buf[64];
+    for (size_t k = 0; k < kProfileFields.size(); ++k) {
+      std::snprintf(buf, sizeof buf, " profile_%s_us=%.2f", kProfileNames[k],
+                    phases.*kProfileFields[k] / steps);
+      extra += buf;
+    }
   }
   if (hash) {
     char buf[48];

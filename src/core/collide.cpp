@@ -7,6 +7,7 @@
 #include "gjk.hpp"
 #include "group_by.hpp"
 #include "parallel_for.hpp"
+#include "phase_clock.hpp"
 #include "world_impl.hpp"
 
 namespace ragdoll_sim {
@@ -52,6 +53,7 @@ void World::Impl::rebuildShapeLists() {
 }
 
 void World::Impl::collide(double dt) {
+  PhaseClock clock(profiling);
   const int n = int(shapes.size());
   aabbs.resize(n);
   aabb_kept.resize(n, 0);
@@ -89,6 +91,7 @@ void World::Impl::collide(double dt) {
     static_tree.build(static_shapes, aabbs);
     static_dirty = false;
   }
+  clock.lap(profile.boxes);
   // The few planes (their frames every step).
   planes.swap(last_planes);
   planes.clear();
@@ -179,6 +182,7 @@ void World::Impl::collide(double dt) {
       if (old < old_count && contact_keys[old] == pair_keys[i]) old_contact[i] = int(old);
     }
   }
+  clock.lap(profile.pairs);
   // Manifold cache (manifold_cache.hpp): a feature a kept manifold lacks is at least
   // (speculative - cache distance) away, so both bodies must move less than that in the step,
   // (|v| + extent |w|) dt, for it not to be reached unseen. (Separated pairs need no such
@@ -261,6 +265,7 @@ void World::Impl::collide(double dt) {
     applyPairMaterial(c, da, db);
     matchImpulses(*last, c);
   });
+  clock.lap(profile.narrowphase);
   if (in_place) return;
   manifold_caches.swap(next_manifold_caches);
   contacts.swap(next_contacts);

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "lane_width.hpp"
+#include "phase_clock.hpp"
 #include "world_impl.hpp"
 
 namespace ragdoll_sim {
@@ -24,22 +25,29 @@ World::~World() = default;
 void World::step(double dt) {
   Impl& w = *impl_;
   if (!(dt > 0.0)) return;
+  StepProfile& profile = w.profile;
+  if (w.profiling) profile = StepProfile();
+  PhaseClock clock(w.profiling);
   const StepContexts ctx = w.makeContexts(dt);  // the full and the rest substeps
   ++w.steps;  // the contexts took the parity of the steps before this one
 
   // Fault guard: non-finite bodies go back to their last finite pose, speeds are clamped.
   w.guardInputs();
+  clock.lap(profile.guard);
   const bool any_awake = w.anyAwake();
   if (w.settled && !any_awake) {
     // Nothing built, woken, set or reset since a step found no body awake: only the time moves.
     if (!w.tracks.empty()) w.beginSamples(ctx, /*solved=*/false);
     w.finishStep();  // clears the forces, as a full step does
     w.time += dt;
+    clock.lap(profile.finish);
+    profile.step = profile.guard + profile.finish;
     return;
   }
 
   // Collide: boxes, broadphase pairs (sleeping ones carried), narrowphase or manifold cache.
   w.collide(dt);
+  clock.lap(profile.collide);
 
   // Island scheduling: union-find (wakes whole islands), ranges, split, attach, thread runs.
   w.buildIslands();
@@ -47,10 +55,12 @@ void World::step(double dt) {
   w.partitionIslands();
   w.markResting(ctx.rest_mode);  // sleep: islands that take the rest substeps
   if (!w.tracks.empty()) w.beginSamples(ctx, /*solved=*/true);  // World::trackBody
+  clock.lap(profile.islands);
 
   // Island solve: substeps, position sweeps, restitution, bodies take the step.
   w.prepareOutsideBodies();
   w.solveIslands(ctx);
+  clock.lap(profile.solve);
 
   // After the islands: broken joints let their pair collide, bodies outside the islands clear
   // their forces, the fault guard resets what the solver left non-finite.
@@ -64,12 +74,20 @@ void World::step(double dt) {
   w.updateSleep(dt);
   w.settled = !any_awake;
   w.time += dt;
+  clock.lap(profile.finish);
+  profile.step = profile.guard + profile.collide + profile.islands + profile.solve + profile.finish;
 }
 
 double World::time() const { return impl_->time; }
 const WorldDef& World::def() const { return impl_->def; }
 int World::laneWidth() const { return impl_->lane_width; }
 void World::setGravity(const Vec3& g) { impl_->def.gravity = g; }
+
+void World::setProfiling(bool on) {
+  impl_->profiling = on;
+  impl_->profile = StepProfile();
+}
+const StepProfile& World::stepProfile() const { return impl_->profile; }
 
 void World::setSolverSettings(const SolverSettings& solver) {
   const std::string e = solverSettingsError(solver);

@@ -62,6 +62,8 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
   // woken, set or reset since: the next step would give the same contacts and move nothing,
   // so it only advances the time (a world whose ragdolls all sleep costs almost nothing).
   bool settled = false;
+  bool profiling = false;  // World::setProfiling
+  StepProfile profile;     // of the last step, while profiling
   // The per-step body loops walk these instead of every body, so that static bodies cost
   // nothing per step: the alive dynamic bodies (ascending), and the static bodies created or
   // commanded (state, force, impulse) since the last step, which the fault guard checks and
