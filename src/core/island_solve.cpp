@@ -112,13 +112,13 @@ void World::Impl::prepareIsland(const IslandRange& p, const StepContext& c) {
 }
 
 // The substep sequence of one island on this thread; touches only the island's bodies and
-// constraints. A split island is solved by the team of the enclosing parallel region. Each
-// sweep first solves the boundary contacts, its two groups at once (they share no body), then
-// the threads take the halves (with one thread: the same work in the same order); the halves'
-// joints thus follow the boundary's impulses in every sweep, as they follow the contacts in a
-// sweep of a whole island. Work on the halves alone needs no barrier: they touch disjoint
-// bodies. Thread k always takes half k and boundary group k, so their constraints stay in its
-// core's cache.
+// constraints. A split island is solved by the team of the enclosing parallel region. A sweep
+// solves the boundary contacts, its two groups at once (they share no body), and the threads
+// take the halves (with one thread: the same work in the same order); the warm start and the
+// biased sweep take the boundary first, so the halves' joints follow its impulses as they follow
+// the contacts in a sweep of a whole island, and the relax sweeps alternate (relax()). Work on
+// the halves alone needs no barrier: they touch disjoint bodies. Thread k always takes half k
+// and boundary group k, so their constraints stay in its core's cache.
 class World::Impl::IslandPass {
  public:
   IslandPass(World::Impl& w, const IslandRange& r, const StepContext& ctx)
@@ -141,7 +141,7 @@ class World::Impl::IslandPass {
     });
     boundary([&](int b, int e) {
       w.contact_solver.warmStart(ctx, b, e, moved);
-      w.contact_solver.solve(ctx, true, b, e, false);
+      solveContacts(true, b, e, false);
     });
   }
 
@@ -150,7 +150,7 @@ class World::Impl::IslandPass {
   void solveBiasedAndIntegrate() {
     parts([&](const IslandRange& p) {
       solveJoints(p, true, last_joint_sweep < 0);
-      w.contact_solver.solve(ctx, true, p.contact_begin, p.contact_end, false);
+      solveContacts(true, p.contact_begin, p.contact_end, false);
       w.integratePositions(ctx.h, p.body_begin, p.body_end);
       // a joint whose sweeps are all in the lanes advances there (anchors, axis, angles)
       joints(p, [&](Joint& j) {
@@ -160,24 +160,29 @@ class World::Impl::IslandPass {
     });
   }
 
-  // Relax sweep `it` without bias: contacts every sweep, joints in the first
+  // The relax sweeps without bias: contacts every sweep, joints in the first
   // joint_relax_iterations (Gauss-Seidel over a manifold's points and along a limb needs them
   // to take back the push-out velocity and to carry a landing's load up the chain). After the
   // last joint sweep the joint trees' anchors are made exact (joint_tree.hpp); the contact
   // sweeps that follow see them, so the contacts end consistent (no push into the ground).
-  void relax(int it) {
-    // an anchor velocity error that moves it less than a tenth of the slop per step is left
-    const double tolerance = 0.1 * w.def.solver.joint_slop / ctx.dt;
-    const int last_tree_sweep = w.def.solver.exact_joints ? last_joint_sweep : -1;
-    boundary([&](int b, int e) { w.contact_solver.solve(ctx, false, b, e, it == 0); });
-    parts([&](const IslandRange& p) {
-      if (it < w.def.solver.joint_relax_iterations) solveJoints(p, false, it == last_joint_sweep);
-      if (it == last_tree_sweep)
-        w.forIslands(p, [&](const IslandRange& q) {
-          w.joint_tree.projectVelocities(q, w.solver, w.island_bodies, ctx.h, tolerance);
-        });
-      w.contact_solver.solve(ctx, false, p.contact_begin, p.contact_end, it == 0);
-    });
+  // A split island's sweeps take the halves and the boundary in turn, the halves first in even
+  // sweeps: two sweeps' halves (or boundaries) then follow each other with no barrier between,
+  // one barrier per sweep instead of two.
+  void relax() {
+    const auto boundarySweep = [&](int b, int e, int it) { solveContacts(false, b, e, it == 0); };
+    if (!r.split) {
+      for (int it = 0; it < ctx.relax; ++it) relaxHalves(it);
+      return;
+    }
+    for (int it = 0; it < ctx.relax; it += 2) {
+      const bool pair = it + 1 < ctx.relax;
+      relaxHalves(it);
+      boundary([&](int b, int e) {
+        boundarySweep(b, e, it);
+        if (pair) boundarySweep(b, e, it + 1);
+      });
+      if (pair) relaxHalves(it + 1);
+    }
   }
 
   // Joints whose anchor reached its break force are marked (breakJoints acts after the solve).
@@ -203,6 +208,9 @@ class World::Impl::IslandPass {
   }
 
   void projectPositions();
+
+  // This pass's contact sweeps into its thread's count (World::Impl::contact_sweeps).
+  void countSweeps() { w.contact_sweeps[t].contacts += swept; }
 
   // The tracked bodies' velocities at the end of substep `sub` (substep_samples.hpp).
   void sample(int sub) {
@@ -233,6 +241,24 @@ class World::Impl::IslandPass {
     });
     if (wide) w.point_lanes.solve(p, w.solver, ctx, use_bias, last);
   }
+  void solveContacts(bool use_bias, int begin, int end, bool positions_moved) {
+    w.contact_solver.solve(ctx, use_bias, begin, end, positions_moved);
+    swept += end - begin;
+  }
+  // Relax sweep `it` over this thread's parts (a split island's halves, or the island).
+  void relaxHalves(int it) {
+    // an anchor velocity error that moves it less than a tenth of the slop per step is left
+    const double tolerance = 0.1 * w.def.solver.joint_slop / ctx.dt;
+    const int last_tree_sweep = w.def.solver.exact_joints ? last_joint_sweep : -1;
+    parts([&](const IslandRange& p) {
+      if (it < w.def.solver.joint_relax_iterations) solveJoints(p, false, it == last_joint_sweep);
+      if (it == last_tree_sweep)
+        w.forIslands(p, [&](const IslandRange& q) {
+          w.joint_tree.projectVelocities(q, w.solver, w.island_bodies, ctx.h, tolerance);
+        });
+      solveContacts(false, p.contact_begin, p.contact_end, it == 0);
+    });
+  }
   template <class F>
   void joints(const IslandRange& p, F&& f) {
     for (int k = p.joint_begin; k < p.joint_end; ++k)
@@ -248,6 +274,7 @@ class World::Impl::IslandPass {
   // the substep's last sweep that solves the joints (-1: the biased one)
   const int last_joint_sweep = std::min(ctx.relax, w.def.solver.joint_relax_iterations) - 1;
   int t = 0, nt = 1;
+  int64_t swept = 0;  // contact constraints solved, summed over the sweeps
 };
 
 // Position sweeps. A sweep that moved no body leaves the next ones nothing to do: they see
@@ -333,12 +360,13 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx) {
     const bool moved = sub == 0 || ctx.relax < 1;
     pass.integrateAndWarmStart(sub, moved);
     pass.solveBiasedAndIntegrate();
-    for (int it = 0; it < ctx.relax; ++it) pass.relax(it);
+    pass.relax();
     pass.markBreaks(sub == ctx.substeps - 1);
     if (ctx.track_impulses) pass.trackImpulses(sub == 0);
     if (!tracks.empty()) pass.sample(sub);
   }
   pass.projectPositions();
+  pass.countSweeps();
 }
 
 // After an island's substeps, on the same thread: restitution and the impulses stored for the
@@ -399,6 +427,7 @@ void World::Impl::solveSplitIsland(const IslandRange& r, const StepContexts& ctx
 // run of islands first, then what is left of the others' (run_queue.hpp).
 void World::Impl::solveIslands(const StepContexts& ctx) {
   contact_solver.resize(threadCount());
+  contact_sweeps.resize(std::max(threadCount(), TeamBarrier::kMaxTeam));
   joint_tree.reserve(int(bodies.size()), int(island_bodies.size()), int(active_joints.size()));
   point_lanes.reserve(int(active_joints.size()));
   if (track_contacts) contact_tracks.assign(contacts.size(), ContactTrack());

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <chrono>
+#include <cstdint>
 #include <vector>
 
 #include "body.hpp"
@@ -79,6 +80,12 @@ struct SolveData {
     std::chrono::steady_clock::time_point at;
   };
   std::vector<RunEnd> run_ends;
+  // Per thread (a cache line each): the contact constraints solved, summed over the sweeps, in
+  // which each is solved once (WorldInternals::contactSweeps, for tests).
+  struct alignas(64) SweepCount {
+    int64_t contacts = 0;
+  };
+  std::vector<SweepCount> contact_sweeps;
   // Whether each thread of a split island moved a body in a position sweep, by the sweep's
   // parity (IslandPass::projectPositions).
   char position_moved[2][2] = {};

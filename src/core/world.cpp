@@ -127,6 +127,12 @@ void WorldInternals::setTuning(World& world, const WorldTuning& tuning) {
   w.settled = false;
 }
 
+int64_t WorldInternals::contactSweeps(const World& world) {
+  int64_t n = 0;
+  for (const auto& c : world.impl_->contact_sweeps) n += c.contacts;
+  return n;
+}
+
 int64_t WorldInternals::staticTreeBuilds(const World& world) {
   return world.impl_->static_tree.builds();
 }

@@ -54,6 +54,9 @@ struct WorldInternals {
   // A ball's Euler angles or a hinge's angle as the solver last left them (AngleAxes: the rows
   // it solved, [0, count)), for comparing with the angles at the poses.
   static std::vector<double> solverAngles(const World& world, JointId joint);
+  // Contact constraints solved since the world was made, summed over the sweeps (biased and
+  // relax) of every substep: each sweep solves each of a step's active contacts once.
+  static int64_t contactSweeps(const World& world);
 };
 
 }  // namespace ragdoll_sim

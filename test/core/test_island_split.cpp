@@ -11,6 +11,7 @@
 
 #include "island_split.hpp"
 #include "scene_util.hpp"
+#include "world_tuning.hpp"
 
 using namespace ragdoll_sim;
 using namespace ragdoll_sim::test;
@@ -146,11 +147,12 @@ struct Raft {
   std::unique_ptr<World> world;
   std::vector<BodyId> boxes;
 
-  explicit Raft(int threads) {
+  explicit Raft(int threads, int relax = SolverSettings().contact_relax_iterations) {
     WorldDef def;
     def.gravity.setZero();
     def.sleep.enabled = false;
     def.threads = threads;
+    def.solver.contact_relax_iterations = relax;
     world = std::make_unique<World>(def);
     add(Vec3::Zero());
   }
@@ -226,6 +228,34 @@ TEST(SplitIsland, MomentumConservedChainsStayApartSameForOneAndTwoThreads) {
   std::printf("[ split    ] 64 boxes, one island: %d contacts across chains, |dp|/|p| = %.1e, "
               "deepest overlap %.2e m\n",
               across, (p1 - p0).norm() / p0.norm(), deepest);
+}
+
+// A split island's relax sweeps take the halves and the boundary in turn (one barrier per
+// sweep): with an even or odd number of sweeps, each sweep solves every contact once, the
+// boundary's too, and 1 and 2 threads agree bit for bit.
+TEST(SplitIsland, EverySweepSolvesEveryContactOnceSameForOneAndTwoThreads) {
+  for (const int relax : {0, 1, 2, 3, 5}) {
+    Raft one(1, relax), two(2, relax);
+    const int substeps = one.world->def().solver.substeps;
+    int split_steps = 0;
+    for (int i = 0; i < 100; ++i) {
+      const int64_t before = WorldInternals::contactSweeps(*one.world);
+      Raft::stepBoth(one, two);
+      const IslandCounters n = one.world->islandCounters();
+      split_steps += n.split_islands;
+      EXPECT_EQ(WorldInternals::contactSweeps(*one.world) - before,
+                int64_t(substeps) * (1 + relax) * n.contacts)
+          << "relax " << relax << ", step " << i;
+      EXPECT_EQ(WorldInternals::contactSweeps(*two.world), WorldInternals::contactSweeps(*one.world));
+    }
+    EXPECT_GT(split_steps, 10) << "relax " << relax;
+    for (const BodyId& b : one.boxes) {
+      const Transform x1 = one.world->bodyPose(b), x2 = two.world->bodyPose(b);
+      ASSERT_EQ(std::memcmp(x1.p.data(), x2.p.data(), sizeof(double) * 3), 0)
+          << "relax " << relax << ", body " << b.index;
+      ASSERT_EQ(std::memcmp(x1.q.coeffs().data(), x2.q.coeffs().data(), sizeof(double) * 4), 0);
+    }
+  }
 }
 
 namespace {
