@@ -112,13 +112,13 @@ void World::Impl::prepareIsland(const IslandRange& p, const StepContext& c) {
 }
 
 // The substep sequence of one island on this thread; touches only the island's bodies and
-// constraints. A split island is solved by the team of the enclosing parallel region. A sweep
-// solves the boundary contacts, its two groups at once (they share no body), and the threads
-// take the halves (with one thread: the same work in the same order); the warm start and the
-// biased sweep take the boundary first, so the halves' joints follow its impulses as they follow
-// the contacts in a sweep of a whole island, and the relax sweeps alternate (relax()). Work on
-// the halves alone needs no barrier: they touch disjoint bodies. Thread k always takes half k
-// and boundary group k, so their constraints stay in its core's cache.
+// constraints. A split island is solved by the team of the enclosing parallel region. Each
+// sweep first solves the boundary contacts, its two groups at once (they share no body), then
+// the threads take the halves (with one thread: the same work in the same order); the halves'
+// joints thus follow the boundary's impulses in every sweep, as they follow the contacts in a
+// sweep of a whole island. Work on the halves alone needs no barrier: they touch disjoint
+// bodies. Thread k always takes half k and boundary group k, so their constraints stay in its
+// core's cache.
 class World::Impl::IslandPass {
  public:
   IslandPass(World::Impl& w, const IslandRange& r, const StepContext& ctx)
@@ -160,29 +160,24 @@ class World::Impl::IslandPass {
     });
   }
 
-  // The relax sweeps without bias: contacts every sweep, joints in the first
+  // Relax sweep `it` without bias: contacts every sweep, joints in the first
   // joint_relax_iterations (Gauss-Seidel over a manifold's points and along a limb needs them
   // to take back the push-out velocity and to carry a landing's load up the chain). After the
   // last joint sweep the joint trees' anchors are made exact (joint_tree.hpp); the contact
   // sweeps that follow see them, so the contacts end consistent (no push into the ground).
-  // A split island's sweeps take the halves and the boundary in turn, the halves first in even
-  // sweeps: two sweeps' halves (or boundaries) then follow each other with no barrier between,
-  // one barrier per sweep instead of two.
-  void relax() {
-    const auto boundarySweep = [&](int b, int e, int it) { solveContacts(false, b, e, it == 0); };
-    if (!r.split) {
-      for (int it = 0; it < ctx.relax; ++it) relaxHalves(it);
-      return;
-    }
-    for (int it = 0; it < ctx.relax; it += 2) {
-      const bool pair = it + 1 < ctx.relax;
-      relaxHalves(it);
-      boundary([&](int b, int e) {
-        boundarySweep(b, e, it);
-        if (pair) boundarySweep(b, e, it + 1);
-      });
-      if (pair) relaxHalves(it + 1);
-    }
+  void relax(int it) {
+    // an anchor velocity error that moves it less than a tenth of the slop per step is left
+    const double tolerance = 0.1 * w.def.solver.joint_slop / ctx.dt;
+    const int last_tree_sweep = w.def.solver.exact_joints ? last_joint_sweep : -1;
+    boundary([&](int b, int e) { solveContacts(false, b, e, it == 0); });
+    parts([&](const IslandRange& p) {
+      if (it < w.def.solver.joint_relax_iterations) solveJoints(p, false, it == last_joint_sweep);
+      if (it == last_tree_sweep)
+        w.forIslands(p, [&](const IslandRange& q) {
+          w.joint_tree.projectVelocities(q, w.solver, w.island_bodies, ctx.h, tolerance);
+        });
+      solveContacts(false, p.contact_begin, p.contact_end, it == 0);
+    });
   }
 
   // Joints whose anchor reached its break force are marked (breakJoints acts after the solve).
@@ -244,20 +239,6 @@ class World::Impl::IslandPass {
   void solveContacts(bool use_bias, int begin, int end, bool positions_moved) {
     w.contact_solver.solve(ctx, use_bias, begin, end, positions_moved);
     swept += end - begin;
-  }
-  // Relax sweep `it` over this thread's parts (a split island's halves, or the island).
-  void relaxHalves(int it) {
-    // an anchor velocity error that moves it less than a tenth of the slop per step is left
-    const double tolerance = 0.1 * w.def.solver.joint_slop / ctx.dt;
-    const int last_tree_sweep = w.def.solver.exact_joints ? last_joint_sweep : -1;
-    parts([&](const IslandRange& p) {
-      if (it < w.def.solver.joint_relax_iterations) solveJoints(p, false, it == last_joint_sweep);
-      if (it == last_tree_sweep)
-        w.forIslands(p, [&](const IslandRange& q) {
-          w.joint_tree.projectVelocities(q, w.solver, w.island_bodies, ctx.h, tolerance);
-        });
-      solveContacts(false, p.contact_begin, p.contact_end, it == 0);
-    });
   }
   template <class F>
   void joints(const IslandRange& p, F&& f) {
@@ -360,7 +341,7 @@ void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx) {
     const bool moved = sub == 0 || ctx.relax < 1;
     pass.integrateAndWarmStart(sub, moved);
     pass.solveBiasedAndIntegrate();
-    pass.relax();
+    for (int it = 0; it < ctx.relax; ++it) pass.relax(it);
     pass.markBreaks(sub == ctx.substeps - 1);
     if (ctx.track_impulses) pass.trackImpulses(sub == 0);
     if (!tracks.empty()) pass.sample(sub);

@@ -230,9 +230,8 @@ TEST(SplitIsland, MomentumConservedChainsStayApartSameForOneAndTwoThreads) {
               across, (p1 - p0).norm() / p0.norm(), deepest);
 }
 
-// A split island's relax sweeps take the halves and the boundary in turn (one barrier per
-// sweep): with an even or odd number of sweeps, each sweep solves every contact once, the
-// boundary's too, and 1 and 2 threads agree bit for bit.
+// Every sweep of a split island solves every contact once, the boundary's too, whatever the
+// number of relax sweeps, and 1 and 2 threads agree bit for bit.
 TEST(SplitIsland, EverySweepSolvesEveryContactOnceSameForOneAndTwoThreads) {
   for (const int relax : {0, 1, 2, 3, 5}) {
     Raft one(1, relax), two(2, relax);
