@@ -95,8 +95,9 @@ def report(meta, runs, failures):
                  meta.get("rounds", "?"), meta.get("steps", "scene"), meta.get("date", "?"),
                  meta.get("nproc", "?"), meta.get("loadavg_start", "?"), meta.get("loadavg_end", "?")))
     L.append("")
-    if sync_lines(meta):
-        L += sync_lines(meta) + [""]
+    sync = sync_lines(meta)
+    if sync:
+        L += sync + [""]
     L.append("Steps/s: median (min–max) over the rounds. new ÷ old: the ratio of the medians "
              "(min–max of the per-round ratios). Quality: max_anchor_err_m / max_ground_pen_m / "
              "max_limit_viol_rad. Same state (with `OPTS=hash=1`): every run of both binaries "

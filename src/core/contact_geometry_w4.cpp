@@ -7,11 +7,7 @@
 namespace ragdoll_sim {
 namespace contact_geometry_w4 {
 
-#if defined(__AVX__)
-using Lanes = double_lanes::Double4;
-#else
-using Lanes = double_lanes::Double2;
-#endif
+using Lanes = double_lanes::WidestLanes;
 
 #include "contact_geometry.inc"
 

@@ -29,6 +29,12 @@ inline Double2 squareRoot(Double2 x) { return Double2(_mm_sqrt_pd(__m128d(x))); 
 typedef double Double4 __attribute__((vector_size(32)));
 inline Double4 squareRoot(Double4 x) { return Double4(_mm256_sqrt_pd(__m256d(x))); }
 #endif
+// The widest lanes of this file's build: the *_w4.cpp kernels' (built without AVX, two lanes).
+#if defined(__AVX__)
+using WidestLanes = Double4;
+#else
+using WidestLanes = Double2;
+#endif
 
 // nearbyint in the default rounding mode (to nearest, ties to even), for |y| < 2^52: SSE2 has
 // no rounding instruction, so 2^52 with y's sign is added and taken away (the sum's ulp is 1),

@@ -6,11 +6,7 @@
 namespace ragdoll_sim {
 namespace integrate_w4 {
 
-#if defined(__AVX__)
-using Lanes = integrate_kernel::Double4;
-#else
-using Lanes = integrate_kernel::Double2;
-#endif
+using Lanes = double_lanes::WidestLanes;
 
 void stepPositions(const integrate_kernel::BodyFields& f, const int* bodies, int count, double h,
                    double half_h) {

@@ -42,7 +42,6 @@ namespace ragdoll_sim {
 
 // The frames of a joint between bodies A and B as the angle kernels take them: (dq_a q_a) frame_a
 // and (dq_b q_b) frame_b; joint frames alone with the identity for the rest.
-static_assert(sizeof(std::array<Vec3, 3>) == 9 * sizeof(double), "the kernels' rows: 9 doubles");
 inline const double* identityQuat() {
   static const double q[4] = {0.0, 0.0, 0.0, 1.0};
   return q;
@@ -100,11 +99,13 @@ struct EulerBasis {
   // their world Jacobian rows j_i (t_i dot = j_i . (wB - wA)), false near gimbal lock
   // (joint_angles_lanes.hpp).
   bool angles(const JointFrameInputs& in, Vec3& t, std::array<Vec3, 3>* rows = nullptr) const {
+    static_assert(sizeof(std::array<Vec3, 3>) == 9 * sizeof(double), "the kernel's 9 doubles");
     std::array<Vec3, 3> r;
     double ok;
     const EulerAngleJob job{in, qP.coeffs().data(), &s, t.data(), r[0].data(), &ok};
     eulerAngles(&job, 1);
-    if (!rows || ok == 0.0) return ok != 0.0 || !rows;
+    if (!rows) return true;
+    if (ok == 0.0) return false;
     *rows = r;
     return true;
   }

@@ -118,9 +118,9 @@ inline void jointFrames(const Job* jobs, D fa[4], D fb[4]) {
   quatProduct(t, l4, fb);
 }
 
-// jobs[k, k + W).
+// jobs[0, W), one overload per kind of job.
 template <class D>
-inline void hingeLanes(const HingeAngleJob* jobs) {
+inline void jobLanes(const HingeAngleJob* jobs) {
   constexpr int W = sizeof(D) / sizeof(double);
   const double *axis[W], *perp[W];
   double *row_out[W], *angle_out[W];
@@ -142,7 +142,7 @@ inline void hingeLanes(const HingeAngleJob* jobs) {
 }
 
 template <class D>
-inline void eulerLanes(const EulerAngleJob* jobs) {
+inline void jobLanes(const EulerAngleJob* jobs) {
   constexpr int W = sizeof(D) / sizeof(double);
   const double *basis[W], *sign[W];
   double *angles_out[W], *rows_out[W], *ok_out[W];
@@ -193,18 +193,11 @@ inline void eulerLanes(const EulerAngleJob* jobs) {
 }
 
 // jobs[0, count) W at a time; returns how many were done (count rounded down to W).
-template <class D>
-inline int hingeBlocks(const HingeAngleJob* jobs, int count) {
+template <class D, class Job>
+inline int jobBlocks(const Job* jobs, int count) {
   constexpr int W = sizeof(D) / sizeof(double);
   int k = 0;
-  for (; k + W <= count; k += W) hingeLanes<D>(jobs + k);
-  return k;
-}
-template <class D>
-inline int eulerBlocks(const EulerAngleJob* jobs, int count) {
-  constexpr int W = sizeof(D) / sizeof(double);
-  int k = 0;
-  for (; k + W <= count; k += W) eulerLanes<D>(jobs + k);
+  for (; k + W <= count; k += W) jobLanes<D>(jobs + k);
   return k;
 }
 

@@ -6,21 +6,22 @@
 namespace ragdoll_sim {
 
 namespace {
-using joint_angles::eulerBlocks;
-using joint_angles::hingeBlocks;
-using double_lanes::Double2;
+// Four at a time where the CPU has AVX2, then two, then one.
+template <class Job>
+void allJobs(const Job* jobs, int count, int (*four)(const Job*, int)) {
+  using joint_angles::jobBlocks;
+  int done = cpuHasAvx2() ? four(jobs, count) : 0;
+  done += jobBlocks<double_lanes::Double2>(jobs + done, count - done);
+  jobBlocks<double>(jobs + done, count - done);
+}
 }  // namespace
 
 void hingeAngles(const HingeAngleJob* jobs, int count) {
-  int done = cpuHasAvx2() ? joint_angles_w4::hingeAngles(jobs, count) : 0;
-  done += hingeBlocks<Double2>(jobs + done, count - done);
-  hingeBlocks<double>(jobs + done, count - done);
+  allJobs(jobs, count, joint_angles_w4::hingeAngles);
 }
 
 void eulerAngles(const EulerAngleJob* jobs, int count) {
-  int done = cpuHasAvx2() ? joint_angles_w4::eulerAngles(jobs, count) : 0;
-  done += eulerBlocks<Double2>(jobs + done, count - done);
-  eulerBlocks<double>(jobs + done, count - done);
+  allJobs(jobs, count, joint_angles_w4::eulerAngles);
 }
 
 double laneAtan2(double y, double x) { return joint_angles::atan2Lanes(y, x); }

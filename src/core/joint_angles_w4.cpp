@@ -6,17 +6,13 @@
 namespace ragdoll_sim {
 namespace joint_angles_w4 {
 
-#if defined(__AVX__)
-using Lanes = double_lanes::Double4;
-#else
-using Lanes = double_lanes::Double2;
-#endif
+using Lanes = double_lanes::WidestLanes;
 
 int hingeAngles(const HingeAngleJob* jobs, int count) {
-  return joint_angles::hingeBlocks<Lanes>(jobs, count);
+  return joint_angles::jobBlocks<Lanes>(jobs, count);
 }
 int eulerAngles(const EulerAngleJob* jobs, int count) {
-  return joint_angles::eulerBlocks<Lanes>(jobs, count);
+  return joint_angles::jobBlocks<Lanes>(jobs, count);
 }
 
 }  // namespace joint_angles_w4

@@ -6,11 +6,7 @@
 namespace ragdoll_sim {
 namespace point_frames_w4 {
 
-#if defined(__AVX__)
-using Lanes = double_lanes::Double4;
-#else
-using Lanes = double_lanes::Double2;
-#endif
+using Lanes = double_lanes::WidestLanes;
 
 void refresh(PointFrameBlock* frames, PointRowBlock* rows, int count, const LaneBodies& bodies,
              bool advance_angles, double h) {

@@ -306,6 +306,8 @@ TEST(JointLanes, SwingTwistBallKeepsItsExactAngles) {
   }
 }
 
+namespace {
+
 // Chains of Euler-limited balls and limited hinges, some driven or damped, swinging into their
 // limits for 400 steps with the tuning set by `tune`: the state's hash, and the worst excess of
 // a hinge past its limits into *worst_limit.
@@ -356,30 +358,31 @@ uint64_t limitedChains(int lanes, Tune&& tune, double* worst_limit) {
   return hashStates(w);
 }
 
+// The chains' state with a switch of WorldTuning on and with it off, at both widths: the same
+// bits, with a hinge near its limit (so that the limit rows take part).
+void expectSwitchChangesNoBit(bool WorldTuning::*field) {
+  for (const int lanes : {4, 8}) {
+    double reach = -1.0;
+    const auto set = [field](bool on) { return [field, on](WorldTuning& t) { t.*field = on; }; };
+    const uint64_t on = limitedChains(lanes, set(true), &reach);
+    const uint64_t off = limitedChains(lanes, set(false), &reach);
+    EXPECT_EQ(on, off) << "lanes " << lanes;
+    EXPECT_GT(reach, -0.01) << "lanes " << lanes << ": no hinge came within 0.01 rad of a limit";
+  }
+}
+
+}  // namespace
+
 // After the first substep the wide pass keeps the angles it advanced and takes only those the
 // joints recomputed (a limit within reach, a motor): the chains' state must be the one of
 // putting every angle in at every substep.
 TEST(JointLanes, KeptLaneAnglesChangeNoBit) {
-  for (const int lanes : {4, 8}) {
-    double reach = -1.0;
-    const auto keep = [](bool kept) { return [kept](WorldTuning& t) { t.lane_angles_kept = kept; }; };
-    const uint64_t kept = limitedChains(lanes, keep(true), &reach);
-    const uint64_t all = limitedChains(lanes, keep(false), &reach);
-    EXPECT_EQ(kept, all) << "lanes " << lanes;
-    EXPECT_GT(reach, -0.01) << "lanes " << lanes << ": no hinge came within 0.01 rad of a limit";
-  }
+  expectSwitchChangesNoBit(&WorldTuning::lane_angles_kept);
 }
 
 // The joints' exact angles computed in the lanes, several at a time, at every substep where a
 // joint's warm start would recompute its own (PointLanes::exactAngles), give the chains' state
 // of each joint computing its own.
 TEST(JointLanes, ExactAnglesInLanesChangeNoBit) {
-  for (const int lanes : {4, 8}) {
-    double reach = -1.0;
-    const auto exact = [](bool on) { return [on](WorldTuning& t) { t.lane_exact_angles = on; }; };
-    const uint64_t batched = limitedChains(lanes, exact(true), &reach);
-    const uint64_t own = limitedChains(lanes, exact(false), &reach);
-    EXPECT_EQ(batched, own) << "lanes " << lanes;
-    EXPECT_GT(reach, -0.01) << "lanes " << lanes << ": no hinge came within 0.01 rad of a limit";
-  }
+  expectSwitchChangesNoBit(&WorldTuning::lane_exact_angles);
 }

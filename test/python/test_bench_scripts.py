@@ -2,7 +2,8 @@
 the faster of Bullet and ODE, ours with lanes=1 beside the default float lanes), the issue's bars,
 the flop section and the two-thread handoffs by round; bench_compare_report.py's table;
 bench_compare.sh with two fake binaries (alternation, options, thread counts, handoffs);
-bench.sh's engines of ours against the report's. No timing, no engine: each test runs in well under a second.
+bench.sh's engines of ours against the report's. No timing, no engine: each test runs in well
+under a second.
 """
 import os
 import re
