@@ -212,7 +212,8 @@ int main(int argc, char** argv) {
   char scenario = 'a';
   int steps = -1, n_ragdolls = -1;
   WorldDef wd;
-  // --opt cache_distance, range_reserve, lane_exact_angles (internal: world_tuning.hpp)
+  // --opt cache_distance, range_reserve, lane_exact_angles, keep_schedule (internal:
+  // world_tuning.hpp)
   WorldTuning tuning;
   bool metrics = true;
   double rolling = 0.0;
@@ -277,6 +278,7 @@ int main(int argc, char** argv) {
         else if (k == "cache_distance") tuning.manifold_cache_distance = v;
         else if (k == "range_reserve") tuning.range_reserve = int(v);
         else if (k == "lane_exact_angles") tuning.lane_exact_angles = v != 0.0;
+        else if (k == "keep_schedule") tuning.keep_schedule = v != 0.0;
         else if (k == "rolling") rolling = v;
         else if (k == "yaw") yaw = v;
         else if (k == "trace") trace = int(v);

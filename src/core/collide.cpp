@@ -1,6 +1,7 @@
 // The collide phase: broadphase pairs -> narrowphase manifolds at the poses of the step start
 // (the boxes and the pairs in parallel). Data: collide.hpp.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "constants.hpp"
@@ -196,7 +197,7 @@ void World::Impl::collide(double dt) {
   };
   // The narrowphase on each pair independently (in parallel; each writes only its own
   // contact). c may be the old contact itself (in_place): it is read before it is reset.
-  parallelFor(count, threadCount(), [&](int i) {
+  const auto collidePair = [&](int i) {
     const int o = in_place ? i : old_contact[i];
     Contact& c = in_place ? contacts[i] : next_contacts[i];
     ManifoldCache& cache = in_place ? manifold_caches[i] : next_manifold_caches[i];
@@ -264,8 +265,17 @@ void World::Impl::collide(double dt) {
     c.sep_axis = c.manifold.normal;
     applyPairMaterial(c, da, db);
     matchImpulses(*last, c);
+  };
+  // The island schedule is built from which contacts touch (scheduleIslands).
+  std::atomic<bool> touching_changed{false};
+  parallelFor(count, threadCount(), [&](int i) {
+    const bool touched = in_place && contacts[i].manifold.count > 0;
+    collidePair(i);
+    if (in_place && (contacts[i].manifold.count > 0) != touched)
+      touching_changed.store(true, std::memory_order_relaxed);
   });
   clock.lap(profile.narrowphase);
+  if (!in_place || touching_changed.load(std::memory_order_relaxed)) schedule_fresh = false;
   if (in_place) return;
   manifold_caches.swap(next_manifold_caches);
   contacts.swap(next_contacts);

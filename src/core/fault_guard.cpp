@@ -41,6 +41,7 @@ void World::Impl::guardInputs() {
 
 void World::Impl::resetBody(int b, BodyFaultCause cause) {
   settled = false;
+  schedule_fresh = false;
   forgetBoxes(b);
   BodyMotion& m = motions[b];
   m.x = last_finite[b].x;

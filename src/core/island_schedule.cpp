@@ -9,6 +9,22 @@
 
 namespace ragdoll_sim {
 
+// The islands' schedule is a function of the joints (and which are broken), the awake dynamic
+// bodies, the contacts (their order: the constraints are their indices) and which of them touch,
+// and the thread count; whatever changes one of those clears schedule_fresh (a wake of a sleeping
+// body, sleep, a body, joint or contact made or removed, a joint broken, a body reset, collide
+// finding other pairs or a pair starting or ending touching). Otherwise last step's is this one's:
+// built again it would come out the same, bit for bit.
+void World::Impl::scheduleIslands() {
+  if (tuning.keep_schedule && schedule_fresh && schedule_threads == threadCount()) return;
+  buildIslands();
+  collectActiveJoints();
+  partitionIslands();
+  schedule_fresh = true;  // the wakes of buildIslands are in it
+  schedule_threads = threadCount();
+  ++schedule_builds;
+}
+
 void World::Impl::buildIslands() {
   islands.reset(int(bodies.size()), dynamic_bodies);  // static bodies are never united
   for (const Joint& j : joints)

@@ -65,6 +65,11 @@ struct IslandSchedule {
   std::vector<int> island_of_body;  // per body: its island, -1 when not awake or not dynamic
   std::vector<int> island_slot;     // per island root: its island while numbering, else -1
   IslandSplitter splitter;
+  // Whether the schedule above still fits what it was built from (scheduleIslands): cleared
+  // where an awake flag, a joint, the contacts or which of them touch change.
+  bool schedule_fresh = false;
+  int schedule_threads = 0;  // threadCount() when it was built
+  int64_t schedule_builds = 0;
   // scratch, reused every step
   std::vector<std::pair<int, int>> attach_scratch;
   std::vector<long> island_load;

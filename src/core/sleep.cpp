@@ -67,6 +67,7 @@ void World::Impl::updateSleep(double dt) {
     m.awake = false;
     m.v.setZero();
     m.w.setZero();
+    schedule_fresh = false;
   }
 }
 

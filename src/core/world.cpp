@@ -49,10 +49,9 @@ void World::step(double dt) {
   w.collide(dt);
   clock.lap(profile.collide);
 
-  // Island scheduling: union-find (wakes whole islands), ranges, split, attach, thread runs.
-  w.buildIslands();
-  w.collectActiveJoints();
-  w.partitionIslands();
+  // Island scheduling: union-find (wakes whole islands), ranges, split, attach, thread runs;
+  // last step's while nothing it is built from changed.
+  w.scheduleIslands();
   w.markResting(ctx.rest_mode);  // sleep: islands that take the rest substeps
   if (!w.tracks.empty()) w.beginSamples(ctx, /*solved=*/true);  // World::trackBody
   clock.lap(profile.islands);
@@ -125,6 +124,11 @@ void WorldInternals::setTuning(World& world, const WorldTuning& tuning) {
   w.shape_lists_dirty = true;
   w.static_dirty = true;
   w.settled = false;
+  w.schedule_fresh = false;
+}
+
+int64_t WorldInternals::scheduleBuilds(const World& world) {
+  return world.impl_->schedule_builds;
 }
 
 int64_t WorldInternals::contactSweeps(const World& world) {

@@ -55,6 +55,7 @@ BodyId World::createBody(const BodyDef& def) {
   const int index = int(w.bodies.size() - 1);
   if (def.type == BodyType::Dynamic) w.dynamic_bodies.push_back(index);
   else w.touchStatic(index);
+  w.schedule_fresh = false;  // the per-body vectors may have grown
   return BodyId{int32_t(index)};
 }
 
@@ -109,16 +110,18 @@ void World::Impl::breakJoints() {
     setCollides(j->a, j->b, true);
     broken_events.push_back(JointId{int32_t(j - joints.data())});
   }
-  if (any)
-    active_joints.erase(std::remove_if(active_joints.begin(), active_joints.end(),
-                                       [](const Joint* j) { return j->broken; }),
-                        active_joints.end());
+  if (!any) return;
+  schedule_fresh = false;
+  active_joints.erase(std::remove_if(active_joints.begin(), active_joints.end(),
+                                     [](const Joint* j) { return j->broken; }),
+                      active_joints.end());
 }
 
 void World::breakJoint(JointId id) {
   Joint& j = impl_->joint(id);
   if (j.broken) return;
   j.broken = true;
+  impl_->schedule_fresh = false;
   impl_->setCollides(j.a, j.b, true);
   impl_->wake(j.a);
   impl_->wake(j.b);
@@ -149,6 +152,7 @@ void World::Impl::removeContacts(Pred&& drop) {
   manifold_caches.resize(kept);
   pairs_dirty = true;  // no pair of a removed shape may be carried over
   settled = false;
+  schedule_fresh = false;  // the contacts' indices moved
 }
 
 // As breakJoint, the pair collides again (unless the joint broke already, which did that).
@@ -157,6 +161,7 @@ void World::Impl::removeJoint(int k) {
   if (!j.broken) setCollides(j.a, j.b, true);
   j.broken = true;  // left out of islands and solving like a broken joint
   joint_alive[k] = 0;
+  schedule_fresh = false;
   wake(j.a);
   wake(j.b);
 }
@@ -195,6 +200,7 @@ void World::destroyBody(BodyId id) {
   m.torque.setZero();
   w.pairs_dirty = true;
   w.settled = false;
+  w.schedule_fresh = false;
 }
 
 void World::removeShape(BodyId id, int index) {

@@ -135,6 +135,7 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
   void wake(int b) {
     settled = false;  // also for a static body: setBodyState moves it through here
     if (!isDynamic(b)) return touchStatic(b);
+    if (!motions[b].awake) schedule_fresh = false;
     motions[b].awake = true;
     motions[b].sleep_time = 0.0;
   }
@@ -197,6 +198,7 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
   void applyPairMaterial(Contact& c, const ShapeDef& da, const ShapeDef& db) const;
 
   // island_schedule.cpp
+  void scheduleIslands();
   void buildIslands();
   void collectActiveJoints();
   void partitionIslands();
@@ -270,8 +272,9 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
     wake(def.body_a.index);
     wake(def.body_b.index);
     if (!def.collide_connected) setCollides(def.body_a.index, def.body_b.index, false);
-    joints.push_back(Joint(def));
+    joints.push_back(Joint(def));  // may move every joint: active_joints points into them
     joint_alive.push_back(1);
+    schedule_fresh = false;
     return JointId{int32_t(joints.size() - 1)};
   }
 };

@@ -33,6 +33,9 @@ struct WorldTuning {
   // end their runs far apart (SolveData::reserve_steps), 0 never, 1 always. The same bits
   // whichever.
   int range_reserve = -1;
+  // Last step's island schedule is kept while nothing it is built from changed
+  // (World::Impl::scheduleIslands). Off: it is built every step; the same bits.
+  bool keep_schedule = true;
 };
 
 // "" or what is wrong with the first field ("manifold_cache_distance must be ...").
@@ -57,6 +60,9 @@ struct WorldInternals {
   // Contact constraints solved since the world was made, summed over the sweeps (biased and
   // relax) of every substep: each sweep solves each of a step's active contacts once.
   static int64_t contactSweeps(const World& world);
+  // How often the island schedule was built (union-find, ranges, split, runs) since the world
+  // was made; a step that keeps last step's does not count.
+  static int64_t scheduleBuilds(const World& world);
 };
 
 }  // namespace ragdoll_sim
