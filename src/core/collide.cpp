@@ -253,6 +253,10 @@ void World::Impl::collide(double dt) {
         c.sep_axis = n;
         c.sep_valid = true;
         c.manifold.count = 0;
+        // The axis's gap bounds the distance too: the cache keeps the pair while its motion
+        // stays within the clearance, a relative pose instead of two support points per step.
+        c.manifold.gap = gap;
+        cache.store(c.manifold, da.geometry, xa, db.geometry, xb, spec, cache_on);
         return;
       }
     }

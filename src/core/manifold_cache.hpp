@@ -38,7 +38,8 @@
 //   capsule) the normal is the direction between the first point's cores; with only A
 //   rolling it is kept in B's frame (a plane's normal stays the plane's).
 // A separated pair (no manifold, both shapes bounded) is kept the same way with its clearance
-// gap - band, gap the lower bound on the distance that the narrowphase found: the distance
+// gap - band, gap the lower bound on the distance that the narrowphase (or the gap of the
+// shapes' projections on last step's separating axis, collide.cpp) found: the distance
 // shrinks by at most the motion bound, so while that stays within the clearance the pair is
 // still beyond the band, exactly (no approximation: the narrowphase would find nothing).
 #pragma once
