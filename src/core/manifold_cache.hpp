@@ -92,7 +92,12 @@ struct ManifoldCache {
   // instead (distance is ignored).
   bool holds(const Transform& xa, const Transform& xb, double distance) const {
     if (!valid) return false;
-    const Transform now = relative(xa, xb);
+    // The relative pose unnormalised (Transform's product normalises, four divisions): its
+    // rotation is unit to rounding, far below what the bound below can resolve.
+    const Transform& m = b_moves ? xa : xb;
+    const Transform& o = b_moves ? xb : xa;
+    const Quat mi = m.q.conjugate();
+    const Transform now{mi * (o.p - m.p), mi * o.q};
     const Quat dq = reference.q.conjugate() * now.q;
     const double chord = 2.0 * dq.vec().norm() * lever;
     return (now.p - reference.p).norm() + chord <= (separated() ? clearance : distance);
