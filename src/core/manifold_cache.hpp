@@ -92,8 +92,8 @@ struct ManifoldCache {
   // instead (distance is ignored).
   bool holds(const Transform& xa, const Transform& xb, double distance) const {
     if (!valid) return false;
-    // The relative pose unnormalised (Transform's product normalises, four divisions): its
-    // rotation is unit to rounding, far below what the bound below can resolve.
+    // The relative pose as relative() up to rounding, without its normalisation (a root and
+    // four divisions per kept pair and step): the bound below cannot resolve the difference.
     const Transform& m = b_moves ? xa : xb;
     const Transform& o = b_moves ? xb : xa;
     const Quat mi = m.q.conjugate();
