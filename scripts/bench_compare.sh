@@ -61,10 +61,22 @@ mkdir -p "$(dirname "$OUT_RAW")"
   echo "# meta loadavg_start=$(cut -d' ' -f1-3 /proc/loadavg)"
 } >>"$OUT_RAW"
 
+# Each round runs fresh copies of the two binaries: where a file's pages land in memory moves a
+# binary's speed by up to 5 % (the same bytes in two files), and a new placement per round
+# spreads that over the rounds instead of giving one binary one placement throughout.
+COPIES="$(dirname "$OUT_RAW")/binaries"
+fresh_copies() {
+  rm -rf "$COPIES"
+  mkdir -p "$COPIES/old" "$COPIES/new"
+  cp "$OLD_BIN" "$COPIES/old/$(basename "$OLD_BIN")"
+  cp "$NEW_BIN" "$COPIES/new/$(basename "$NEW_BIN")"
+}
+
 # run_one ROUND SIDE SCENE THREADS: one run; its line (with side, round, label) or "# FAILED".
 run_one() {
   local r="$1" side="$2" label="$3" t="$4" bin opts args out rc line errf
-  if [[ "$side" == old ]]; then bin="$OLD_BIN" opts="$OLD_OPTS"; else bin="$NEW_BIN" opts="$NEW_OPTS"; fi
+  bin="$COPIES/$side/$(basename "$([[ "$side" == old ]] && echo "$OLD_BIN" || echo "$NEW_BIN")")"
+  if [[ "$side" == old ]]; then opts="$OLD_OPTS"; else opts="$NEW_OPTS"; fi
   args=("${label:0:1}" --urdf "$URDF" --opt "sleep=0,threads=$t")
   if [[ "$label" == g* ]]; then args+=(--ragdolls "${label:1}"); fi
   if [[ -n "$STEPS" ]]; then args+=(--steps "$STEPS"); fi
@@ -88,6 +100,7 @@ for r in $(seq "$ROUNDS"); do
   if probe="$("$NEW_BIN" sync 2>/dev/null)" && [[ "$probe" == region_us=* ]]; then
     echo "# meta sync_round_$r=$probe" >>"$OUT_RAW"
   fi
+  fresh_copies
   if ((r % 2)); then pair=(old new); else pair=(new old); fi
   read -r -a counts <<<"$THREADS"
   for label in $SCENES; do
@@ -101,5 +114,6 @@ for r in $(seq "$ROUNDS"); do
     done
   done
 done
+rm -rf "$COPIES"
 echo "# meta loadavg_end=$(cut -d' ' -f1-3 /proc/loadavg)" >>"$OUT_RAW"
 /usr/bin/python3 "$ROOT/scripts/bench_compare_report.py" "$OUT_RAW" ${OUT_MD:+--md "$OUT_MD"}

@@ -212,6 +212,7 @@ def test_compare_table():
 
 FAKE = """#!/bin/bash
 echo "$(basename "$0") $*" >> "%s"
+echo "$0" >> "%s.paths"
 [[ "$1" == sync ]] && { echo "region_us=0.4 barrier_us=0.05"; exit 0; }
 sps=1000; [[ "$0" == *new* ]] && sps=1500
 echo "engine=ragdoll_sim scenario=$1 steps_per_s=$sps max_anchor_err_m=0 max_ground_pen_m=0 max_limit_viol_rad=0"
@@ -223,7 +224,7 @@ def test_compare_script_alternates_and_passes_options(tmp_path):
     bins = []
     for name in ("old_bench", "new_bench"):
         b = tmp_path / name
-        b.write_text(FAKE % log)
+        b.write_text(FAKE % (log, log))
         b.chmod(b.stat().st_mode | stat.S_IXUSR)
         bins.append(str(b))
     env = dict(os.environ, SCENES="b g1", THREADS="1 2", NEW_OPTS="lanes=1", OPTS="substeps=3",
@@ -248,6 +249,12 @@ def test_compare_script_alternates_and_passes_options(tmp_path):
         "old_bench g --urdf u.urdf --opt sleep=0,threads=1 --ragdolls 1 --steps 7 --opt substeps=3",
     ]
     assert (tmp_path / "t.md").read_text() in out.stdout
+    # every timed run is of a copy made for its round, not of the given file; the copies are gone
+    paths = (tmp_path / "calls.txt.paths").read_text().splitlines()
+    runs = [p for p, c in zip(paths, calls) if not c.endswith(" sync")]
+    assert len(paths) == len(calls) and len(runs) == 12 and not set(runs) & set(bins)
+    assert all(os.path.dirname(p).endswith(("/old", "/new")) for p in runs)
+    assert not (tmp_path / "binaries").exists()
     assert "`bench_ragdoll sync`): round 1 0.4 / 0.05, round 2 0.4 / 0.05." in out.stdout
     assert "| b | 2 | 1,000 (1,000–1,000) | 1,500 (1,500–1,500) | 1.50 (1.50–1.50) |" in out.stdout
     assert "| g N=1 | 1 | 1,000 (1,000–1,000) | 1,500 (1,500–1,500) | 1.50 (1.50–1.50) | ≥ 1.20: met |" in out.stdout
