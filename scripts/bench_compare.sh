@@ -75,8 +75,8 @@ fresh_copies() {
 # run_one ROUND SIDE SCENE THREADS: one run; its line (with side, round, label) or "# FAILED".
 run_one() {
   local r="$1" side="$2" label="$3" t="$4" bin opts args out rc line errf
-  bin="$COPIES/$side/$(basename "$([[ "$side" == old ]] && echo "$OLD_BIN" || echo "$NEW_BIN")")"
-  if [[ "$side" == old ]]; then opts="$OLD_OPTS"; else opts="$NEW_OPTS"; fi
+  if [[ "$side" == old ]]; then bin="$OLD_BIN" opts="$OLD_OPTS"; else bin="$NEW_BIN" opts="$NEW_OPTS"; fi
+  bin="$COPIES/$side/$(basename "$bin")"  # this round's copy
   args=("${label:0:1}" --urdf "$URDF" --opt "sleep=0,threads=$t")
   if [[ "$label" == g* ]]; then args+=(--ragdolls "${label:1}"); fi
   if [[ -n "$STEPS" ]]; then args+=(--steps "$STEPS"); fi

@@ -92,12 +92,7 @@ struct ManifoldCache {
   // instead (distance is ignored).
   bool holds(const Transform& xa, const Transform& xb, double distance) const {
     if (!valid) return false;
-    // The relative pose as relative() up to rounding, without its normalisation (a root and
-    // four divisions per kept pair and step): the bound below cannot resolve the difference.
-    const Transform& m = b_moves ? xa : xb;
-    const Transform& o = b_moves ? xb : xa;
-    const Quat mi = m.q.conjugate();
-    const Transform now{mi * (o.p - m.p), mi * o.q};
+    const Transform now = relative(xa, xb);
     const Quat dq = reference.q.conjugate() * now.q;
     const double chord = 2.0 * dq.vec().norm() * lever;
     return (now.p - reference.p).norm() + chord <= (separated() ? clearance : distance);
@@ -168,8 +163,13 @@ struct ManifoldCache {
     return mask;
   }
 
+  // xm^-1 xo, without Transform's normalisation (a root and four divisions for every kept pair
+  // every step): unit to rounding, far below what holds' bound resolves.
   Transform relative(const Transform& xa, const Transform& xb) const {
-    return b_moves ? xa.inverse() * xb : xb.inverse() * xa;
+    const Transform& m = b_moves ? xa : xb;
+    const Transform& o = b_moves ? xb : xa;
+    const Quat mi = m.q.conjugate();
+    return {mi * (o.p - m.p), mi * o.q};
   }
 };
 
