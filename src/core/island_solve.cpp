@@ -106,6 +106,8 @@ void World::Impl::prepareIsland(const IslandRange& p, const StepContext& c) {
   prepareSolverBodies(p.body_begin, p.body_end);
   for (int k = p.joint_begin; k < p.joint_end; ++k) prepareJoint(*active_joints[k], c);
   if (c.lanes != 1) point_lanes.build(p, active_joints.data(), solver);
+  for (int k = p.joint_begin; k < p.joint_end; ++k)
+    scalar_sweeps[k] = !active_joints[k]->broken && !active_joints[k]->sweeps_in_lanes;
   if (def.solver.exact_joints)
     forIslands(p, [&](const IslandRange& q) { joint_tree.build(q, island_bodies, active_joints.data(), solver); });
   contact_solver.prepare(contacts, c, p.contact_begin, p.contact_end);
@@ -153,9 +155,7 @@ class World::Impl::IslandPass {
       solveContacts(true, p.contact_begin, p.contact_end, false);
       w.integratePositions(ctx.h, p.body_begin, p.body_end);
       // a joint whose sweeps are all in the lanes advances there (anchors, axis, angles)
-      joints(p, [&](Joint& j) {
-        if (!j.sweeps_in_lanes) advanceJoint(j, ctx);
-      });
+      scalarJoints(p, [&](Joint& j) { advanceJoint(j, ctx); });
       if (wide) w.point_lanes.refreshAnchors(p, w.solver, ctx);
     });
   }
@@ -186,8 +186,10 @@ class World::Impl::IslandPass {
   void markBreaks(bool last_substep) {
     parts([&](const IslandRange& p) {  // reads only the joint
       for (int k = p.joint_begin; k < p.joint_end; ++k)
-        if ((last_substep || !js[k]->sweeps_in_lanes) && breaksAfterSubstep(*js[k], ctx))
+        if ((last_substep || scalar[k]) && breaksAfterSubstep(*js[k], ctx)) {
           js[k]->broken = true;
+          scalar[k] = 0;
+        }
     });
   }
 
@@ -231,9 +233,7 @@ class World::Impl::IslandPass {
   // A joint sweep: with lanes, every joint's other parts, then the rigid anchors' wide pass
   // (last: the substep's last joint sweep, after which the impulses are read).
   void solveJoints(const IslandRange& p, bool use_bias, bool last) {
-    joints(p, [&](Joint& j) {
-      if (!j.sweeps_in_lanes) solveJoint(j, ctx, use_bias);
-    });
+    scalarJoints(p, [&](Joint& j) { solveJoint(j, ctx, use_bias); });
     if (wide) w.point_lanes.solve(p, w.solver, ctx, use_bias, last);
   }
   void solveContacts(bool use_bias, int begin, int end, bool positions_moved) {
@@ -245,12 +245,19 @@ class World::Impl::IslandPass {
     for (int k = p.joint_begin; k < p.joint_end; ++k)
       if (!js[k]->broken) f(*js[k]);
   }
+  // f(each unbroken joint whose sweeps are not all in the lanes).
+  template <class F>
+  void scalarJoints(const IslandRange& p, F&& f) {
+    for (int k = p.joint_begin; k < p.joint_end; ++k)
+      if (scalar[k]) f(*js[k]);
+  }
 
   World::Impl& w;
   const IslandRange& r;
   const StepContext& ctx;
   const IslandRange halves[2];
   Joint* const* js;
+  char* const scalar = w.scalar_sweeps.data();
   const bool wide = ctx.lanes != 1;
   // the substep's last sweep that solves the joints (-1: the biased one)
   const int last_joint_sweep = std::min(ctx.relax, w.def.solver.joint_relax_iterations) - 1;
@@ -411,6 +418,7 @@ void World::Impl::solveIslands(const StepContexts& ctx) {
   contact_sweeps.resize(std::max(threadCount(), TeamBarrier::kMaxTeam));
   joint_tree.reserve(int(bodies.size()), int(island_bodies.size()), int(active_joints.size()));
   point_lanes.reserve(int(active_joints.size()));
+  scalar_sweeps.resize(active_joints.size());
   if (track_contacts) contact_tracks.assign(contacts.size(), ContactTrack());
   const int count = int(island_ranges.size());
   for (const IslandRange& r : island_ranges)

@@ -74,6 +74,7 @@ void JointTree::reserve(int world_bodies, int island_bodies, int joints) {
   }
   if (int(edges_.size()) < joints) {
     edges_.resize(joints);
+    checks_.resize(joints);
     joint_key_.resize(joints);
     cand_.resize(joints);
     adj_.resize(2 * size_t(joints));
@@ -171,6 +172,7 @@ void JointTree::build(const IslandRange& p, const std::vector<int>& island_bodie
         if (c == parent_edge_[q]) continue;
         const Candidate& cd = cand_[j0 + c];
         const int other = cd.a == q ? cd.b : cd.a;
+        checks_[j0 + out] = {rigidAnchor(*cd.joint), cd.joint->a, cd.joint->b};
         Edge& e = edges_[j0 + out++];
         e.joint = cd.joint;
         e.parent = q;
@@ -293,18 +295,21 @@ void JointTree::projectTreeVelocities(const Tree& t, std::vector<SolverBody>& so
                                       double tolerance) {
   Edge* const edges = &edges_[t.edge_begin];
   const int n = t.edge_end - t.edge_begin;
+  const auto anchorVelocity = [&](const Check& c) {  // -(J u): the anchors' relative velocity
+    const SolverBody &A = solver[c.a], &B = solver[c.b];
+    return Vec3(-(B.v + B.w.cross(c.anchor->rB) - A.v - A.w.cross(c.anchor->rA)));
+  };
   double worst = 0.0;
+  for (int k = 0; k < n; ++k)
+    worst = std::max(worst, anchorVelocity(checks_[t.edge_begin + k]).squaredNorm());
+  if (!(worst > tolerance * tolerance)) return;  // the sweeps converged
   for (int k = 0; k < n; ++k) {
     Edge& e = edges[k];
-    const Joint& j = *e.joint;
-    const PointPart& pt = *rigidAnchor(*e.joint);
-    const SolverBody &A = solver[j.a], &B = solver[j.b];
+    const PointPart& pt = *checks_[t.edge_begin + k].anchor;
     e.r_parent = e.s > 0.0 ? pt.rB : pt.rA;
     e.r_child = e.s > 0.0 ? pt.rA : pt.rB;
-    e.b = -(B.v + B.w.cross(pt.rB) - A.v - A.w.cross(pt.rA));
-    worst = std::max(worst, e.b.squaredNorm());
+    e.b = anchorVelocity(checks_[t.edge_begin + k]);
   }
-  if (!(worst > tolerance * tolerance)) return;  // the sweeps converged
   // A breakable anchor transmits at most its strength: one whose exact impulse would pass
   // break_force h is left out (it breaks after the substep, with what the sweeps gave it) and
   // the others are solved again without it.

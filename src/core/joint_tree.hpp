@@ -122,6 +122,13 @@ class JointTree {
   std::vector<Tree> trees_;        // per part slice: its trees with an edge (recordTrees)
   std::vector<int> tree_count_;    // at the part's body_begin
   std::vector<Edge> edges_;        // per part slice of the joint range: grouped by parent
+  // What the convergence test reads of edges_[k], packed (an Edge is ~350 bytes, and most
+  // substeps read only these for every edge and solve no tree).
+  struct Check {
+    const PointPart* anchor;
+    int a, b;  // the joint's bodies
+  };
+  std::vector<Check> checks_;
   // scratch for build: candidate edges (a moving body's slot per side, else -1) per joint
   // slot, union-find and visited marks, adjacency (per body slot: its start in adj_, count)
   struct Candidate {

@@ -106,6 +106,19 @@ TEST(FixedJoint, BreaksIffHangingLoadPassesLimit) {
   }
 }
 
+// A weld that breaks after the first substep of a step holds nothing in the step's other
+// substeps: in the first its anchor gives at most break_force h, then the load falls freely,
+// so v = -3 g h + break_force h / m (a weld still solved after breaking would give up to
+// break_force h in each substep).
+TEST(FixedJoint, BrokenAfterASubstepHoldsNothingInTheNext) {
+  World w;
+  const double m = 2.0, limit = 0.5 * m * kG, h = kDt / SolverSettings().substeps;
+  const auto [bob, j] = hangOnWeld(w, m, Vec3(0.0, 0.0, -0.3), limit);
+  w.step(kDt);
+  ASSERT_TRUE(w.isJointBroken(j));
+  EXPECT_NEAR(w.bodyState(bob).linear_velocity.z(), -3.0 * kG * h + limit * h / m, 1e-12);
+}
+
 // With stiffness the weld's anchor is a Hooke spring (rotation still locked): a mass on it
 // oscillates with period 2 pi sqrt(m / k) without turning.
 TEST(FixedJoint, SpringAnchorPeriod) {
