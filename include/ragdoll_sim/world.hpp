@@ -35,7 +35,8 @@ struct SleepDef {
   double island_speed = 0.05;
   // An island whose bodies have all been slow for rest_time is solved with rest_substeps
   // substeps of rest_relax_iterations relax sweeps each, until one of its bodies moves faster,
-  // is woken or it sleeps: the last part of the sleep time costs less. rest_substeps 0 (or not
+  // is woken or it sleeps: the last part of the sleep time costs less. A body that moved faster
+  // on them keeps its islands on the full substeps until it sleeps. rest_substeps 0 (or not
   // below SolverSettings::substeps) turns it off; it needs `enabled` (it reads the sleep
   // timers). A split island shares its substep loop with the islands solved along with its
   // halves: it takes the rest substeps only when they all rest too.

@@ -58,6 +58,9 @@ struct BodyMotion {
   double extent = 0.0;      // farthest shape point from the COM (sleep speed = max(|v|, extent |w|))
   double sleep_time = 0.0;  // how long the body has been slow
   bool awake = false;       // static and sleeping bodies are not awake
+  // It sped up while its island took the rest substeps (SleepDef::rest_substeps): its islands
+  // take the full substeps until it sleeps.
+  bool rest_failed = false;
 
   Transform linkPose() const { return {x - q * local_com, q}; }
 };

@@ -6,10 +6,15 @@
 
 namespace ragdoll_sim {
 
-// Every body of r has been slow for rest_time (SleepDef::rest_substeps).
+// Every body of r has been slow for rest_time (SleepDef::rest_substeps), and none sped up on
+// the rest substeps since it last slept: a pose that only the full substeps hold (a foot wedged
+// between the ground and its own shin) would otherwise slip on the rest substeps, take the full
+// ones until slow again, and so on, awake for ever.
 bool World::Impl::islandResting(const IslandRange& r) const {
-  for (int k = r.body_begin; k < r.body_end; ++k)
-    if (!(motions[island_bodies[k]].sleep_time >= def.sleep.rest_time)) return false;
+  for (int k = r.body_begin; k < r.body_end; ++k) {
+    const BodyMotion& m = motions[island_bodies[k]];
+    if (!(m.sleep_time >= def.sleep.rest_time) || m.rest_failed) return false;
+  }
   return true;
 }
 
@@ -57,7 +62,10 @@ void World::Impl::updateSleep(double dt) {
     const double speed = std::max(m.v.norm(), m.extent * m.w.norm());  // as Box2D v3
     const bool island_calm =
         island_speed > 0.0 && island_energy[root] < island_mass[root] * island_speed * island_speed;
-    m.sleep_time = speed < def.sleep.speed || island_calm ? m.sleep_time + dt : 0.0;
+    const bool slow_now = speed < def.sleep.speed || island_calm;
+    if (!slow_now && island_of_body[i] >= 0 && island_ranges[island_of_body[i]].resting)
+      m.rest_failed = true;
+    m.sleep_time = slow_now ? m.sleep_time + dt : 0.0;
     double& r = slow[root];
     r = std::min(r, m.sleep_time);
   }
@@ -65,6 +73,7 @@ void World::Impl::updateSleep(double dt) {
     BodyMotion& m = motions[i];
     if (!m.awake || slow[islands.find(i)] < def.sleep.time) continue;
     m.awake = false;
+    m.rest_failed = false;
     m.v.setZero();
     m.w.setZero();
     schedule_fresh = false;

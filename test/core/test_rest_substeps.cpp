@@ -159,6 +159,37 @@ TEST(RestSubsteps, TenBoxStackRestsAndSleepsAsOnFullCount) {
               "deepest contact %.2e m\n", slept[1], slept[0], moved, deepest);
 }
 
+// A 1 kg box on a 10 g plate (100 : 1) rests on the full substeps but slips on the rest
+// substeps' one relax sweep. The island that sped up on them takes the full count until it
+// sleeps: it leaves the rest substeps once and sleeps within a second (taking them again each
+// time it was slow for rest_time, it stayed awake past 5 s, switching back some 24 times).
+// Asleep, it may take them again: woken by a nudge, it does the same once more.
+TEST(RestSubsteps, AnIslandThatSlipsOnThemTakesTheFullCountUntilItSleeps) {
+  World w;
+  addGround(w);
+  addBox(w, Vec3(0.1, 0.1, 0.02), 0.01, Vec3(0, 0, 0.0205));
+  const BodyId box = addBox(w, Vec3(0.2, 0.2, 0.1), 1.0, Vec3(0, 0, 0.1415));
+  for (const char* episode : {"dropped", "nudged"}) {
+    int slept = -1, rest_steps = 0, left = 0;
+    bool resting = false;
+    for (int i = 1; i <= 5000 && slept < 0; ++i) {
+      w.step(kDt);
+      const bool now = w.islandCounters().resting_islands > 0;
+      rest_steps += now;
+      if (resting && !now && w.awakeBodyCount() > 0) ++left;
+      resting = now;
+      if (w.awakeBodyCount() == 0) slept = i;
+    }
+    EXPECT_GT(rest_steps, 0) << episode;
+    EXPECT_EQ(left, 1) << episode;
+    ASSERT_GT(slept, 0) << episode << ": awake after 5 s";
+    EXPECT_LT(slept, 1000) << episode;
+    std::printf("[ rest     ] box on a plate 100 : 1, %s: %d steps on the rest substeps, left them "
+                "%d time(s), asleep after %d steps\n", episode, rest_steps, left, slept);
+    w.applyLinearImpulse(box, Vec3(0.0, 0.0, -1e-3), w.comPosition(box));
+  }
+}
+
 // A box on a 20 degree slope (mu 0.8 > tan 20 deg): static friction holds it on the rest
 // substeps; from the step it first takes them to the step it sleeps it creeps less than 0.1 mm.
 TEST(RestSubsteps, StaticFrictionHoldsOnSlope) {

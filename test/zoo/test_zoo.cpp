@@ -93,14 +93,8 @@ std::string reasons(const DropVerdict& v) {
 // for, and the rules it may fail them by (docs/testing.md says why for each); any other rule
 // failing, or any anchor target missed, still fails the test.
 const std::map<std::string, std::vector<std::string>> kKnownFails = {
-    {"bullet_data_humanoid.urdf", {"not at rest"}},       // still rolling at 3 s
-    {"deepmimic_humanoid.urdf", {"not at rest"}},         // still rolling at 3 s
-    {"anymal_bullet.urdf", {"exploded"}},                 // unlimited, undamped legs whip out
-    {"valkyrie_sim.urdf", {"exploded", "not at rest"}},   // 10 g finger links whip on landing
-    // Limbs held against their limits (legs folded, the head pressed into the ground) jitter
-    // within the angular slop for seconds; round-off decides whether below the bar at 3 s.
-    {"atlas_v4_bullet.urdf", {"not at rest"}},
-    {"poppy_humanoid.urdf", {"not at rest"}},
+    {"anymal_bullet.urdf", {"exploded"}},  // unlimited, undamped legs whip out
+    {"valkyrie_sim.urdf", {"exploded"}},   // 10 g finger links whip on landing
     // Contact points on the feet only: the torso passes through the ground as it topples.
     {"atlas_drake_minimal_contact.urdf", {"fell through", "exploded", "not at rest"}},
 };
