@@ -17,7 +17,8 @@
 #     _1thread runs) runs all of these as an engine of its own beside the default float lanes
 #     (lanes=0). Then the scale of worlds: scenes f, w, v back to back (the bundled ragdoll on the
 #     plane, among 10 000 static boxes as bodies, as shapes of one body) and the load of generated
-#     worlds of dynamic primitives (scene l, bench_world_load, LOAD_RUNS).
+#     worlds of dynamic primitives (scene l, bench_world_load, LOAD_RUNS). Each round times fresh
+#     copies of every engine's binaries (fresh_copies, env.sh).
 #  4. Raw result lines (plus round=R) go to bench/results_raw.txt, and scripts/bench_report.py
 #     turns them into bench/RESULTS.md and bench/scaling.png.
 #
@@ -135,16 +136,29 @@ done
 # engines of ours in ENGINES (OURS_OPTS above)
 ours=()
 for e in "${engines[@]}"; do if [[ -n "${OURS_OPTS[$e]+x}" ]]; then ours+=("$e"); fi; done
+# Every round times fresh copies of every engine's binaries (fresh_copies, env.sh).
+ROUND_BINS="$BUILD/round_binaries"
+copy_round_binaries() {
+  local ours=("$BUILD/bench_ragdoll") peers=() e
+  if [[ -n "$LOAD_RUNS" ]]; then ours+=("$BUILD/bench_world_load"); fi
+  fresh_copies "$ROUND_BINS" "${ours[@]}"
+  for e in "${engines[@]}"; do
+    if [[ -n "${OURS_OPTS[$e]+x}" ]]; then continue; fi
+    peers+=("$PEER_BUILD/bench_$e")
+    if [[ -n "$SCALING_NS" ]]; then peers+=("$PEER_BUILD/scaling_$e"); fi
+  done
+  if ((${#peers[@]})); then fresh_copies "$ROUND_BINS/peers" "${peers[@]}"; fi
+}
 # run_one ROUND ENGINE SCENE [N]: one run; its line (with round=ROUND) or a "# FAILED" line.
 # An engine of ours is OURS[_sleep|_1thread]: sleeping on, or one thread.
 run_one() {
   local r="$1" e="$2" s="$3" n="${4:-}" bin args=() out rc err base="" variant=""
   if [[ "$e" == ragdoll_sim* ]]; then
-    bin="$BUILD/bench_ragdoll"
+    bin="$ROUND_BINS/bench_ragdoll"
     variant="${e##*_}"; [[ "$variant" == sleep || "$variant" == 1thread ]] || variant=""
     base="${e%_"$variant"}"
-  elif [[ "$s" == g ]]; then bin="$PEER_BUILD/scaling_$e"
-  else bin="$PEER_BUILD/bench_$e"; fi
+  elif [[ "$s" == g ]]; then bin="$ROUND_BINS/peers/scaling_$e"
+  else bin="$ROUND_BINS/peers/bench_$e"; fi
   args=("$s" --urdf "$URDF")
   if [[ "$s" == [fwv] ]]; then args=("$s" --urdf "$ROOT/urdf/ragdoll.urdf"); fi
   if [[ -n "$base" ]]; then
@@ -155,7 +169,7 @@ run_one() {
     elif [[ "$s" == [abcgp] ]]; then args+=(--opt sleep=0); fi
   fi
   # scene l: the load of a generated world (bench_world_load), N primitives, LOAD_SIZE sizes
-  if [[ "$s" == l ]]; then bin="$BUILD/bench_world_load"; args=(l --objects "$n" --sizes "$LOAD_SIZE"); n=""; fi
+  if [[ "$s" == l ]]; then bin="$ROUND_BINS/bench_world_load"; args=(l --objects "$n" --sizes "$LOAD_SIZE"); n=""; fi
   if [[ "$s" == g ]]; then
     args+=(--ragdolls "$n")
     if [[ -n "$SCALING_STEPS" ]]; then args+=(--steps "$SCALING_STEPS"); fi
@@ -186,8 +200,9 @@ rotated() {
 t0=$SECONDS
 for r in $(seq "$ROUNDS"); do
   echo "bench: round $r of $ROUNDS ($((SECONDS - t0)) s so far)"
+  copy_round_binaries
   # what two threads' handoffs cost in this round (bench_ragdoll sync, bench/sync_probe.hpp)
-  echo "# meta sync_round_$r=$(cd "$BUILD" && ./bench_ragdoll sync)" >>"$RAW_TMP"
+  echo "# meta sync_round_$r=$(cd "$BUILD" && "$ROUND_BINS/bench_ragdoll" sync)" >>"$RAW_TMP"
   mapfile -t order < <(rotated "$r")
   for s in $SCENES; do
     for e in "${order[@]}"; do
@@ -211,6 +226,7 @@ for r in $(seq "$ROUNDS"); do
     for lr in $LOAD_RUNS; do LOAD_SIZE="${lr#*:}" run_one "$r" ragdoll_sim l "${lr%%:*}"; done
   fi
 done
+rm -rf "$ROUND_BINS"
 echo "# meta loadavg_end=$(cut -d' ' -f1-3 /proc/loadavg)" >>"$RAW_TMP"
 # ---- chaotic scenes as perturbed copies (after the timed rounds; ours only)
 for e in "${ours[@]}"; do

@@ -61,16 +61,8 @@ mkdir -p "$(dirname "$OUT_RAW")"
   echo "# meta loadavg_start=$(cut -d' ' -f1-3 /proc/loadavg)"
 } >>"$OUT_RAW"
 
-# Each round runs fresh copies of the two binaries: where a file's pages land in memory moves a
-# binary's speed by up to 5 % (the same bytes in two files), and a new placement per round
-# spreads that over the rounds instead of giving one binary one placement throughout.
+# Each round runs fresh copies of the two binaries (fresh_copies, env.sh).
 COPIES="$(dirname "$OUT_RAW")/binaries"
-fresh_copies() {
-  rm -rf "$COPIES"
-  mkdir -p "$COPIES/old" "$COPIES/new"
-  cp "$OLD_BIN" "$COPIES/old/$(basename "$OLD_BIN")"
-  cp "$NEW_BIN" "$COPIES/new/$(basename "$NEW_BIN")"
-}
 
 # run_one ROUND SIDE SCENE THREADS: one run; its line (with side, round, label) or "# FAILED".
 run_one() {
@@ -100,7 +92,8 @@ for r in $(seq "$ROUNDS"); do
   if probe="$("$NEW_BIN" sync 2>/dev/null)" && [[ "$probe" == region_us=* ]]; then
     echo "# meta sync_round_$r=$probe" >>"$OUT_RAW"
   fi
-  fresh_copies
+  fresh_copies "$COPIES/old" "$OLD_BIN"
+  fresh_copies "$COPIES/new" "$NEW_BIN"
   if ((r % 2)); then pair=(old new); else pair=(new old); fi
   read -r -a counts <<<"$THREADS"
   for label in $SCENES; do

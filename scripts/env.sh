@@ -11,6 +11,19 @@ build_bench_ragdoll() {
   cmake --build "$1" -j2 --target bench_ragdoll >/dev/null
 }
 
+# fresh_copies DIR FILE...: DIR emptied, then a fresh copy of each FILE in it (basenames kept).
+# Where a binary's pages land in memory moves its speed by up to 5 % (the same bytes in two
+# files): the timed runs of each round take copies made for it, which spreads that over the
+# rounds instead of giving each binary one placement for the whole sitting (bench.sh,
+# bench_compare.sh).
+fresh_copies() {
+  local dir="$1"
+  shift
+  rm -rf "$dir"
+  mkdir -p "$dir"
+  cp "$@" "$dir/"
+}
+
 # build_asan TARGET...: the ROS-free libraries, gtests and libFuzzer targets built with clang
 # (much quicker to compile here than gcc), ASan and UBSan in $ASAN_BUILD, one build for
 # sanitize.sh and fuzz.sh. Every file carries libFuzzer's edge counters, which the gtests link

@@ -258,3 +258,29 @@ def test_compare_script_alternates_and_passes_options(tmp_path):
     assert "`bench_ragdoll sync`): round 1 0.4 / 0.05, round 2 0.4 / 0.05." in out.stdout
     assert "| b | 2 | 1,000 (1,000–1,000) | 1,500 (1,500–1,500) | 1.50 (1.50–1.50) |" in out.stdout
     assert "| g N=1 | 1 | 1,000 (1,000–1,000) | 1,500 (1,500–1,500) | 1.50 (1.50–1.50) | ≥ 1.20: met |" in out.stdout
+
+
+def test_fresh_copies_empties_the_folder_and_copies(tmp_path):
+    for name, text in (("a_bin", "A"), ("b_bin", "B")):
+        (tmp_path / name).write_text(text)
+    dest = tmp_path / "copies"
+    dest.mkdir()
+    (dest / "stale").write_text("old round")
+    cmd = 'source "%s"; fresh_copies "%s" "%s" "%s"' % (
+        os.path.join(SCRIPTS, "env.sh"), dest, tmp_path / "a_bin", tmp_path / "b_bin")
+    out = subprocess.run(["bash", "-c", cmd], capture_output=True, text=True, timeout=30)
+    assert out.returncode == 0, out.stderr
+    assert sorted(os.listdir(dest)) == ["a_bin", "b_bin"]
+    assert (dest / "b_bin").read_text() == "B"
+
+
+def test_bench_sh_times_the_round_copies():
+    # every binary run_one times is a copy made for its round, made before the round's runs
+    text = open(os.path.join(SCRIPTS, "bench.sh")).read()
+    start = text.index("run_one() {")
+    body = text[start:text.index("\n}\n", start)]
+    bins = re.findall(r'\bbin="([^"]*)"', body)
+    assert len(bins) == 4 and all(b.startswith("$ROUND_BINS/") for b in bins)
+    loop = text[text.index('for r in $(seq "$ROUNDS"); do'):]
+    assert loop.index("copy_round_binaries") < loop.index("run_one")
+    assert '"$ROUND_BINS/bench_ragdoll" sync' in loop
