@@ -184,7 +184,7 @@ class World::Impl::IslandPass {
   // A joint whose sweeps are all in the lanes cannot break (wideAnchor, point_lanes.cpp): only
   // its force after the last substep is read.
   void markBreaks(bool last_substep) {
-    parts([&](const IslandRange& p) {  // reads only the joint
+    parts([&](const IslandRange& p) {  // touches only the part's joints and their flags
       for (int k = p.joint_begin; k < p.joint_end; ++k)
         if ((last_substep || scalar[k]) && breaksAfterSubstep(*js[k], ctx)) {
           js[k]->broken = true;
