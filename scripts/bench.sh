@@ -139,9 +139,9 @@ for e in "${engines[@]}"; do if [[ -n "${OURS_OPTS[$e]+x}" ]]; then ours+=("$e")
 # Every round times fresh copies of every engine's binaries (fresh_copies, env.sh).
 ROUND_BINS="$BUILD/round_binaries"
 copy_round_binaries() {
-  local ours=("$BUILD/bench_ragdoll") peers=() e
-  if [[ -n "$LOAD_RUNS" ]]; then ours+=("$BUILD/bench_world_load"); fi
-  fresh_copies "$ROUND_BINS" "${ours[@]}"
+  local own=("$BUILD/bench_ragdoll") peers=() e
+  if [[ -n "$LOAD_RUNS" ]]; then own+=("$BUILD/bench_world_load"); fi
+  fresh_copies "$ROUND_BINS" "${own[@]}"
   for e in "${engines[@]}"; do
     if [[ -n "${OURS_OPTS[$e]+x}" ]]; then continue; fi
     peers+=("$PEER_BUILD/bench_$e")
