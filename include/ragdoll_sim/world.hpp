@@ -96,8 +96,10 @@ struct SolverSettings {
   // Contact rows (and, as they move over, the joint parts) solved in float lanes, many
   // constraints at once (docs/physics.md, the wide solver): 1 solves every row alone in double
   // (the reference); 0 takes the widest the CPU runs (8 with AVX2, two blocks of 8 at once with
-  // AVX-512F, else 4; the environment variable RAGDOLL_SIM_LANES=4|8 forces one), 4 or 8 force a
-  // width. 0, 4 and 8 give the same bits (World::laneWidth says which runs).
+  // AVX-512F, else 4) once a step's islands hold 24 awake bodies, and the double rows below
+  // that (a lone ragdoll fills too few lanes to gain); 4 or 8 force a width at any size, as the
+  // environment variable RAGDOLL_SIM_LANES=4|8 does for 0. 4 and 8 give the same bits, and 0
+  // gives theirs from 24 awake bodies (World::laneWidth says which width runs).
   int lanes = RAGDOLL_SIM_DEFAULT_LANES;
 };
 
@@ -236,8 +238,13 @@ class World {
   double time() const;
   const WorldDef& def() const;
   // The width the solver's rows run at, as SolverSettings::lanes chose it on this CPU: 1
-  // (double rows), 4 or 8 (float lanes).
+  // (double rows), 4 or 8 (float lanes; see lanesAutomatic).
   int laneWidth() const;
+  // With the width left to the solver (SolverSettings::lanes 0, RAGDOLL_SIM_LANES unset), a step
+  // whose islands hold fewer awake bodies than this solves its rows in double: a lone ragdoll's
+  // 15 bodies fill about half of the lanes, and the blocks then cost more than the double rows.
+  static constexpr int kLanesMinBodies = 24;
+  bool lanesAutomatic() const;
   void setGravity(const Vec3& g);
   // Changes the solver settings on the running world without rebuilding it: warm starts carry
   // over (rescaled to a new substep, solver_context.hpp) and no body wakes. Throws

@@ -76,6 +76,15 @@ StepContexts World::Impl::makeContexts(double dt) {
   return s;
 }
 
+// After the schedule: with the width left to the solver, islands too few to fill the lanes
+// together take the double rows (World::kLanesMinBodies). The count is the step's, not a
+// thread's, so every thread count and width decides alike.
+void World::Impl::chooseRows(StepContexts& ctx) const {
+  if (!lanes_auto || int(island_bodies.size()) >= World::kLanesMinBodies) return;
+  ctx.full.lanes = 1;
+  ctx.rest.lanes = 1;
+}
+
 // Solver bodies outside the islands (asleep, and the static ones that this step's joints and
 // contacts read: no other static one is read, so they cost nothing) here; an island's bodies,
 // joints and contacts are prepared by the thread that solves it, right before it does, so

@@ -44,4 +44,12 @@ int chooseLaneWidth(int requested) {
   return chooseLaneWidth(requested, std::getenv("RAGDOLL_SIM_LANES"), cpuHasAvx2());
 }
 
+bool laneWidthAutomatic(int requested, const char* env) {
+  return requested == 0 && (env == nullptr || *env == '\0');
+}
+
+bool laneWidthAutomatic(int requested) {
+  return laneWidthAutomatic(requested, std::getenv("RAGDOLL_SIM_LANES"));
+}
+
 }  // namespace ragdoll_sim

@@ -19,5 +19,9 @@ bool cpuHasAvx512();
 int chooseLaneWidth(int requested);
 // The same with the variable's value (nullptr: unset) and the CPU's answer given, for tests.
 int chooseLaneWidth(int requested, const char* env, bool has_avx2);
+// Whether nothing forces a width: `requested` 0 and the variable unset or empty. Only then does
+// a world too small to fill the lanes solve its rows in double (World::kLanesMinBodies).
+bool laneWidthAutomatic(int requested);
+bool laneWidthAutomatic(int requested, const char* env);
 
 }  // namespace ragdoll_sim

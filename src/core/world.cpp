@@ -18,6 +18,7 @@ World::World(const WorldDef& def) : impl_(new Impl) {
   const std::string e = worldDefError(def);
   if (!e.empty()) throw std::invalid_argument("ragdoll_sim: WorldDef: " + e);
   impl_->lane_width = laneWidthOf(def.solver.lanes);
+  impl_->lanes_auto = laneWidthAutomatic(def.solver.lanes);
   impl_->def = def;
 }
 World::~World() = default;
@@ -28,7 +29,7 @@ void World::step(double dt) {
   StepProfile& profile = w.profile;
   if (w.profiling) profile = StepProfile();
   PhaseClock clock(w.profiling);
-  const StepContexts ctx = w.makeContexts(dt);  // the full and the rest substeps
+  StepContexts ctx = w.makeContexts(dt);  // the full and the rest substeps
   ++w.steps;  // the contexts took the parity of the steps before this one
 
   // Fault guard: non-finite bodies go back to their last finite pose, speeds are clamped.
@@ -52,6 +53,7 @@ void World::step(double dt) {
   // Island scheduling: union-find (wakes whole islands), ranges, split, attach, thread runs;
   // last step's while nothing it is built from changed.
   w.scheduleIslands();
+  w.chooseRows(ctx);  // double rows where the islands are too few to fill the lanes
   w.markResting(ctx.rest_mode);  // sleep: islands that take the rest substeps
   if (!w.tracks.empty()) w.beginSamples(ctx, /*solved=*/true);  // World::trackBody
   clock.lap(profile.islands);
@@ -80,6 +82,7 @@ void World::step(double dt) {
 double World::time() const { return impl_->time; }
 const WorldDef& World::def() const { return impl_->def; }
 int World::laneWidth() const { return impl_->lane_width; }
+bool World::lanesAutomatic() const { return impl_->lanes_auto && impl_->lane_width != 1; }
 void World::setGravity(const Vec3& g) { impl_->def.gravity = g; }
 
 void World::setProfiling(bool on) {
@@ -93,6 +96,7 @@ void World::setSolverSettings(const SolverSettings& solver) {
   if (!e.empty()) throw std::invalid_argument("ragdoll_sim: setSolverSettings: " + e);
   Impl& w = *impl_;
   w.lane_width = laneWidthOf(solver.lanes);
+  w.lanes_auto = laneWidthAutomatic(solver.lanes);
   if (solver.speculative_distance != w.def.solver.speculative_distance) {
     // Kept boxes are grown by the old distance and cached manifolds were made within it.
     std::fill(w.aabb_kept.begin(), w.aabb_kept.end(), char(0));

@@ -47,8 +47,9 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
                      SubstepSampleData {
   WorldDef def;
   // def.solver.lanes resolved once when set (1, 4 or 8; lane_width.hpp reads the CPU and the
-  // environment), not per step.
+  // environment), not per step; lanes_auto: no width was forced (laneWidthAutomatic).
   int lane_width = 1;
+  bool lanes_auto = false;
   WorldTuning tuning;  // world_tuning.hpp
   double time = 0.0;
   uint64_t steps = 0;  // World::step calls with dt > 0
@@ -213,6 +214,7 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
 
   // island_solve.cpp
   StepContexts makeContexts(double dt);
+  void chooseRows(StepContexts& ctx) const;
   class IslandPass;  // one island's substep sequence on this thread (island_solve.cpp)
   void prepareSolverBody(int i);  // integrate.cpp
   void prepareSolverBodies(int begin, int end);  // island_bodies[begin, end), integrate.cpp

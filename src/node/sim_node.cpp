@@ -129,9 +129,13 @@ bool SimNode::init(std::string* error) {
     if (n == 0) return std::string("all cores");
     return std::to_string(n) + (n == 1 ? " thread" : " threads");
   };
-  const auto lanesText = [](int width) {
-    return width == 1 ? std::string("rows in double")
-                      : "rows in float lanes, " + std::to_string(width) + " wide";
+  const auto lanesText = [](const World& world) {
+    const int width = world.laneWidth();
+    if (width == 1) return std::string("rows in double");
+    return "rows in float lanes, " + std::to_string(width) + " wide" +
+           (world.lanesAutomatic()
+                ? ", from " + std::to_string(World::kLanesMinBodies) + " awake bodies"
+                : "");
   };
   ROS_INFO("ragdoll_sim: '%s' (%zu links, %zu joints, %.2f kg%s%s) at (%.2f, %.2f, %.2f), "
            "physics %.0f Hz x %d substeps on %s (%s), real-time factor %g%s, publish %.0f Hz, "
@@ -140,7 +144,7 @@ bool SimNode::init(std::string* error) {
            prefix.empty() ? "" : ", TF prefix ", prefix.c_str(), at.x(), at.y(), at.z(),
            config.physics_rate, scene.def().world.solver.substeps,
            threadsText(scene.world().def().threads).c_str(),  // as the World took it
-           lanesText(scene.world().laneWidth()).c_str(),
+           lanesText(scene.world()).c_str(),
            config.real_time_factor, ctx_.pacer.asFastAsPossible() ? " (as fast as possible)" : "",
            config.publish_rate, g.x(), g.y(), g.z(), groundText(scene).c_str(),
            ctx_.paused ? ", PAUSED" : "", scene.balanceOn(first_k) ? ", balance ON" : "",

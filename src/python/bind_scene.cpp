@@ -111,7 +111,8 @@ parallel (0: all cores); the result does not depend on it. impacts: record impac
 (impacts()). injury: keep each ragdoll's head injury record. spawn_overlap: 'lift' a model
 spawned into static geometry out of it, or 'refuse' it. lanes: 1 solves every constraint row
 alone in double; 0 solves contacts and joint anchors in float lanes, many at once, the widest
-the CPU runs (faster; lane_width says which); 4 or 8 force a width, with the same result as 0.
+the CPU runs (faster; lane_width says which), once 24 bodies are awake (fewer take the double
+rows, faster there); 4 or 8 force a width at any size, with the same result as 0 from 24 bodies.
 )doc"));
   cls.def(
       "load_world",

@@ -12,7 +12,9 @@
 
 #include "lane_ops.hpp"
 #include "lane_width.hpp"
+#include "ragdoll_sim/state_hash.hpp"
 #include "ragdoll_sim/world.hpp"
+#include "scene_util.hpp"
 
 namespace ragdoll_sim {
 namespace {
@@ -148,6 +150,12 @@ TEST(Lanes, ChooseLaneWidth) {
   }
   EXPECT_THROW(chooseLaneWidth(0, "8x", true), std::invalid_argument);
   EXPECT_THROW(chooseLaneWidth(2, nullptr, true), std::invalid_argument);
+  // Automatic only when nothing forces a width.
+  EXPECT_TRUE(laneWidthAutomatic(0, nullptr));
+  EXPECT_TRUE(laneWidthAutomatic(0, ""));
+  EXPECT_FALSE(laneWidthAutomatic(0, "4"));
+  EXPECT_FALSE(laneWidthAutomatic(0, "8"));
+  for (const int lanes : {1, 4, 8}) EXPECT_FALSE(laneWidthAutomatic(lanes, nullptr)) << lanes;
 }
 
 TEST(Lanes, ChooseLaneWidthReadsTheEnvironment) {
@@ -177,10 +185,53 @@ TEST(Lanes, WorldLaneWidthFollowsTheSettings) {
     w.setSolverSettings(s);
     EXPECT_EQ(w.laneWidth(), lanes == 0 ? widest : lanes == 8 && !cpuHasAvx2() ? 4 : lanes)
         << "lanes " << lanes;
+    EXPECT_EQ(w.lanesAutomatic(), lanes == 0 && laneWidthAutomatic(0)) << "lanes " << lanes;
   }
   s.lanes = 2;
   EXPECT_THROW(w.setSolverSettings(s), std::invalid_argument);
   EXPECT_EQ(w.laneWidth(), 1);  // unchanged
+}
+
+// The state after boxes, each its own island, slide and spin to rest on the ground.
+uint64_t boxesHash(int boxes, int lanes) {
+  using test::addBox;
+  using test::addGround;
+  WorldDef def;
+  def.solver.lanes = lanes;
+  def.sleep.enabled = false;
+  World w(def);
+  addGround(w);
+  const Vec3 half(0.1, 0.15, 0.05);
+  for (int k = 0; k < boxes; ++k) {
+    const Vec3 x(0.5 * (k % 6), 0.5 * (k / 6), 0.052);
+    const BodyId b = addBox(w, half, 1.0 + 0.05 * k, x);
+    w.setBodyState(b, Transform(x, Quat::Identity()), Vec3(0.3 + 0.01 * k, -0.2, 0.0),
+                   Vec3(0.0, 0.0, 1.0 + 0.1 * k));
+  }
+  for (int i = 0; i < 300; ++i) w.step(1e-3);
+  return hashStates(w);
+}
+
+// With the width automatic, a step whose islands hold fewer than World::kLanesMinBodies awake bodies
+// solves in double rows (as lanes 1), one with that many in the lanes (as 4 and 8); a forced
+// width runs the lanes at any size. The rows differ (the hashes of 1 and 8 are not equal), so
+// each comparison tells which ran.
+TEST(Lanes, AutomaticWidthSolvesFewBodiesInDoubleRows) {
+  const char* old = std::getenv("RAGDOLL_SIM_LANES");
+  const std::string saved = old ? old : "";
+  unsetenv("RAGDOLL_SIM_LANES");
+  for (const int boxes : {World::kLanesMinBodies - 1, World::kLanesMinBodies}) {
+    const uint64_t automatic = boxesHash(boxes, 0), wide = boxesHash(boxes, 8),
+                   rows = boxesHash(boxes, 1);
+    EXPECT_NE(wide, rows) << boxes << " boxes";
+    EXPECT_EQ(automatic, boxes < World::kLanesMinBodies ? rows : wide) << boxes << " boxes";
+    EXPECT_EQ(boxesHash(boxes, 4), wide) << boxes << " boxes";
+  }
+  // RAGDOLL_SIM_LANES forces the lanes too.
+  setenv("RAGDOLL_SIM_LANES", "4", 1);
+  EXPECT_EQ(boxesHash(World::kLanesMinBodies - 1, 0), boxesHash(World::kLanesMinBodies - 1, 8));
+  unsetenv("RAGDOLL_SIM_LANES");
+  if (old) setenv("RAGDOLL_SIM_LANES", saved.c_str(), 1);
 }
 
 }  // namespace

@@ -105,17 +105,18 @@ def test_same_index_same_row_in_any_order_and_process(short, short_path):
 
 
 def test_lanes_widths_give_the_same_rows(short):
-    wide = dict(short, lanes=0)
-    four = dict(short, lanes=4)
-    rows = runner.run_chunk(wide, [0, 1])
-    assert [repr(r) for r in rows] == [repr(r) for r in runner.run_chunk(four, [0, 1])]
-    # a scenario without lanes runs the solver's default, the float lanes
-    assert short["lanes"] is None
-    assert [repr(r) for r in rows] == [repr(r) for r in runner.run_chunk(short, [0, 1])]
+    rows = runner.run_chunk(dict(short, lanes=4), [0, 1])
+    eight = runner.run_chunk(dict(short, lanes=8), [0, 1])
+    assert [repr(r) for r in rows] == [repr(r) for r in eight]
     assert all(r["head_peak_g"] > 0 for r in rows)
     # the lanes reach the runs: double rows round otherwise
     double = runner.run_chunk(dict(short, lanes=1), [0, 1])
     assert [repr(r) for r in rows] != [repr(r) for r in double]
+    # lanes 0, and a scenario without lanes (the solver's default, 0), run the lanes from 24
+    # awake bodies: the lone ragdoll on the stairs takes the double rows
+    assert short["lanes"] is None
+    for automatic in (short, dict(short, lanes=0)):
+        assert [repr(r) for r in runner.run_chunk(automatic, [0, 1])] == [repr(r) for r in double]
     # a width the solver has not is refused by the run, named
     with pytest.raises(ValueError, match="fall run: lanes must be 0"):
         runner._core().run_fall(runner.model(short["model"]), lanes=2, steps=1)
@@ -165,7 +166,7 @@ BAD = [
      'scenario: push.link: the model has no link "tail"'),
     ("seed: -3\n", "scenario: seed: expected an integer"),
     ("duration: [1]\n", "scenario: duration: expected a number of seconds"),
-    ("lanes: 2\n", "scenario: lanes: expected 0 (float lanes, the widest), 1 (double rows)"),
+    ("lanes: 2\n", "scenario: lanes: expected 0 (float lanes, the widest, from 24 bodies), 1 (double rows)"),
     ("push: {link: torso\n", "not YAML"),
 ]
 

@@ -154,17 +154,20 @@ def test_identical_scenes_hash_equal_and_a_different_push_differs(ragdoll):
     assert _hash_after(ragdoll, (20.0, 1e-9, 0)) != h
 
 
-def test_lane_widths_agree_and_differ_from_double_rows(ragdoll):
+def test_lane_widths_agree_and_a_lone_ragdoll_takes_the_double_rows(ragdoll):
     assert ragdoll_sim.Scene(lanes=1).lane_width == 1
     widest = ragdoll_sim.Scene(lanes=0).lane_width
     assert widest in (4, 8)
     assert ragdoll_sim.Scene().lane_width == widest  # the float lanes by default
     assert ragdoll_sim.Scene(lanes=4).lane_width == 4
     h = _hash_after(ragdoll, (20.0, 0, 0), lanes=4)
-    assert _hash_after(ragdoll, (20.0, 0, 0), lanes=0) == h
-    assert _hash_after(ragdoll, (20.0, 0, 0), lanes=0, threads=2) == h
+    assert _hash_after(ragdoll, (20.0, 0, 0), lanes=8) == h
+    assert _hash_after(ragdoll, (20.0, 0, 0), lanes=4, threads=2) == h
     # float rows round otherwise than double ones: another trajectory, not the same bits
-    assert _hash_after(ragdoll, (20.0, 0, 0), lanes=1) != h
+    double = _hash_after(ragdoll, (20.0, 0, 0), lanes=1)
+    assert double != h
+    # lanes=0 runs the lanes from 24 awake bodies: a lone ragdoll's 15 take the double rows
+    assert _hash_after(ragdoll, (20.0, 0, 0), lanes=0) == double
 
 
 def test_errors_name_the_problem_and_change_nothing(ragdoll, box):

@@ -75,6 +75,7 @@ TEST(BadParams, ThreadsAndLanesRunTheNode) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"_threads:=2 _lanes:=1", "substeps on 2 threads (rows in double)"},
       {"_threads:=0", "substeps on all cores (rows in float lanes, "},  // the default lanes
+      {"_threads:=1", " wide, from 24 awake bodies)"},                  // ... left to the solver
       {"_lanes:=4", "(rows in float lanes, 4 wide)"}};
   int k = 0;
   for (const auto& [args, words] : cases) {

@@ -177,6 +177,6 @@ TEST_P(HungFromBar, RagdollComesToRest) {
   EXPECT_LT(std::hypot(com.x() - mid.x(), com.y() - mid.y()), 0.05);
 }
 
-INSTANTIATE_TEST_SUITE_P(FixedBase, HungFromBar, ::testing::Values(1, 0));
+INSTANTIATE_TEST_SUITE_P(FixedBase, HungFromBar, ::testing::Values(1, 8));
 
 }  // namespace

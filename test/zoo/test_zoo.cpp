@@ -95,6 +95,9 @@ std::string reasons(const DropVerdict& v) {
 const std::map<std::string, std::vector<std::string>> kKnownFails = {
     {"anymal_bullet.urdf", {"exploded"}},  // unlimited, undamped legs whip out
     {"valkyrie_sim.urdf", {"exploded"}},   // 10 g finger links whip on landing
+    // Its sphere head may roll on the ground about the neck for seconds (a point contact rolls
+    // without loss: no rolling resistance, no joint damping); whether it does is round-off's.
+    {"deepmimic_humanoid.urdf", {"not at rest"}},
     // Contact points on the feet only: the torso passes through the ground as it topples.
     {"atlas_drake_minimal_contact.urdf", {"fell through", "exploded", "not at rest"}},
 };

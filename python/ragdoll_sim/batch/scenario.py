@@ -164,8 +164,8 @@ def validate(raw, base="."):
     lanes = top.get("lanes")  # None: the solver's default (SolverSettings::lanes)
     if lanes is not None and (not isinstance(lanes, int) or isinstance(lanes, bool)
                               or lanes not in (0, 1, 4, 8)):
-        _fail("lanes", "expected 0 (float lanes, the widest), 1 (double rows), 4 or 8, got %s"
-              % _show(lanes))
+        _fail("lanes", "expected 0 (float lanes, the widest, from 24 bodies), 1 (double rows), "
+              "4 or 8, got %s" % _show(lanes))
     out["lanes"] = lanes
     world = top.get("world")
     out["world"] = None if world is None else _resolve_file(
