@@ -82,7 +82,7 @@ void World::step(double dt) {
 double World::time() const { return impl_->time; }
 const WorldDef& World::def() const { return impl_->def; }
 int World::laneWidth() const { return impl_->lane_width; }
-bool World::lanesAutomatic() const { return impl_->lanes_auto && impl_->lane_width != 1; }
+bool World::lanesAutomatic() const { return impl_->lanes_auto; }
 void World::setGravity(const Vec3& g) { impl_->def.gravity = g; }
 
 void World::setProfiling(bool on) {
