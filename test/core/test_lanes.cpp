@@ -212,8 +212,8 @@ uint64_t boxesHash(int boxes, int lanes) {
   return hashStates(w);
 }
 
-// With the width automatic, a step whose islands hold fewer than World::kLanesMinBodies awake bodies
-// solves in double rows (as lanes 1), one with that many in the lanes (as 4 and 8); a forced
+// With the width automatic, a step whose islands hold fewer than World::kLanesMinBodies awake
+// bodies solves in double rows (as lanes 1), one with that many in the lanes (as 4 and 8); a forced
 // width runs the lanes at any size. The rows differ (the hashes of 1 and 8 are not equal), so
 // each comparison tells which ran.
 TEST(Lanes, AutomaticWidthSolvesFewBodiesInDoubleRows) {

@@ -160,10 +160,10 @@ TEST(RestSubsteps, TenBoxStackRestsAndSleepsAsOnFullCount) {
 }
 
 // A 1 kg box on a 10 g plate (100 : 1) rests on the full substeps but, in the float rows, slips
-// on the rest substeps' one relax sweep. The island that sped up on them takes the full count until it
-// sleeps: it leaves the rest substeps once and sleeps within a second (taking them again each
-// time it was slow for rest_time, it stayed awake past 5 s, switching back some 24 times).
-// Asleep, it may take them again: woken by a nudge, it does the same once more.
+// on the rest substeps' one relax sweep. The island that sped up on them takes the full count
+// until it sleeps: it leaves the rest substeps once and sleeps within a second (taking them
+// again each time it was slow for rest_time, it stayed awake past 5 s, switching back some 24
+// times). Asleep, it may take them again: woken by a nudge, it does the same once more.
 TEST(RestSubsteps, AnIslandThatSlipsOnThemTakesTheFullCountUntilItSleeps) {
   WorldDef def;
   def.solver.lanes = 8;  // forced: two bodies take the double rows (World::kLanesMinBodies)

@@ -166,7 +166,8 @@ BAD = [
      'scenario: push.link: the model has no link "tail"'),
     ("seed: -3\n", "scenario: seed: expected an integer"),
     ("duration: [1]\n", "scenario: duration: expected a number of seconds"),
-    ("lanes: 2\n", "scenario: lanes: expected 0 (float lanes, the widest, from 24 bodies), 1 (double rows)"),
+    ("lanes: 2\n",
+     "scenario: lanes: expected 0 (float lanes, the widest, from 24 bodies), 1 (double rows)"),
     ("push: {link: torso\n", "not YAML"),
 ]
 
