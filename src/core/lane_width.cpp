@@ -30,7 +30,7 @@ int chooseLaneWidth(int requested, const char* env, bool has_avx2) {
   if (width != 0 && width != 4 && width != 8)
     throw std::invalid_argument("lane width " + std::to_string(requested) +
                                 ": expected 0 (automatic), 4 or 8");
-  if (width == 0 && env != nullptr && *env != '\0') {
+  if (width == 0 && !laneWidthAutomatic(0, env)) {
     if (std::strcmp(env, "4") == 0) width = 4;
     else if (std::strcmp(env, "8") == 0) width = 8;
     else

@@ -14,11 +14,15 @@ namespace {
 int laneWidthOf(int lanes) { return lanes == 1 ? 1 : chooseLaneWidth(lanes); }
 }  // namespace
 
+void World::Impl::resolveLanes(int lanes) {
+  lane_width = laneWidthOf(lanes);
+  lanes_auto = laneWidthAutomatic(lanes);
+}
+
 World::World(const WorldDef& def) : impl_(new Impl) {
   const std::string e = worldDefError(def);
   if (!e.empty()) throw std::invalid_argument("ragdoll_sim: WorldDef: " + e);
-  impl_->lane_width = laneWidthOf(def.solver.lanes);
-  impl_->lanes_auto = laneWidthAutomatic(def.solver.lanes);
+  impl_->resolveLanes(def.solver.lanes);
   impl_->def = def;
 }
 World::~World() = default;
@@ -95,8 +99,7 @@ void World::setSolverSettings(const SolverSettings& solver) {
   const std::string e = solverSettingsError(solver);
   if (!e.empty()) throw std::invalid_argument("ragdoll_sim: setSolverSettings: " + e);
   Impl& w = *impl_;
-  w.lane_width = laneWidthOf(solver.lanes);
-  w.lanes_auto = laneWidthAutomatic(solver.lanes);
+  w.resolveLanes(solver.lanes);
   if (solver.speculative_distance != w.def.solver.speculative_distance) {
     // Kept boxes are grown by the old distance and cached manifolds were made within it.
     std::fill(w.aabb_kept.begin(), w.aabb_kept.end(), char(0));

@@ -50,6 +50,7 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
   // environment), not per step; lanes_auto: no width was forced (laneWidthAutomatic).
   int lane_width = 1;
   bool lanes_auto = false;
+  void resolveLanes(int lanes);  // both from SolverSettings::lanes (world.cpp)
   WorldTuning tuning;  // world_tuning.hpp
   double time = 0.0;
   uint64_t steps = 0;  // World::step calls with dt > 0
