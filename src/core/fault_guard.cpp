@@ -19,9 +19,12 @@ void clearContactWarmStart(Contact& c) {
 // Before the step: what was set since the last one (impulses, forces, setBodyState) must be
 // finite and in range, and velocities are clamped. A good pose is the body's last good one (it
 // may come from setBodyState); a body with a bad velocity, force or torque keeps it.
-// A static body that was not created or commanded since the last step is as it was then.
+// A static body that was not created or commanded since the last step is as it was then; so is
+// a dynamic one the last step's finish checked and clamped (guard_clean), and the guard skips
+// it: it would read every body's state on one thread, from lines the island threads wrote.
 void World::Impl::guardInputs() {
   forEachGuarded([this](int i) {
+    if (guard_clean[i]) return;
     BodyMotion& m = motions[i];
     if (inputsFinite(m)) {
       if (!withinWorldRange(m.x)) {
@@ -40,6 +43,7 @@ void World::Impl::guardInputs() {
 }
 
 void World::Impl::resetBody(int b, BodyFaultCause cause) {
+  guard_clean[b] = 0;
   settled = false;
   schedule_fresh = false;
   forgetBoxes(b);
@@ -88,6 +92,7 @@ void World::Impl::finishMotion(int i) {
     clampNorm(m.v, def.solver.max_linear_speed);
     clampNorm(m.w, def.solver.max_angular_speed);
     last_finite[i] = {m.x, m.q};
+    guard_clean[i] = 1;
   }
 }
 

@@ -23,6 +23,10 @@ struct FaultGuardData {
     Quat q;
   };
   std::vector<FinitePose> last_finite;
+  // Per body: the last step's finish checked and clamped it (finishMotion) and nothing changed
+  // it since (wake clears it, setSolverSettings all): the guard before the next step would
+  // change no bit of it, so it skips it.
+  std::vector<char> guard_clean;
   std::vector<BodyFault> faults;  // not yet taken
   int64_t fault_count = 0;
   std::vector<char> solver_reset;  // per body: reset by this step's solver

@@ -108,6 +108,8 @@ void World::setSolverSettings(const SolverSettings& solver) {
     w.pairs_dirty = true;
     w.settled = false;
   }
+  // the caps may have changed: the next guard clamps every body again
+  std::fill(w.guard_clean.begin(), w.guard_clean.end(), char(0));
   w.def.solver = solver;
 }
 

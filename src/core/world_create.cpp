@@ -49,6 +49,7 @@ BodyId World::createBody(const BodyDef& def) {
   w.solver.emplace_back();
   w.rotations.emplace_back(Mat3::Identity());
   w.last_finite.push_back({m.x, m.q});
+  w.guard_clean.push_back(0);
   w.solver_reset.push_back(0);
   w.solver_fault.push_back(0);
   w.static_touched.push_back(0);

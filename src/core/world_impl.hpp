@@ -136,6 +136,7 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
   }
   void wake(int b) {
     settled = false;  // also for a static body: setBodyState moves it through here
+    guard_clean[b] = 0;  // a command changes it through here
     if (!isDynamic(b)) return touchStatic(b);
     if (!motions[b].awake) schedule_fresh = false;
     motions[b].awake = true;

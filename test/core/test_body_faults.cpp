@@ -199,6 +199,25 @@ TEST(BodyFaults, HugeImpulseClampedToConfiguredCaps) {
   }
 }
 
+// A cap lowered between steps holds from the next step on, also for a body no command touched
+// since the last step (which the guard otherwise skips): it moves the new cap times dt.
+TEST(BodyFaults, LoweredCapClampsBodiesTheLastStepLeftAlone) {
+  WorldDef def;
+  def.gravity.setZero();
+  World w(def);
+  BodyDef bd;
+  bd.linear_velocity = Vec3(5.0, 0.0, 0.0);
+  const BodyId b = w.createBody(bd);
+  w.step(kDt);
+  const Vec3 p0 = w.comPosition(b);
+  SolverSettings solver = w.def().solver;
+  solver.max_linear_speed = 1.0;
+  w.setSolverSettings(solver);
+  w.step(kDt);
+  EXPECT_NEAR((w.comPosition(b) - p0).norm(), 1.0 * kDt, 1e-9);  // the grid: 2^-33 m
+  EXPECT_EQ(w.bodyState(b).linear_velocity, Vec3(1.0, 0.0, 0.0));
+}
+
 // 1e6:1 mass ratios: a 1 t body hanging from a 1 g one (joint chain, swinging), and a 1 t box
 // dropped on a 1 g box lying on the ground. States stay finite and within the caps; any body
 // that did go non-finite is reported and reset.
