@@ -53,6 +53,19 @@ void World::Impl::rebuildShapeLists() {
   shape_lists_dirty = false;
 }
 
+// pair_order (collide.hpp) for this step's pair_keys: a counting sort by the pair's origin body.
+void World::Impl::orderPairs(int count) {
+  const auto originOf = [&](int i) {
+    const int ba = shapes[int(pair_keys[i] >> 32)].body;
+    return isDynamic(ba) ? ba : shapes[int(uint32_t(pair_keys[i]))].body;
+  };
+  order_counts.assign(bodies.size() + 1, 0);
+  for (int i = 0; i < count; ++i) ++order_counts[originOf(i) + 1];
+  for (size_t b = 1; b < order_counts.size(); ++b) order_counts[b] += order_counts[b - 1];
+  pair_order.resize(count);
+  for (int i = 0; i < count; ++i) pair_order[order_counts[originOf(i)]++] = i;
+}
+
 void World::Impl::collide(double dt) {
   PhaseClock clock(profiling);
   const int n = int(shapes.size());
@@ -270,9 +283,14 @@ void World::Impl::collide(double dt) {
     applyPairMaterial(c, da, db);
     matchImpulses(*last, c);
   };
+  // One thread takes the pairs in key order (the order only places them on the threads).
+  const bool ordered = splitOverThreads(count, threadCount());
+  if (!in_place) pair_order.clear();
+  if (ordered && int(pair_order.size()) != count) orderPairs(count);
   // The island schedule is built from which contacts touch (scheduleIslands).
   std::atomic<bool> touching_changed{false};
-  parallelFor(count, threadCount(), [&](int i) {
+  parallelFor(count, threadCount(), [&](int k) {
+    const int i = ordered ? pair_order[k] : k;
     const bool touched = in_place && contacts[i].manifold.count > 0;
     collidePair(i);
     if (in_place && (contacts[i].manifold.count > 0) != touched)

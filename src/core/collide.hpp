@@ -61,6 +61,11 @@ struct CollideData {
   std::vector<std::pair<int, int>> pairs;
   std::vector<uint64_t> pair_keys;
   std::vector<int> old_contact;
+  // The narrowphase's order of the pairs: by their first dynamic body (ascending, stable), so
+  // that each thread's share holds the bodies whose islands it solved (islands and their runs
+  // are in body order), as in the boxes; in key order a plane's pairs come first, all bodies'
+  // together. Made again when the pairs changed.
+  std::vector<int> pair_order, order_counts;
   std::vector<int> sort_offsets, sort_cursor;  // sortPairKeys' scratch
 };
 

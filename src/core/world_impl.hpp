@@ -198,6 +198,7 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
   // collide.cpp
   void rebuildShapeLists();
   void collide(double dt);
+  void orderPairs(int count);
   void applyPairMaterial(Contact& c, const ShapeDef& da, const ShapeDef& db) const;
 
   // island_schedule.cpp
