@@ -85,30 +85,13 @@ void World::Impl::chooseRows(StepContexts& ctx) const {
   ctx.rest.lanes = 1;
 }
 
-// Solver bodies outside the islands (asleep, and the static ones that this step's joints and
-// contacts read: no other static one is read, so they cost nothing) here; an island's bodies,
-// joints and contacts are prepared by the thread that solves it, right before it does, so
-// they are in its core's cache.
+// Solver bodies of the sleeping dynamic bodies here (they keep their last awake step's); an
+// island's bodies, joints and contacts are prepared by the thread that solves it, right before
+// it does, so they are in its core's cache. A static body's is the identity body it was made
+// with (createBody): no row writes a body that is not movable() (solver_context.hpp).
 void World::Impl::prepareOutsideBodies() {
   for (const int i : dynamic_bodies)
     if (island_of_body[i] < 0) prepareSolverBody(i);
-  static_prepared.resize(bodies.size(), 0);
-  statics_set.clear();
-  const auto prepareStatic = [&](int b) {
-    if (static_prepared[b] || isDynamic(b) || !bodies[b].alive) return;
-    prepareSolverBody(b);
-    static_prepared[b] = 1;
-    statics_set.push_back(b);
-  };
-  for (const int ci : contact_solver.active()) {
-    prepareStatic(contacts[ci].body_a);
-    prepareStatic(contacts[ci].body_b);
-  }
-  for (const Joint* j : active_joints) {
-    prepareStatic(j->a);
-    prepareStatic(j->b);
-  }
-  for (const int b : statics_set) static_prepared[b] = 0;
 }
 
 void World::Impl::prepareIsland(const IslandRange& p, const StepContext& c) {

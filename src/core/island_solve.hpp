@@ -56,11 +56,6 @@ struct SolveData {
   // Per body: the rotation matrix of dq q, its world rotation at the current substep (set with
   // the solver body, advanced by integratePositions; only that reads it).
   std::vector<Mat3> rotations;
-  // Per body: whether prepareOutsideBodies set this static body up in this step (a ground
-  // touches every ragdoll: set once, not once per contact); all 0 between steps, cleared
-  // through the list of those set.
-  std::vector<char> static_prepared;
-  std::vector<int> statics_set;
   ContactSolver contact_solver;
   // Impulse tracking (World::setContactImpulseTracking): on, the step files what it kept of
   // each contact it solved by contact index (the others' keys are 0); off, nothing is written.
