@@ -181,6 +181,7 @@ class World::Impl::IslandPass {
         if ((last_substep || scalar[k]) && breaksAfterSubstep(*js[k], ctx)) {
           js[k]->broken = true;
           scalar[k] = 0;
+          w.joint_broke.store(true, std::memory_order_relaxed);
         }
     });
   }

@@ -13,6 +13,7 @@
 // rotation, q += h/2 (0,w) q, renormalised, with the gyroscopic update in integratePositions).
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <vector>
@@ -66,6 +67,9 @@ struct SolveData {
   // breaks: the sweeps, the advance and the breaks of the substeps loop over these bytes instead
   // of reading each Joint (~1 KB apart) several times per substep.
   std::vector<char> scalar_sweeps;
+  // A joint broke in this step's substeps (markBreaks): only then does breakJoints look at the
+  // active joints, each on its own cache line, most written by another core.
+  std::atomic<bool> joint_broke{false};
   JointTree joint_tree;  // exact anchors (SolverSettings::exact_joints)
   PointLanes point_lanes;  // the joint anchors in float lanes (SolverSettings::lanes != 1)
   TeamBarrier team_barrier;  // the two threads of a split island

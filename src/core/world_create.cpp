@@ -104,6 +104,7 @@ void World::disableCollision(BodyId a, BodyId b) {
 // the end of the substep, which drops it from the solver; here, after the islands, the pair
 // collides again and the event is recorded. The bodies keep their momentum.
 void World::Impl::breakJoints() {
+  if (!joint_broke.exchange(false, std::memory_order_relaxed)) return;
   bool any = false;
   for (Joint* j : active_joints) {
     if (!j->broken) continue;
