@@ -422,6 +422,7 @@ void World::Impl::solveIslands(const StepContexts& ctx) {
     solveIsland(r, c);
     restitute(r.contact_begin, r.contact_end, c);
     finishIslandBodies(r);
+    sleepIslands(r, c.dt);
   };
   const auto solveOne = [&](int k) {
     const IslandRange& r = island_ranges[k];

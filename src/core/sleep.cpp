@@ -32,52 +32,72 @@ void World::Impl::markResting(bool rest_mode) {
   }
 }
 
-void World::Impl::updateSleep(double dt) {
-  if (!def.sleep.enabled) return;
-  // Per-body arrays are reset at the dynamic bodies only (island roots are dynamic bodies).
-  const int n = int(bodies.size());
-  // Per island root: twice its kinetic energy and its mass (the energy rule, SleepDef).
+// The sleep rule for one island, its awake bodies ids[0, n) in ascending order (the order the
+// energy is summed in). A body the solver left faulted counts at rest: resetFaulted zeroes its
+// velocities after this. True when the island went to sleep.
+bool World::Impl::sleepIsland(const int* ids, int n, bool resting, double dt) {
   const double island_speed = def.sleep.island_speed;
-  if (island_speed > 0.0) {
-    island_energy.resize(n);
-    island_mass.resize(n);
-    for (const int i : dynamic_bodies) island_energy[i] = island_mass[i] = 0.0;
-    for (const int i : dynamic_bodies) {
-      const BodyMotion& m = motions[i];
-      if (!m.awake || !(m.inv_mass > 0.0)) continue;
-      const int root = islands.find(i);
-      const Vec3 wl = m.q.conjugate() * m.w;
-      island_energy[root] += m.v.squaredNorm() / m.inv_mass + wl.dot(m.inertia_local * wl);
-      island_mass[root] += 1.0 / m.inv_mass;
+  const auto velocities = [&](int i) {
+    const BodyMotion& m = motions[i];
+    return solver_fault[i] ? std::pair<Vec3, Vec3>(Vec3::Zero(), Vec3::Zero())
+                           : std::pair<Vec3, Vec3>(m.v, m.w);
+  };
+  // Twice the kinetic energy (m |v|^2 + w.I.w) and the mass (the energy rule, SleepDef).
+  double energy = 0.0, mass = 0.0;
+  if (island_speed > 0.0)
+    for (int k = 0; k < n; ++k) {
+      const BodyMotion& m = motions[ids[k]];
+      if (!(m.inv_mass > 0.0)) continue;
+      const auto [v, w] = velocities(ids[k]);
+      // (a faulted body's rotation may be non-finite: its zero velocity is not turned)
+      const Vec3 wl = solver_fault[ids[k]] ? Vec3::Zero() : Vec3(m.q.conjugate() * w);
+      energy += v.squaredNorm() / m.inv_mass + wl.dot(m.inertia_local * wl);
+      mass += 1.0 / m.inv_mass;
     }
-  }
-  // island root's sleep_time becomes the island minimum (roots have the smallest index)
-  std::vector<double>& slow = island_slow;
-  slow.resize(n);
-  for (const int i : dynamic_bodies) slow[i] = 1e300;
-  for (const int i : dynamic_bodies) {
-    BodyMotion& m = motions[i];
-    if (!m.awake) continue;
-    const int root = islands.find(i);
-    const double speed = std::max(m.v.norm(), m.extent * m.w.norm());  // as Box2D v3
-    const bool island_calm =
-        island_speed > 0.0 && island_energy[root] < island_mass[root] * island_speed * island_speed;
-    const bool slow_now = speed < def.sleep.speed || island_calm;
-    if (!slow_now && island_of_body[i] >= 0 && island_ranges[island_of_body[i]].resting)
-      m.rest_failed = true;
+  const bool calm = island_speed > 0.0 && energy < mass * island_speed * island_speed;
+  double slow = 1e300;  // the island's shortest slow time
+  for (int k = 0; k < n; ++k) {
+    BodyMotion& m = motions[ids[k]];
+    const auto [v, w] = velocities(ids[k]);
+    const double speed = std::max(v.norm(), m.extent * w.norm());  // as Box2D v3
+    const bool slow_now = speed < def.sleep.speed || calm;
+    if (!slow_now && resting) m.rest_failed = true;
     m.sleep_time = slow_now ? m.sleep_time + dt : 0.0;
-    double& r = slow[root];
-    r = std::min(r, m.sleep_time);
+    slow = std::min(slow, m.sleep_time);
   }
-  for (const int i : dynamic_bodies) {
-    BodyMotion& m = motions[i];
-    if (!m.awake || slow[islands.find(i)] < def.sleep.time) continue;
+  if (slow < def.sleep.time) return false;
+  for (int k = 0; k < n; ++k) {
+    BodyMotion& m = motions[ids[k]];
     m.awake = false;
     m.rest_failed = false;
     m.v.setZero();
     m.w.setZero();
-    schedule_fresh = false;
   }
+  return true;
+}
+
+// On the thread that finished them: the whole islands of range p (not a split island's half).
+void World::Impl::sleepIslands(const IslandRange& p, double dt) {
+  if (!def.sleep.enabled) return;
+  forIslands(p, [&](const IslandRange& q) {
+    if (sleepIsland(island_bodies.data() + q.body_begin, q.body_end - q.body_begin, q.resting, dt))
+      islands_slept.store(true, std::memory_order_relaxed);
+  });
+}
+
+// After the solve: the split islands (their bodies sorted back into ascending order) and the
+// islands attached to their halves; the other islands went to sleep or not on their threads.
+void World::Impl::updateSleep(double dt) {
+  if (!def.sleep.enabled) return;
+  bool slept = islands_slept.exchange(false, std::memory_order_relaxed);
+  for (const IslandRange& r : island_ranges) {
+    if (!r.split && !r.attached) continue;
+    const int n = r.body_end - r.body_begin;
+    sleep_order.assign(island_bodies.begin() + r.body_begin, island_bodies.begin() + r.body_end);
+    if (r.split) std::sort(sleep_order.begin(), sleep_order.end());
+    slept |= sleepIsland(sleep_order.data(), n, r.resting, dt);
+  }
+  if (slept) schedule_fresh = false;
 }
 
 void World::setSleep(const SleepDef& sleep) {

@@ -5,14 +5,15 @@
 // keep their boxes. Before that, an island slow for rest_time takes the rest substeps.
 #pragma once
 
+#include <atomic>
 #include <vector>
 
 namespace ragdoll_sim {
 
 struct SleepData {
-  std::vector<double> island_slow;  // per island root: the island's shortest slow time
-  // Per island root: sum of m |v|^2 + w.I.w (twice the kinetic energy) and of the masses.
-  std::vector<double> island_energy, island_mass;
+  // An island went to sleep on an island thread this step (sleepIslands): the schedule changes.
+  std::atomic<bool> islands_slept{false};
+  std::vector<int> sleep_order;  // updateSleep's scratch: a split island's bodies, ascending
 };
 
 }  // namespace ragdoll_sim

@@ -75,7 +75,7 @@ void World::step(double dt) {
   w.clearTouched();
   if (w.any_solver_reset) w.clearWarmStart();
 
-  // Sleep: islands slow for long enough go to sleep.
+  // Sleep: islands slow for long enough go to sleep (most on their threads, sleepIslands).
   w.updateSleep(dt);
   w.settled = !any_awake;
   w.time += dt;

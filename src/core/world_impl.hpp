@@ -252,6 +252,8 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
   // sleep.cpp
   bool islandResting(const IslandRange& r) const;
   void markResting(bool rest_mode);
+  bool sleepIsland(const int* ids, int n, bool resting, double dt);
+  void sleepIslands(const IslandRange& p, double dt);
   void updateSleep(double dt);
 
   // substep_samples.cpp (each only while something is tracked)

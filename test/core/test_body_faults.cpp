@@ -171,6 +171,20 @@ TEST(BodyFaults, SolverOverflowResetsTheIslandOnly) {
                "other island, 500 steps later");
 }
 
+// A body the solver leaves non-finite counts at rest for sleep, as its reset leaves it: with a
+// sleep time of one step, the island it brought down goes to sleep in that very step.
+TEST(BodyFaults, SolverFaultedIslandSleepsAsReset) {
+  WorldDef def;
+  def.gravity.setZero();
+  def.sleep.time = kDt;
+  World w(def);
+  const std::vector<BodyId> chain = addChain(w, Vec3(0, 0, 2), {1.0, 1.0, 1e-3});
+  w.applyForce(chain[2], Vec3(0, 0, 1e308), w.comPosition(chain[2]));
+  w.step(kDt);
+  ASSERT_FALSE(w.takeBodyFaults().empty());
+  for (BodyId b : chain) EXPECT_FALSE(w.isAwake(b)) << "body " << b.index;
+}
+
 // A huge (finite) impulse is clamped to max_linear_speed before the solver integrates it: the
 // body moves at most max_linear_speed * dt in the step, and no state goes non-finite.
 TEST(BodyFaults, HugeImpulseClampedToConfiguredCaps) {
