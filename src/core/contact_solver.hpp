@@ -14,9 +14,9 @@ namespace ragdoll_sim {
 // angular parts premultiplied by the inverse inertias (frozen for the step) so that the
 // loops do no matrix work: Cdot = d.(vB - vA) + wB.angB - wA.angA.
 struct ContactRow {
+  double mass;        // 1 / (J M^-1 J^T); first: the wide path keeps only this
   Vec3 angA, angB;    // rA x d, rB x d
   Vec3 iangA, iangB;  // IA^-1 angA, IB^-1 angB
-  double mass;        // 1 / (J M^-1 J^T)
 };
 
 struct ContactConstraintPoint {
@@ -25,14 +25,15 @@ struct ContactConstraintPoint {
   // s at the current deltas (warm start, first sweep after a move); in the wide path the
   // block's geometry holds it after prepare (contact_geometry.hpp)
   double separation;
-  // In the wide path the block's lanes hold the rows: only the normal row's mass is set here.
-  ContactRow normal_row, tangent_row[2];
   double normal_impulse, tangent_impulse[2];
   double max_normal_impulse;
   double relative_velocity;     // normal approach speed before the step (for restitution)
   // A compliant point's spring bias of its biased sweep (> 0: apart, no push), which the relax
   // sweeps of the substep solve again.
   double spring_bias;
+  // In the wide path the block's lanes hold the rows: only the normal row's mass is set here.
+  // What the wide path reads and writes of a point is thus its first two cache lines.
+  ContactRow normal_row, tangent_row[2];
   double step_impulse, peak_impulse;  // impulse tracking: sum and largest over the substeps
 };
 
@@ -43,16 +44,19 @@ struct ContactConstraint {
   // Contact::contact_hertz > 0: the normal rows are this spring-damper in every sweep, whether
   // the bodies approach or part, and take neither restitution nor position projection.
   bool compliant;
-  Softness compliance;
-  // Rolling resistance (rolling > 0 only): angular rows J = [0, -t_k, 0, t_k] along the two
-  // tangents, IA^-1 t_k and IB^-1 t_k premultiplied, the 2x2 effective mass, the impulses.
-  double rolling;
-  Vec3 roll_iA[2], roll_iB[2];
-  Eigen::Matrix2d roll_mass;
-  double rolling_impulse[2];
   int count;
   int moved_sweep;  // the last position sweep of the step in which it moved a body
+  // Rolling resistance (rolling > 0 only): angular rows J = [0, -t_k, 0, t_k] along the two
+  // tangents, their impulses; IA^-1 t_k and IB^-1 t_k premultiplied and the 2x2 effective mass
+  // at the end.
+  double rolling;
+  double rolling_impulse[2];
   ContactConstraintPoint points[Manifold::kMaxPoints];
+  // Last: what only a compliant or rolling constraint reads, apart from the lines that prepare
+  // writes for every constraint.
+  Softness compliance;
+  Vec3 roll_iA[2], roll_iB[2];
+  Eigen::Matrix2d roll_mass;
 };
 
 // Whether cc may be solved in the wide blocks (contact_wide.hpp): rigid, without rolling
