@@ -122,11 +122,13 @@ std::vector<int>& ContactSolver::selectActive(const std::vector<Contact>& contac
 }
 
 namespace {
-void prepareRows(ContactConstraint& cc, const SolverBody& A, const SolverBody& B) {
+void prepareRows(ContactConstraint& cc, ContactRows& rows, const SolverBody& A,
+                 const SolverBody& B) {
   for (int i = 0; i < cc.count; ++i) {
     ContactConstraintPoint& p = cc.points[i];
-    p.normal_row = contactRow(A, B, p.rA, p.rB, cc.normal);
-    for (int k = 0; k < 2; ++k) p.tangent_row[k] = contactRow(A, B, p.rA, p.rB, cc.tangent[k]);
+    rows.normal[i] = contactRow(A, B, p.rA, p.rB, cc.normal);
+    p.normal_mass = rows.normal[i].mass;
+    for (int k = 0; k < 2; ++k) rows.tangent[i][k] = contactRow(A, B, p.rA, p.rB, cc.tangent[k]);
   }
 }
 }  // namespace
@@ -174,14 +176,17 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
       p.rA = mp.point + oA;
       p.rB = mp.point + oB;
       p.base_separation = mp.separation - (p.rB - p.rA).dot(cc.normal);
-      if (scalar_rows) p.normal_row = contactRow(A, B, p.rA, p.rB, cc.normal);
+      if (scalar_rows) {
+        rows_[slot].normal[i] = contactRow(A, B, p.rA, p.rB, cc.normal);
+        p.normal_mass = rows_[slot].normal[i].mass;
+      }
       const Vec3 dv = relativeVelocity(A, B, p.rA, p.rB);
       p.relative_velocity = dv.dot(cc.normal);
       max_slip = std::max(max_slip, (dv - p.relative_velocity * cc.normal).norm());
       p.normal_impulse = scale * c.normal_impulse[i];
       p.max_normal_impulse = 0.0;
       for (int k = 0; k < 2; ++k) {
-        if (scalar_rows) p.tangent_row[k] = contactRow(A, B, p.rA, p.rB, cc.tangent[k]);
+        if (scalar_rows) rows_[slot].tangent[i][k] = contactRow(A, B, p.rA, p.rB, cc.tangent[k]);
         p.tangent_impulse[k] = scale * c.friction_impulse[i].dot(cc.tangent[k]);
       }
     }
@@ -206,12 +211,13 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
   batch_at_[begin] = &batch;
   for (const int k : batch.scalar()) {  // the colouring's overflow
     ContactConstraint& cc = constraints_[k];
-    if (wideEligible(cc)) prepareRows(cc, bodies[cc.a], bodies[cc.b]);
+    if (wideEligible(cc)) prepareRows(cc, rows_[k], bodies[cc.a], bodies[cc.b]);
   }
 }
 
 void ContactSolver::resize(int threads) {
   constraints_.resize(active_.size());
+  rows_.resize(active_.size());
   batch_at_.assign(active_.size(), nullptr);
   if (int(pools_.size()) < threads) pools_.resize(threads);
   for (BatchPool& p : pools_) p.used = 0;
@@ -268,10 +274,12 @@ bool noImpulse(const ContactConstraint& cc) {
 // Most manifolds of a pile are such speculative ones, and this test costs one row velocity per
 // point instead of three rows and stores.
 template <bool kLiveA>
-bool idleIn(const ContactConstraint& cc, const PairVelocity<kLiveA>& u, double inv_h) {
+bool idleIn(const ContactConstraint& cc, const ContactRows& rows, const PairVelocity<kLiveA>& u,
+            double inv_h) {
   for (int i = 0; i < cc.count; ++i) {
     const ContactConstraintPoint& p = cc.points[i];
-    if (!(p.separation > 0.0) || u.rowVelocity(p.normal_row, cc.normal) + p.separation * inv_h < 0.0)
+    if (!(p.separation > 0.0) ||
+        u.rowVelocity(rows.normal[i], cc.normal) + p.separation * inv_h < 0.0)
       return false;
   }
   return noImpulse(cc);
@@ -280,44 +288,45 @@ bool idleIn(const ContactConstraint& cc, const PairVelocity<kLiveA>& u, double i
 // The normal impulse of a compliant point (see the file comment): the biased sweep sets the
 // spring's bias from the separation, the relax sweeps solve the same spring again.
 template <bool kLiveA>
-double compliantImpulse(ContactConstraintPoint& p, const ContactConstraint& cc,
-                        const PairVelocity<kLiveA>& u, bool use_bias) {
+double compliantImpulse(ContactConstraintPoint& p, const ContactRow& row,
+                        const ContactConstraint& cc, const PairVelocity<kLiveA>& u,
+                        bool use_bias) {
   const Softness& k = cc.compliance;
   if (use_bias) p.spring_bias = p.separation > 0.0 ? 1.0 : k.bias_rate * p.separation;
   if (p.spring_bias > 0.0) return -p.normal_impulse;  // apart: let go
-  const double vn = u.rowVelocity(p.normal_row, cc.normal);
-  return -p.normal_row.mass * k.mass_scale * (vn + p.spring_bias) - k.impulse_scale * p.normal_impulse;
+  const double vn = u.rowVelocity(row, cc.normal);
+  return -row.mass * k.mass_scale * (vn + p.spring_bias) - k.impulse_scale * p.normal_impulse;
 }
 
 template <bool kLiveA>
-void warmStartConstraint(ContactConstraint& cc, SolverBody& A, SolverBody& B,
-                         bool positions_moved) {
+void warmStartConstraint(ContactConstraint& cc, const ContactRows& rows, SolverBody& A,
+                         SolverBody& B, bool positions_moved) {
   if (positions_moved) updateSeparations(A, B, cc);
   if (noImpulse(cc)) return;
   PairVelocity<kLiveA> u(A, B);
   for (int i = 0; i < cc.count; ++i) {
     const ContactConstraintPoint& p = cc.points[i];
-    u.applyRow(p.normal_row, cc.normal, p.normal_impulse);
-    u.applyRow(p.tangent_row[0], cc.tangent[0], p.tangent_impulse[0]);
-    u.applyRow(p.tangent_row[1], cc.tangent[1], p.tangent_impulse[1]);
+    u.applyRow(rows.normal[i], cc.normal, p.normal_impulse);
+    u.applyRow(rows.tangent[i][0], cc.tangent[0], p.tangent_impulse[0]);
+    u.applyRow(rows.tangent[i][1], cc.tangent[1], p.tangent_impulse[1]);
   }
   if (cc.rolling > 0.0) applyRolling(u, cc, cc.rolling_impulse[0], cc.rolling_impulse[1]);
   u.store(A, B);
 }
 
 template <bool kLiveA>
-void solveConstraint(ContactConstraint& cc, SolverBody& A, SolverBody& B, const StepContext& ctx,
-                     bool use_bias, bool positions_moved) {
+void solveConstraint(ContactConstraint& cc, const ContactRows& rows, SolverBody& A, SolverBody& B,
+                     const StepContext& ctx, bool use_bias, bool positions_moved) {
   const SolverSettings& settings = *ctx.settings;
   const Softness& soft = ctx.contact_softness;
   if (positions_moved) updateSeparations(A, B, cc);
   PairVelocity<kLiveA> u(A, B);
-  if (idleIn(cc, u, ctx.inv_h)) return;
+  if (idleIn(cc, rows, u, ctx.inv_h)) return;
   for (int i = 0; i < cc.count; ++i) {
     ContactConstraintPoint& p = cc.points[i];
     double lambda;
     if (cc.compliant) {
-      lambda = compliantImpulse(p, cc, u, use_bias);
+      lambda = compliantImpulse(p, rows.normal[i], cc, u, use_bias);
     } else {
       const double s = p.separation;
       double bias = 0.0, mass_scale = 1.0, impulse_scale = 0.0;
@@ -329,15 +338,15 @@ void solveConstraint(ContactConstraint& cc, SolverBody& A, SolverBody& B, const 
         mass_scale = soft.mass_scale;
         impulse_scale = soft.impulse_scale;
       }
-      const double vn = u.rowVelocity(p.normal_row, cc.normal);
+      const double vn = u.rowVelocity(rows.normal[i], cc.normal);
       if (vn < 0.0) mass_scale = 1.0, impulse_scale = 0.0;  // approaching: rigid
-      lambda = -p.normal_row.mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
+      lambda = -rows.normal[i].mass * mass_scale * (vn + bias) - impulse_scale * p.normal_impulse;
     }
     const double next = std::max(p.normal_impulse + lambda, 0.0);
     lambda = next - p.normal_impulse;
     p.normal_impulse = next;
     p.max_normal_impulse = std::max(p.max_normal_impulse, lambda);
-    u.applyRow(p.normal_row, cc.normal, lambda);
+    u.applyRow(rows.normal[i], cc.normal, lambda);
   }
   for (int i = 0; i < cc.count; ++i) {
     ContactConstraintPoint& p = cc.points[i];
@@ -346,8 +355,9 @@ void solveConstraint(ContactConstraint& cc, SolverBody& A, SolverBody& B, const 
     // No normal impulse (a speculative point) and no friction carried: the cone is a point and
     // the friction impulse stays zero.
     if (limit == 0.0 && old0 == 0.0 && old1 == 0.0) continue;
-    double t0 = old0 - p.tangent_row[0].mass * u.rowVelocity(p.tangent_row[0], cc.tangent[0]);
-    double t1 = old1 - p.tangent_row[1].mass * u.rowVelocity(p.tangent_row[1], cc.tangent[1]);
+    const ContactRow(&t)[2] = rows.tangent[i];
+    double t0 = old0 - t[0].mass * u.rowVelocity(t[0], cc.tangent[0]);
+    double t1 = old1 - t[1].mass * u.rowVelocity(t[1], cc.tangent[1]);
     const double mag = std::sqrt(t0 * t0 + t1 * t1);
     if (mag > limit) {
       const double scale = mag > 0.0 ? limit / mag : 0.0;
@@ -356,8 +366,8 @@ void solveConstraint(ContactConstraint& cc, SolverBody& A, SolverBody& B, const 
     }
     p.tangent_impulse[0] = t0;
     p.tangent_impulse[1] = t1;
-    u.applyRow(p.tangent_row[0], cc.tangent[0], t0 - old0);
-    u.applyRow(p.tangent_row[1], cc.tangent[1], t1 - old1);
+    u.applyRow(t[0], cc.tangent[0], t0 - old0);
+    u.applyRow(t[1], cc.tangent[1], t1 - old1);
   }
   if (cc.rolling > 0.0) {
     double total_normal = 0.0;
@@ -392,8 +402,8 @@ void ContactSolver::warmStart(const StepContext& ctx, int begin, int end, bool p
   forSlots(batch, begin, end, [&](int k) {
     ContactConstraint& cc = constraints_[k];
     SolverBody &A = bodies[cc.a], &B = bodies[cc.b];
-    if (movable(A)) warmStartConstraint<true>(cc, A, B, positions_moved);
-    else warmStartConstraint<false>(cc, A, B, positions_moved);
+    if (movable(A)) warmStartConstraint<true>(cc, rows_[k], A, B, positions_moved);
+    else warmStartConstraint<false>(cc, rows_[k], A, B, positions_moved);
   });
 }
 
@@ -405,8 +415,8 @@ void ContactSolver::solve(const StepContext& ctx, bool use_bias, int begin, int 
   forSlots(batch, begin, end, [&](int k) {
     ContactConstraint& cc = constraints_[k];
     SolverBody &A = bodies[cc.a], &B = bodies[cc.b];
-    if (movable(A)) solveConstraint<true>(cc, A, B, ctx, use_bias, positions_moved);
-    else solveConstraint<false>(cc, A, B, ctx, use_bias, positions_moved);
+    if (movable(A)) solveConstraint<true>(cc, rows_[k], A, B, ctx, use_bias, positions_moved);
+    else solveConstraint<false>(cc, rows_[k], A, B, ctx, use_bias, positions_moved);
   });
 }
 
@@ -435,7 +445,7 @@ bool ContactSolver::project(const StepContext& ctx, int begin, int end, int swee
       const double C = std::max(settings.position_factor * std::min(s + settings.linear_slop, 0.0),
                                 -settings.max_position_correction);
       if (C < 0.0) {
-        applyPairPositionImpulse(A, B, (-p.normal_row.mass * C) * cc.normal, rA, rB);
+        applyPairPositionImpulse(A, B, (-p.normal_mass * C) * cc.normal, rA, rB);
         markMoved(sweep, cc.moved_sweep, A, B);
         moved = true;
       }

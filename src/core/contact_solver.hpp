@@ -14,9 +14,9 @@ namespace ragdoll_sim {
 // angular parts premultiplied by the inverse inertias (frozen for the step) so that the
 // loops do no matrix work: Cdot = d.(vB - vA) + wB.angB - wA.angA.
 struct ContactRow {
-  double mass;        // 1 / (J M^-1 J^T); first: the wide path keeps only this
   Vec3 angA, angB;    // rA x d, rB x d
   Vec3 iangA, iangB;  // IA^-1 angA, IB^-1 angB
+  double mass;        // 1 / (J M^-1 J^T)
 };
 
 struct ContactConstraintPoint {
@@ -31,10 +31,16 @@ struct ContactConstraintPoint {
   // A compliant point's spring bias of its biased sweep (> 0: apart, no push), which the relax
   // sweeps of the substep solve again.
   double spring_bias;
-  // In the wide path the block's lanes hold the rows: only the normal row's mass is set here.
-  // What the wide path reads and writes of a point is thus its first two cache lines.
-  ContactRow normal_row, tangent_row[2];
+  // The normal row's mass, for the position projection (the rows themselves are in the
+  // block's lanes, or in ContactRows for a constraint solved alone).
+  double normal_mass;
   double step_impulse, peak_impulse;  // impulse tracking: sum and largest over the substeps
+};
+
+// The rows of a constraint solved alone (not in the wide blocks), apart from ContactConstraint
+// so that the wide path, which keeps its rows in the lanes, never reads past the points.
+struct ContactRows {
+  ContactRow normal[Manifold::kMaxPoints], tangent[Manifold::kMaxPoints][2];
 };
 
 struct ContactConstraint {
@@ -143,6 +149,7 @@ class ContactSolver {
   ContactBatch& takeBatch();
 
   std::vector<ContactConstraint> constraints_;
+  std::vector<ContactRows> rows_;           // per slot; set for the constraints solved alone
   std::vector<BatchPool> pools_;            // one per thread
   std::vector<ContactBatch*> batch_at_;     // this step's batch of the range at its first slot
   std::vector<int> active_;  // contact index of each constraint

@@ -105,7 +105,7 @@ void ContactBatch::build(std::vector<ContactConstraint>& cs, const StepContext& 
     const int lane_slot = lane_of_slot_[wide_[i] - begin_];
     const ContactGeometryBlock& g = geometry_[lane_slot / kRowBlock];
     const int l = lane_slot % kRowBlock;
-    for (int p = 0; p < cc.count; ++p) cc.points[p].normal_row.mass = g.normal_mass[p][l];
+    for (int p = 0; p < cc.count; ++p) cc.points[p].normal_mass = g.normal_mass[p][l];
   }
 }
 

@@ -80,7 +80,7 @@ void World::Impl::partitionIslands() {
     island_ranges[k].joint_begin = group_offsets[k];
     island_ranges[k].joint_end = group_offsets[k + 1];
   }
-  // The contacts are grouped as indices before they are prepared: a constraint is ~1.9 kB.
+  // The contacts are grouped as indices before they are prepared: a constraint is ~840 bytes.
   std::vector<int>& active_contacts = contact_solver.selectActive(contacts, motions);
   groupBy(active_contacts, count,
           [&](int ci) { return pairIsland(contacts[ci].body_a, contacts[ci].body_b); },
