@@ -56,8 +56,8 @@ void World::Impl::rebuildShapeLists() {
 // pair_order (collide.hpp) for this step's pair_keys: a counting sort by the pair's origin body.
 void World::Impl::orderPairs(int count) {
   const auto originOf = [&](int i) {
-    const int ba = shapes[int(pair_keys[i] >> 32)].body;
-    return isDynamic(ba) ? ba : shapes[int(uint32_t(pair_keys[i]))].body;
+    const uint64_t key = pair_keys[i];
+    return pairOrigin(shapes[int(key >> 32)].body, shapes[int(uint32_t(key))].body);
   };
   order_counts.assign(bodies.size() + 1, 0);
   for (int i = 0; i < count; ++i) ++order_counts[originOf(i) + 1];
@@ -228,7 +228,7 @@ void World::Impl::collide(double dt) {
     }
     // The pair is collided in a frame at the centre of its (first) dynamic body: the
     // manifold's points are relative to it (Contact::origin).
-    const Vec3 origin = motions[isDynamic(ba) ? ba : bb].x;
+    const Vec3 origin = motions[pairOrigin(ba, bb)].x;
     const Transform xa = shapePoseFrom(sa, origin), xb = shapePoseFrom(sb, origin);
     // Kept (manifold_cache.hpp): a separated pair still beyond the band, or a touching pair
     // whose manifold moves along with the shapes (ids and impulses stay).

@@ -33,33 +33,28 @@ void World::Impl::markResting(bool rest_mode) {
 }
 
 // The sleep rule for one island, its awake bodies ids[0, n) in ascending order (the order the
-// energy is summed in). A body the solver left faulted counts at rest: resetFaulted zeroes its
-// velocities after this. True when the island went to sleep.
+// energy is summed in). A body the solver left faulted is at rest, as resetFaulted leaves it
+// after this (its state may be non-finite, so it is not read). True when the island went to
+// sleep.
 bool World::Impl::sleepIsland(const int* ids, int n, bool resting, double dt) {
   const double island_speed = def.sleep.island_speed;
-  const auto velocities = [&](int i) {
-    const BodyMotion& m = motions[i];
-    return solver_fault[i] ? std::pair<Vec3, Vec3>(Vec3::Zero(), Vec3::Zero())
-                           : std::pair<Vec3, Vec3>(m.v, m.w);
-  };
   // Twice the kinetic energy (m |v|^2 + w.I.w) and the mass (the energy rule, SleepDef).
   double energy = 0.0, mass = 0.0;
   if (island_speed > 0.0)
     for (int k = 0; k < n; ++k) {
       const BodyMotion& m = motions[ids[k]];
       if (!(m.inv_mass > 0.0)) continue;
-      const auto [v, w] = velocities(ids[k]);
-      // (a faulted body's rotation may be non-finite: its zero velocity is not turned)
-      const Vec3 wl = solver_fault[ids[k]] ? Vec3::Zero() : Vec3(m.q.conjugate() * w);
-      energy += v.squaredNorm() / m.inv_mass + wl.dot(m.inertia_local * wl);
       mass += 1.0 / m.inv_mass;
+      if (solver_fault[ids[k]]) continue;
+      const Vec3 wl = m.q.conjugate() * m.w;
+      energy += m.v.squaredNorm() / m.inv_mass + wl.dot(m.inertia_local * wl);
     }
   const bool calm = island_speed > 0.0 && energy < mass * island_speed * island_speed;
   double slow = 1e300;  // the island's shortest slow time
   for (int k = 0; k < n; ++k) {
     BodyMotion& m = motions[ids[k]];
-    const auto [v, w] = velocities(ids[k]);
-    const double speed = std::max(v.norm(), m.extent * w.norm());  // as Box2D v3
+    const double speed =  // as Box2D v3
+        solver_fault[ids[k]] ? 0.0 : std::max(m.v.norm(), m.extent * m.w.norm());
     const bool slow_now = speed < def.sleep.speed || calm;
     if (!slow_now && resting) m.rest_failed = true;
     m.sleep_time = slow_now ? m.sleep_time + dt : 0.0;
@@ -93,9 +88,13 @@ void World::Impl::updateSleep(double dt) {
   for (const IslandRange& r : island_ranges) {
     if (!r.split && !r.attached) continue;
     const int n = r.body_end - r.body_begin;
-    sleep_order.assign(island_bodies.begin() + r.body_begin, island_bodies.begin() + r.body_end);
-    if (r.split) std::sort(sleep_order.begin(), sleep_order.end());
-    slept |= sleepIsland(sleep_order.data(), n, r.resting, dt);
+    const int* ids = island_bodies.data() + r.body_begin;
+    if (r.split) {
+      sleep_order.assign(ids, ids + n);
+      std::sort(sleep_order.begin(), sleep_order.end());
+      ids = sleep_order.data();
+    }
+    slept |= sleepIsland(ids, n, r.resting, dt);
   }
   if (slept) schedule_fresh = false;
 }

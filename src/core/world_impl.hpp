@@ -134,6 +134,9 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
   bool isDynamic(int b) const {
     return bodies[b].def.type == BodyType::Dynamic && bodies[b].alive;
   }
+  // The body whose centre a pair of bodies a, b is collided at (Contact::origin): the first
+  // dynamic one.
+  int pairOrigin(int a, int b) const { return isDynamic(a) ? a : b; }
   void wake(int b) {
     settled = false;  // also for a static body: setBodyState moves it through here
     guard_clean[b] = 0;  // a command changes it through here
