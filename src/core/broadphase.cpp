@@ -1,8 +1,11 @@
 #include "broadphase.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <type_traits>
+
+#include "parallel_for.hpp"
 
 namespace ragdoll_sim {
 namespace {
@@ -10,6 +13,14 @@ namespace {
 bool finite(const Aabb& b) { return b.lo.allFinite() && b.hi.allFinite(); }
 
 }  // namespace
+
+template <class T, class F>
+void Broadphase::inChunks(int n, long work, std::vector<std::vector<T>>& scratch,
+                          std::vector<T>& into, F&& f) {
+  constexpr int kChunks = 64;  // per loop, so that a thread done early has some to take
+  const int chunk = std::max(1, (n + kChunks - 1) / kChunks);
+  collectInChunks(n, chunk, threads_, work >= kParallelWork, scratch, into, f);
+}
 
 void Broadphase::addCandidate(std::vector<std::pair<int, int>>& pairs, int i, int j) const {
   const int a = std::min(i, j), b = std::max(i, j);
@@ -23,19 +34,20 @@ void Broadphase::addPair(std::vector<std::pair<int, int>>& pairs, int i, int j) 
 void Broadphase::findPairs(const std::vector<Aabb>& aabbs, const std::vector<char>& unbounded,
                            const std::vector<PlaneProxy>& planes, double margin,
                            std::vector<std::pair<int, int>>& pairs, Filter accept,
-                           const std::vector<char>* frozen) {
+                           const std::vector<char>* frozen, int threads) {
   ids_scratch_.clear();
   for (int i = 0; i < int(aabbs.size()); ++i)
     if (!unbounded[i]) ids_scratch_.push_back(i);
-  findPairs(ids_scratch_, aabbs, planes, margin, pairs, accept, frozen);
+  findPairs(ids_scratch_, aabbs, planes, margin, pairs, accept, frozen, threads);
 }
 
 void Broadphase::findPairs(const std::vector<int>& bounded, const std::vector<Aabb>& aabbs,
                            const std::vector<PlaneProxy>& planes, double margin,
                            std::vector<std::pair<int, int>>& pairs, Filter accept,
-                           const std::vector<char>* frozen) {
+                           const std::vector<char>* frozen, int threads) {
   accept_ = accept;
   frozen_ = frozen;
+  threads_ = threads;
   pairs.clear();
   bounded_.assign(bounded.begin(), bounded.end());
   if (!keptPairs(aabbs, pairs)) {
@@ -44,16 +56,23 @@ void Broadphase::findPairs(const std::vector<int>& bounded, const std::vector<Aa
     else sweep(aabbs, pairs);
   }
 
+  const int m = int(bounded_.size());
   for (const PlaneProxy& p : planes) {
-    for (int id : bounded_) {
-      const Aabb& b = aabbs[id];
-      const Vec3 c = 0.5 * (b.lo + b.hi), e = 0.5 * (b.hi - b.lo);
-      if (p.normal.dot(c) - p.normal.cwiseAbs().dot(e) <= p.offset + margin)
-        addPair(pairs, p.shape, id);
-    }
+    inChunks(m, m, pair_chunks_, pairs, [&](int begin, int end, auto& out) {
+      const int* ids = bounded_.data();
+      const Aabb* boxes = aabbs.data();
+      const Vec3 normal = p.normal, extent_weights = p.normal.cwiseAbs();
+      const double reach = p.offset + margin;
+      for (int k = begin; k < end; ++k) {
+        const Aabb& b = boxes[ids[k]];
+        const Vec3 c = 0.5 * (b.lo + b.hi), e = 0.5 * (b.hi - b.lo);
+        if (normal.dot(c) - extent_weights.dot(e) <= reach) addPair(out, p.shape, ids[k]);
+      }
+    });
   }
   accept_ = nullptr;
   frozen_ = nullptr;
+  threads_ = 1;
 }
 
 void Broadphase::sweep(const std::vector<Aabb>& aabbs, std::vector<std::pair<int, int>>& pairs,
@@ -152,11 +171,19 @@ bool Broadphase::keptPairs(const std::vector<Aabb>& aabbs,
       fat_[id] = fatBox(aabbs[id]);
     }
   } else {
-    for (int id : bounded_) {
-      if (fat_[id].contains(aabbs[id])) continue;  // (a NaN bound is never inside)
-      if (!finite(aabbs[id])) return false;
-      escaped_.push_back(id);
-    }
+    std::atomic<bool> bad{false};  // a box not finite
+    const int n = int(bounded_.size());
+    inChunks(n, n, id_chunks_, escaped_, [&](int begin, int end, std::vector<int>& out) {
+      const int* ids = bounded_.data();
+      const Aabb *fat = fat_.data(), *boxes = aabbs.data();
+      for (int i = begin; i < end; ++i) {
+        const int id = ids[i];
+        if (fat[id].contains(boxes[id])) continue;  // (a NaN bound is never inside)
+        if (!finite(boxes[id])) bad.store(true, std::memory_order_relaxed);
+        else out.push_back(id);
+      }
+    });
+    if (bad.load(std::memory_order_relaxed)) return false;
     for (int id : escaped_) fat_[id] = fatBox(aabbs[id]);
   }
   const size_t m = bounded_.size(), k = escaped_.size();
@@ -176,16 +203,37 @@ bool Broadphase::keptPairs(const std::vector<Aabb>& aabbs,
                                        return moved_[p.first] || moved_[p.second];
                                      }),
                       candidates_.end());
-    for (int s : escaped_) {
-      const Aabb a = fat_[s];
-      for (int t : bounded_)
-        if (t != s && !(moved_[t] && t < s) && a.overlaps(fat_[t])) addCandidate(candidates_, s, t);
-    }
+    inChunks(int(k), long(k * m), pair_chunks_, candidates_,
+             [&](int begin, int end, std::vector<std::pair<int, int>>& out) {
+               const int* ids = bounded_.data();
+               const Aabb* fat = fat_.data();
+               const char* moved = moved_.data();
+               for (int e = begin; e < end; ++e) {
+                 const int s = escaped_[e];
+                 const Aabb a = fat[s];
+                 for (size_t x = 0; x < m; ++x) {
+                   const int t = ids[x];
+                   if (t != s && !(moved[t] && t < s) && a.overlaps(fat[t]))
+                     addCandidate(out, s, t);
+                 }
+               }
+             });
     for (int id : escaped_) moved_[id] = 0;
   }
   // The exact boxes of the candidates.
-  for (const auto& [i, j] : candidates_)
-    if (aabbs[i].overlaps(aabbs[j]) && !bothFrozen(i, j)) pairs.emplace_back(i, j);
+  const int c = int(candidates_.size());
+  inChunks(c, c, pair_chunks_, pairs, [&](int begin, int end, auto& out) {
+    // locals: an append may write anywhere, so fields read through the capture would be read
+    // again at every candidate
+    const std::pair<int, int>* cand = candidates_.data();
+    const Aabb* boxes = aabbs.data();
+    const char* frozen = frozen_ ? frozen_->data() : nullptr;
+    for (int i = begin; i < end; ++i) {
+      const auto [a, b] = cand[i];
+      if (boxes[a].overlaps(boxes[b]) && !(frozen && frozen[a] && frozen[b]))
+        out.emplace_back(a, b);
+    }
+  });
   return true;
 }
 

@@ -62,8 +62,10 @@ class Broadphase {
     bool (*call_)(const void*, int, int) = nullptr;
   };
 
-  // aabbs[i] is shape i's box (ignored when unbounded[i]); pairs get (i, j) with i < j. One
-  // thread: a step's test of the kept candidates costs less than starting a parallel region.
+  // aabbs[i] is shape i's box (ignored when unbounded[i]); pairs get (i, j) with i < j, in the
+  // same order for any `threads`: a loop over many boxes or candidates (kParallelWork tests) is
+  // split over the threads in chunks whose pairs are joined in chunk order; a step's test of a
+  // few kept candidates costs less than starting a parallel region.
   // frozen (optional, one flag per shape, planes included): pairs of two frozen shapes are
   // left out, unfiltered (the world carries them over from the last step: their boxes and
   // planes have not changed since).
@@ -72,18 +74,21 @@ class Broadphase {
   void findPairs(const std::vector<Aabb>& aabbs, const std::vector<char>& unbounded,
                  const std::vector<PlaneProxy>& planes, double margin,
                  std::vector<std::pair<int, int>>& pairs, Filter accept = nullptr,
-                 const std::vector<char>* frozen = nullptr);
+                 const std::vector<char>* frozen = nullptr, int threads = 1);
   // The same over the bounded shapes `bounded` (ascending ids) alone: the others' boxes are
   // not read, so shapes kept elsewhere (static ones: static_tree.hpp) cost nothing here.
   void findPairs(const std::vector<int>& bounded, const std::vector<Aabb>& aabbs,
                  const std::vector<PlaneProxy>& planes, double margin,
                  std::vector<std::pair<int, int>>& pairs, Filter accept = nullptr,
-                 const std::vector<char>* frozen = nullptr);
+                 const std::vector<char>* frozen = nullptr, int threads = 1);
 
   // The filter answers differently now: the kept candidates are found again.
   void filterChanged() { kept_valid_ = false; }
 
   static constexpr int kGridMin = 768;  // bounded shapes from which the grid is used
+  // Box tests from which a loop goes to the threads (a test costs a few ns, a parallel region
+  // microseconds).
+  static constexpr long kParallelWork = 2048;
 
  private:
   // Sweep and prune over boxes; candidates: the overlapping pairs through addCandidate (the
@@ -103,7 +108,16 @@ class Broadphase {
   void addCandidate(std::vector<std::pair<int, int>>& pairs, int i, int j) const;
   void insert(int proxy, const int cell[3]);
 
+  // f(begin, end, out) over [0, n) (items of `work` box tests in all) into `into`, in order,
+  // over this call's threads (parallel_for.hpp: collectInChunks).
+  template <class T, class F>
+  void inChunks(int n, long work, std::vector<std::vector<T>>& scratch, std::vector<T>& into,
+                F&& f);
+
   // scratch, kept between steps to avoid a per-step allocation
+  int threads_ = 1;  // this call's threads
+  std::vector<std::vector<std::pair<int, int>>> pair_chunks_;
+  std::vector<std::vector<int>> id_chunks_;
   std::vector<int> bounded_;  // ids of the bounded shapes, ascending
   std::vector<int> ids_scratch_;  // the unbounded-flags overload's ids
   Filter accept_;  // this call's filter (empty: keep all)

@@ -144,18 +144,30 @@ void World::Impl::collide(double dt) {
   };
   if (pairs_dirty) broadphase.filterChanged();
   broadphase.findPairs(moving_shapes, aabbs, planes, spec, pairs, accept,
-                       carry_now ? &frozen : nullptr);
+                       carry_now ? &frozen : nullptr, threadCount());
   // The static shapes: each dynamic shape's box queries their tree (a sleeping one only when
   // the tree changed: its other pairs are carried), and a plane of a dynamic body (rare) tests
   // them all, as the broadphase tests its planes.
   const auto addStatic = [&](int d, int s) {
     if (accept(d, s)) pairs.emplace_back(std::min(d, s), std::max(d, s));
   };
-  if (!static_tree.empty())
-    for (int d : moving_shapes) {
-      if (static_frozen && frozen[d]) continue;
-      static_tree.query(aabbs[d], [&](int s) { addStatic(d, s); });
-    }
+  if (!static_tree.empty()) {
+    // in chunks of the shapes, joined in their order (a query costs about kStaticQueryWork box
+    // tests)
+    constexpr long kStaticQueryWork = 8;
+    const bool split = long(moving) * kStaticQueryWork >= Broadphase::kParallelWork;
+    const int chunk = std::max(1, moving / 64);
+    collectInChunks(moving, chunk, threadCount(), split, static_pair_chunks, pairs,
+                    [&](int begin, int end, std::vector<std::pair<int, int>>& out) {
+                      for (int k = begin; k < end; ++k) {
+                        const int d = moving_shapes[k];
+                        if (static_frozen && frozen[d]) continue;
+                        static_tree.query(aabbs[d], [&](int s) {
+                          if (accept(d, s)) out.emplace_back(std::min(d, s), std::max(d, s));
+                        });
+                      }
+                    });
+  }
   for (const PlaneProxy& p : planes) {
     if (!isDynamic(shapes[p.shape].body)) continue;
     for (int s : static_shapes) {

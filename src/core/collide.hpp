@@ -59,6 +59,7 @@ struct CollideData {
   std::vector<char> unbounded;
   std::vector<PlaneProxy> planes;
   std::vector<std::pair<int, int>> pairs;
+  std::vector<std::vector<std::pair<int, int>>> static_pair_chunks;  // collectInChunks' scratch
   std::vector<uint64_t> pair_keys;
   std::vector<int> old_contact;
   // The narrowphase's order of the pairs: by their first dynamic body (ascending, stable), so

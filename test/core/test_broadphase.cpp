@@ -2,7 +2,8 @@
 // and prune below Broadphase::kGridMin bounded shapes, hash grid from it), over steps in which
 // the boxes move (the sweep keeps its order between calls) and shapes come and go; a filter
 // drops exactly the pairs it rejects; the kept candidates (of the sweep and of the grid) give the
-// same pairs as a fresh broadphase.
+// same pairs as a fresh broadphase; its loops split over threads give the same pairs in the
+// same order.
 // The world's sort of the pairs' keys (group_by.hpp) gives std::sort's order.
 #include <gtest/gtest.h>
 
@@ -171,6 +172,64 @@ TEST_P(BroadphaseKept, CandidatesEqualBruteForce) {
 }
 INSTANTIATE_TEST_SUITE_P(SweepAndGrid, BroadphaseKept,
                          ::testing::Values(400, Broadphase::kGridMin + 100));
+
+// With two threads the loops over many boxes and candidates (containment in the fat boxes, the
+// escaped boxes' new candidates, the exact test of the candidates, the planes) are split in
+// chunks: over calls with kept candidates, escaped boxes, whole rebuilds, frozen shapes, a
+// plane and a box that turns NaN, the pairs are one thread's, in the same order.
+TEST(Broadphase, ThreadsGiveTheSamePairsInTheSameOrder) {
+  for (const int n : {700, 3000}) {  // the sweep, the grid
+    std::mt19937 rng(31 + n);
+    std::vector<Aabb> boxes = scatter(rng, n);
+    for (Aabb& b : boxes) {  // denser: more candidates than kParallelWork
+      b.lo -= Vec3::Constant(0.2);
+      b.hi += Vec3::Constant(0.2);
+    }
+    std::vector<char> unbounded(n, 0);
+    unbounded[5] = 1;
+    const std::vector<PlaneProxy> planes = {{5, Vec3::UnitZ(), -0.2}};
+    std::vector<char> frozen(n, 0);
+    for (int i = 0; i < n; i += 4) frozen[i] = 1;
+    frozen[5] = 1;
+    const auto keep = [](int i, int j) { return (i + 2 * j) % 7 != 0; };
+    std::normal_distribution<double> jitter(0.0, 0.001), jump(0.0, 0.4), drift(0.0, 0.05);
+    std::uniform_int_distribution<int> pick(0, n - 1);
+    Broadphase one, two;
+    Pairs pairs_one, pairs_two;
+    size_t total = 0;
+    for (int call = 0; call < 24; ++call) {
+      const std::vector<char>* fr = call % 3 == 0 ? &frozen : nullptr;
+      one.findPairs(boxes, unbounded, planes, 0.01, pairs_one, keep, fr, 1);
+      two.findPairs(boxes, unbounded, planes, 0.01, pairs_two, keep, fr, 2);
+      ASSERT_EQ(pairs_two, pairs_one) << n << " boxes, call " << call;
+      total += pairs_one.size();
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      if (call == 10) boxes[17].hi.x() = nan;  // the plain sweep or grid, then kept again
+      if (call == 11) boxes[17].hi.x() = boxes[17].lo.x() + 0.1;
+      if (call % 8 == 7) {  // everything moves: a whole rebuild
+        for (Aabb& b : boxes) {
+          const Vec3 d(drift(rng), drift(rng), drift(rng));
+          b.lo += d;
+          b.hi += d;
+        }
+        continue;
+      }
+      for (Aabb& b : boxes) {
+        const Vec3 d(jitter(rng), jitter(rng), jitter(rng));
+        b.lo += d;
+        b.hi += d;
+      }
+      for (int k = 0; k < 12; ++k) {  // escaped boxes: their candidates found again
+        Aabb& b = boxes[pick(rng)];
+        const Vec3 d(jump(rng), jump(rng), 0.25 * jump(rng));
+        b.lo += d;
+        b.hi += d;
+      }
+    }
+    // the grid's calls test more candidates (a superset of the pairs) than kParallelWork
+    if (n > Broadphase::kGridMin) EXPECT_GT(total, size_t(24 * Broadphase::kParallelWork));
+  }
+}
 
 // A box whose bounds are NaN or infinite overlaps nothing, and the finite ones still pair up.
 TEST(Broadphase, NonFiniteBoxesPairWithNothing) {

@@ -1,7 +1,8 @@
 // RunQueue (run_queue.hpp): each thread takes its own run in order, then steals from the back
 // of the others'; under contention every island is taken exactly once, and a thread that
 // falls behind has its run finished by the others. parallelFor (parallel_for.hpp), built on
-// it, calls f once per item, and the others take a stalled thread's items.
+// it, calls f once per item, and the others take a stalled thread's items; collectInChunks gives
+// the serial loop's items in the serial order at any thread count.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -86,6 +87,29 @@ TEST(ParallelFor, EveryItemOnceAtAnySizeAndThreadCount) {
       for (int i = 0; i < n; ++i) wrong += calls[i].load() != 1;
       EXPECT_EQ(wrong, 0) << n << " items, " << threads << " threads";
     }
+}
+
+// Items kept by a loop (every third one, two entries for every fifth) come out as the serial
+// loop gives them, split or not, at any size, chunk and thread count, into a vector that already
+// holds some.
+TEST(CollectInChunks, SerialOrderAtAnyThreadCount) {
+  const auto keep = [](int begin, int end, std::vector<int>& out) {
+    for (int i = begin; i < end; ++i) {
+      if (i % 3 == 0) out.push_back(i);
+      if (i % 5 == 0) out.push_back(-i);
+    }
+  };
+  std::vector<std::vector<int>> scratch;
+  for (const int threads : {1, 2, 4})
+    for (const int n : {0, 1, 7, 100, 5000})
+      for (const int chunk : {1, 3, 64, 10000})
+        for (const bool split : {false, true}) {
+          std::vector<int> serial = {42}, chunked = {42};
+          keep(0, n, serial);
+          collectInChunks(n, chunk, threads, split, scratch, chunked, keep);
+          EXPECT_EQ(chunked, serial) << n << " items, chunk " << chunk << ", " << threads
+                                     << " threads, split " << split;
+        }
 }
 
 #ifdef _OPENMP
