@@ -23,8 +23,8 @@ void clearContactWarmStart(Contact& c) {
 // a dynamic one the last step's finish checked and clamped (guard_clean), and the guard skips
 // it: it would read every body's state on one thread, from lines the island threads wrote.
 void World::Impl::guardInputs() {
+  const auto clean = [this](int i) { return guard_clean[i] != 0; };
   forEachGuarded([this](int i) {
-    if (guard_clean[i]) return;
     BodyMotion& m = motions[i];
     if (inputsFinite(m)) {
       if (!withinWorldRange(m.x)) {
@@ -39,7 +39,7 @@ void World::Impl::guardInputs() {
     if (m.x.allFinite() && m.q.coeffs().allFinite() && withinWorldRange(m.x))
       last_finite[i] = {m.x, m.q};
     resetBody(i, BodyFaultCause::Input);
-  });
+  }, clean);
 }
 
 void World::Impl::resetBody(int b, BodyFaultCause cause) {
@@ -109,7 +109,7 @@ void World::Impl::resetFaulted() {
 }
 
 void World::Impl::finishStep() {
-  forEachGuarded([this](int i) { finishBody(i); });
+  forEachGuarded([this](int i) { finishBody(i); }, [](int) { return false; });
   resetFaulted();
   clearTouched();
 }

@@ -154,16 +154,17 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
     static_touched[b] = 1;
     touched_static.push_back(b);
   }
-  // f(i) for the dynamic and the touched static bodies, alive, in ascending order.
-  template <class F>
-  void forEachGuarded(F&& f) {
+  // f(i) for the dynamic and the touched static bodies, alive, in ascending order, but those
+  // skip(i) leaves out (asked first: a Body is far larger than its flags).
+  template <class F, class S>
+  void forEachGuarded(F&& f, S&& skip) {
     std::sort(touched_static.begin(), touched_static.end());
     size_t a = 0, b = 0;
     while (a < dynamic_bodies.size() || b < touched_static.size()) {
       const bool dyn = b == touched_static.size() ||
                        (a < dynamic_bodies.size() && dynamic_bodies[a] < touched_static[b]);
       const int i = dyn ? dynamic_bodies[a++] : touched_static[b++];
-      if (bodies[i].alive) f(i);
+      if (!skip(i) && bodies[i].alive) f(i);
     }
   }
   void clearTouched() {
