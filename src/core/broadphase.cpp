@@ -17,9 +17,7 @@ bool finite(const Aabb& b) { return b.lo.allFinite() && b.hi.allFinite(); }
 template <class T, class F>
 void Broadphase::inChunks(int n, long work, std::vector<std::vector<T>>& scratch,
                           std::vector<T>& into, F&& f) {
-  constexpr int kChunks = 64;  // per loop, so that a thread done early has some to take
-  const int chunk = std::max(1, (n + kChunks - 1) / kChunks);
-  collectInChunks(n, chunk, threads_, work >= kParallelWork, scratch, into, f);
+  collectInChunks(n, collectChunk(n), threads_, work >= kParallelWork, scratch, into, f);
 }
 
 void Broadphase::addCandidate(std::vector<std::pair<int, int>>& pairs, int i, int j) const {

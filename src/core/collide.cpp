@@ -148,23 +148,20 @@ void World::Impl::collide(double dt) {
   // The static shapes: each dynamic shape's box queries their tree (a sleeping one only when
   // the tree changed: its other pairs are carried), and a plane of a dynamic body (rare) tests
   // them all, as the broadphase tests its planes.
-  const auto addStatic = [&](int d, int s) {
-    if (accept(d, s)) pairs.emplace_back(std::min(d, s), std::max(d, s));
+  const auto addStatic = [&](std::vector<std::pair<int, int>>& out, int d, int s) {
+    if (accept(d, s)) out.emplace_back(std::min(d, s), std::max(d, s));
   };
   if (!static_tree.empty()) {
     // in chunks of the shapes, joined in their order (a query costs about kStaticQueryWork box
     // tests)
     constexpr long kStaticQueryWork = 8;
     const bool split = long(moving) * kStaticQueryWork >= Broadphase::kParallelWork;
-    const int chunk = std::max(1, moving / 64);
-    collectInChunks(moving, chunk, threadCount(), split, static_pair_chunks, pairs,
+    collectInChunks(moving, collectChunk(moving), threadCount(), split, static_pair_chunks, pairs,
                     [&](int begin, int end, std::vector<std::pair<int, int>>& out) {
                       for (int k = begin; k < end; ++k) {
                         const int d = moving_shapes[k];
                         if (static_frozen && frozen[d]) continue;
-                        static_tree.query(aabbs[d], [&](int s) {
-                          if (accept(d, s)) out.emplace_back(std::min(d, s), std::max(d, s));
-                        });
+                        static_tree.query(aabbs[d], [&](int s) { addStatic(out, d, s); });
                       }
                     });
   }
@@ -174,7 +171,8 @@ void World::Impl::collide(double dt) {
       if (frozenNow(p.shape) && frozenNow(s)) continue;
       const Aabb& b = aabbs[s];
       const Vec3 c = 0.5 * (b.lo + b.hi), e = 0.5 * (b.hi - b.lo);
-      if (p.normal.dot(c) - p.normal.cwiseAbs().dot(e) <= p.offset + spec) addStatic(p.shape, s);
+      if (p.normal.dot(c) - p.normal.cwiseAbs().dot(e) <= p.offset + spec)
+        addStatic(pairs, p.shape, s);
     }
   }
   pairs_dirty = false;

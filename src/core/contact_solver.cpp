@@ -176,20 +176,15 @@ void ContactSolver::prepare(const std::vector<Contact>& contacts, const StepCont
       p.rA = mp.point + oA;
       p.rB = mp.point + oB;
       p.base_separation = mp.separation - (p.rB - p.rA).dot(cc.normal);
-      if (scalar_rows) {
-        rows_[slot].normal[i] = contactRow(A, B, p.rA, p.rB, cc.normal);
-        p.normal_mass = rows_[slot].normal[i].mass;
-      }
       const Vec3 dv = relativeVelocity(A, B, p.rA, p.rB);
       p.relative_velocity = dv.dot(cc.normal);
       max_slip = std::max(max_slip, (dv - p.relative_velocity * cc.normal).norm());
       p.normal_impulse = scale * c.normal_impulse[i];
       p.max_normal_impulse = 0.0;
-      for (int k = 0; k < 2; ++k) {
-        if (scalar_rows) rows_[slot].tangent[i][k] = contactRow(A, B, p.rA, p.rB, cc.tangent[k]);
+      for (int k = 0; k < 2; ++k)
         p.tangent_impulse[k] = scale * c.friction_impulse[i].dot(cc.tangent[k]);
-      }
     }
+    if (scalar_rows) prepareRows(cc, rows_[slot], A, B);
     cc.friction =
         max_slip < settings.static_friction_speed ? c.static_friction : c.kinetic_friction;
     cc.rolling_impulse[0] = cc.rolling_impulse[1] = 0.0;

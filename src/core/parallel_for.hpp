@@ -62,6 +62,10 @@ void parallelFor(int n, int threads, F&& f) {
   for (int i = 0; i < n; ++i) f(i);
 }
 
+// Items per chunk of collectInChunks for about 64 chunks, so that a thread done early has some
+// to take.
+inline int collectChunk(int n) { return std::max(1, (n + 63) / 64); }
+
 // f(begin, end, out) over [0, n) in chunks of `chunk` items, each chunk into its own vector of
 // `scratch` (kept between calls), then appended to `into` in chunk order: the same items in the
 // same order as f(0, n, into), whatever the threads. Split over the threads when `split` (the
