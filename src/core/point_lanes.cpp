@@ -182,6 +182,7 @@ void PointLanes::build(const IslandRange& p, Joint* const* js,
   if (members != R->anchors || !sameEdges(edges, R->edges)) {
     R->anchors = members;
     R->edges = edges;
+    R->angle_jobs.valid = false;
     R->lanes.clear();
     R->blocks.clear();
     if (members.empty()) return;
@@ -208,7 +209,7 @@ void PointLanes::build(const IslandRange& p, Joint* const* js,
         frame.body_a[i] = e.body_a;
         frame.body_b[i] = e.body_b;
         if (c < 0) continue;
-        R->lanes.push_back({joints[c], members[c], axes[c], e.body_a, e.body_b, r, i, 0});
+        R->lanes.push_back({joints[c], members[c], axes[c], e.body_a, e.body_b, r, i, 0, false});
         if (axes[c]) blk.axis_rows = 1;
         // a body the rows must not write stays -1, with inertia 0 in its lane
         if (e.dynamic_a) blk.body_a[i] = e.body_a;
@@ -228,6 +229,9 @@ void PointLanes::build(const IslandRange& p, Joint* const* js,
       if (ax.motorsActive()) blk.motor_rows = 1;
     });
     l.joint->sweeps_in_lanes = sweepsInLanes(*l.joint);
+    const bool exact = l.angle_rows && l.joint->sweeps_in_lanes;
+    if (exact != l.exact) R->angle_jobs.valid = false;
+    l.exact = exact;
     blk.angle_rows = std::max(blk.angle_rows, l.angle_rows);
     double inv_mass = 0.0;
     if (blk.body_a[i] >= 0) {
@@ -289,27 +293,33 @@ void PointLanes::exactAngles(const IslandRange& p, std::vector<SolverBody>& bodi
     ax.fresh = true;
   };
   if (first_substep) {
-    J.hinges.clear();
-    J.balls.clear();
-    J.hinge_of.clear();
-    J.ball_of.clear();
-    J.ok.resize(R->lanes.size());
     const std::vector<BodyMotion>& m = *ctx.motions;
-    for (const Lane& l : R->lanes) {
-      if (!l.angle_rows || !l.joint->sweeps_in_lanes) continue;
-      const JointFrameInputs in = currentFrames(*l.joint, bodies[l.a], bodies[l.b], m);
-      if (HingeJoint* h = std::get_if<HingeJoint>(&l.joint->kind)) {
-        J.hinges.push_back({in, h->axis.data(), h->perp.data(), h->axes.rows[0].data(),
-                            &h->axes.angles[0]});
-        J.hinge_of.push_back({&h->axes, l.a, l.b});
-        h->axes.exact_in_lanes = true;
-      } else if (BallJoint* b = std::get_if<BallJoint>(&l.joint->kind)) {
-        J.balls.push_back({in, b->euler.qP.coeffs().data(), &b->euler.s, b->axes.angles.data(),
-                           b->axes.rows[0].data(), &J.ok[J.balls.size()]});
-        J.ball_of.push_back({&b->axes, l.a, l.b});
-        b->axes.exact_in_lanes = true;
+    if (!J.valid || J.bodies != bodies.data() || J.motions != m.data()) {
+      J.hinges.clear();
+      J.balls.clear();
+      J.hinge_of.clear();
+      J.ball_of.clear();
+      J.ok.resize(R->lanes.size());
+      for (const Lane& l : R->lanes) {
+        if (!l.exact) continue;
+        const JointFrameInputs in = currentFrames(*l.joint, bodies[l.a], bodies[l.b], m);
+        if (HingeJoint* h = std::get_if<HingeJoint>(&l.joint->kind)) {
+          J.hinges.push_back({in, h->axis.data(), h->perp.data(), h->axes.rows[0].data(),
+                              &h->axes.angles[0]});
+          J.hinge_of.push_back({&h->axes, l.a, l.b});
+        } else if (BallJoint* b = std::get_if<BallJoint>(&l.joint->kind)) {
+          J.balls.push_back({in, b->euler.qP.coeffs().data(), &b->euler.s,
+                             b->axes.angles.data(), b->axes.rows[0].data(), &J.ok[J.balls.size()]});
+          J.ball_of.push_back({&b->axes, l.a, l.b});
+        }
       }
+      J.valid = true;
+      J.bodies = bodies.data();
+      J.motions = m.data();
     }
+    // the joints' prepare cleared the marks
+    for (const auto& of : J.hinge_of) of.axes->exact_in_lanes = true;
+    for (const auto& of : J.ball_of) of.axes->exact_in_lanes = true;
     hingeAngles(J.hinges.data(), int(J.hinges.size()));
     eulerAngles(J.balls.data(), int(J.balls.size()));
     for (const auto& of : J.hinge_of) take(*of.axes, true);

@@ -91,9 +91,11 @@ class PointLanes {
     int a, b;
     int block, lane;
     int angle_rows;  // the joint's angle rows in the lane this step (0: none)
+    bool exact;      // its angles are computed in the lanes (exactAngles' jobs)
   };
   // The exact-angle jobs of a range's lanes whose angle rows are all there (exactAngles): formed
-  // at the first substep (the bodies, the joints and the lanes stay put within the step).
+  // at a first substep and kept while the lanes, the lanes that have jobs and the body arrays
+  // (the jobs point into them) stay as they were.
   struct AngleJobs {
     template <int N>
     struct Of {  // a job's joint axes and bodies
@@ -105,6 +107,9 @@ class PointLanes {
     std::vector<Of<1>> hinge_of;
     std::vector<Of<3>> ball_of;
     std::vector<double> ok;  // a ball's rows formed (not at gimbal lock)
+    bool valid = false;
+    const SolverBody* bodies = nullptr;
+    const BodyMotion* motions = nullptr;
   };
   struct alignas(64) Range {  // its own cache lines (allocated by the thread that builds it)
     std::vector<Lane> lanes;

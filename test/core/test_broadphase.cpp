@@ -227,7 +227,9 @@ TEST(Broadphase, ThreadsGiveTheSamePairsInTheSameOrder) {
       }
     }
     // the grid's calls test more candidates (a superset of the pairs) than kParallelWork
-    if (n > Broadphase::kGridMin) EXPECT_GT(total, size_t(24 * Broadphase::kParallelWork));
+    if (n > Broadphase::kGridMin) {
+      EXPECT_GT(total, size_t(24 * Broadphase::kParallelWork));
+    }
   }
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
+#include <functional>
 #include <random>
 #include <vector>
 
@@ -310,9 +311,10 @@ namespace {
 
 // Chains of Euler-limited balls and limited hinges, some driven or damped, swinging into their
 // limits for 400 steps with the tuning set by `tune`: the state's hash, and the worst excess of
-// a hinge past its limits into *worst_limit.
+// a hinge past its limits into *worst_limit. midway(world, the hinges) runs after step 200.
 template <class Tune>
-uint64_t limitedChains(int lanes, Tune&& tune, double* worst_limit) {
+uint64_t limitedChains(int lanes, Tune&& tune, double* worst_limit,
+                       const std::function<void(World&, const std::vector<JointId>&)>& midway = {}) {
   WorldDef def;
   def.sleep.enabled = false;
   def.solver.lanes = lanes;
@@ -349,6 +351,7 @@ uint64_t limitedChains(int lanes, Tune&& tune, double* worst_limit) {
     }
   }
   for (int i = 0; i < 400; ++i) {
+    if (i == 200 && midway) midway(w, hinges);
     w.step(1e-3);
     for (const JointId h : hinges) {
       const double a = w.hingeAngle(h);
@@ -360,12 +363,14 @@ uint64_t limitedChains(int lanes, Tune&& tune, double* worst_limit) {
 
 // The chains' state with a switch of WorldTuning on and with it off, at both widths: the same
 // bits, with a hinge near its limit (so that the limit rows take part).
-void expectSwitchChangesNoBit(bool WorldTuning::*field) {
+void expectSwitchChangesNoBit(
+    bool WorldTuning::*field,
+    const std::function<void(World&, const std::vector<JointId>&)>& midway = {}) {
   for (const int lanes : {4, 8}) {
     double reach = -1.0;
     const auto set = [field](bool on) { return [field, on](WorldTuning& t) { t.*field = on; }; };
-    const uint64_t on = limitedChains(lanes, set(true), &reach);
-    const uint64_t off = limitedChains(lanes, set(false), &reach);
+    const uint64_t on = limitedChains(lanes, set(true), &reach, midway);
+    const uint64_t off = limitedChains(lanes, set(false), &reach, midway);
     EXPECT_EQ(on, off) << "lanes " << lanes;
     EXPECT_GT(reach, -0.01) << "lanes " << lanes << ": no hinge came within 0.01 rad of a limit";
   }
@@ -385,4 +390,23 @@ TEST(JointLanes, KeptLaneAnglesChangeNoBit) {
 // of each joint computing its own.
 TEST(JointLanes, ExactAnglesInLanesChangeNoBit) {
   expectSwitchChangesNoBit(&WorldTuning::lane_exact_angles);
+}
+
+// The lanes keep their exact-angle jobs, which point into the bodies' arrays, from step to step
+// while the lanes stay: bodies created midway move those arrays (a job that kept the old ones
+// would read freed memory and the angles of the step they were made in), and a motor turned on
+// gives a block motor rows. The chains' state must still be the one of each joint computing its
+// own angles.
+TEST(JointLanes, ExactAngleJobsFollowMovedBodyArrays) {
+  expectSwitchChangesNoBit(&WorldTuning::lane_exact_angles,
+                           [](World& w, const std::vector<JointId>& hinges) {
+                             for (int k = 0; k < 600; ++k) {
+                               BodyDef d;
+                               d.type = BodyType::Static;
+                               d.pose = Transform(Vec3(100.0 + k, 50.0, 0.0), Quat::Identity());
+                               w.addShape(w.createBody(d), {Geometry::sphere(0.1), Transform(),
+                                                            Material()});
+                             }
+                             w.setJointMotor(hinges[0], 0, {true, 0.0, 1.0, 0.0, 1.0, 2.0, 0.0});
+                           });
 }
