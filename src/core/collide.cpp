@@ -75,31 +75,15 @@ void World::Impl::collide(double dt) {
   if (shape_lists_dirty || int(is_static_shape.size()) != n) rebuildShapeLists();
   const bool carry = tuning.carry_sleeping_pairs && !pairs_dirty;
   const double spec = def.solver.speculative_distance;
-  const auto computeBox = [&](int s) {
-    const BodyMotion& m = motions[shapes[s].body];
-    const Transform& f = shape_frames[s] = shapeFrame(s);
-    Aabb box = computeAabb(shapeDef(s).geometry, {m.x + f.p, f.q});
-    const Vec3 grow = Vec3::Constant(spec) + (m.v * dt).cwiseAbs();
-    box.lo -= grow;
-    box.hi += grow;
-    aabbs[s] = box;
-  };
   // Boxes of the dynamic bodies' shapes in parallel (each shape its own slot).
   const int moving = int(moving_shapes.size());
-  parallelFor(moving, threadCount(), [&](int k) {
-    const int s = moving_shapes[k];
-    const BodyMotion& m = motions[shapes[s].body];
-    frozen[s] = carry && !m.awake && aabb_kept[s];
-    if (!m.awake && aabb_kept[s]) return;
-    aabb_kept[s] = !m.awake;
-    computeBox(s);
-  });
+  movingBoxes(dt, carry);
   // Static boxes and their tree only after a static shape was added, removed or moved.
   const bool static_rebuilt = static_dirty;
   if (static_dirty) {
     for (int s : static_shapes) {
       aabb_kept[s] = 1;
-      computeBox(s);
+      computeBox(s, dt);
     }
     static_boxes_computed += int64_t(static_shapes.size());
     static_tree.build(static_shapes, aabbs);

@@ -203,6 +203,10 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
   void rebuildShapeLists();
   void collide(double dt);
   void orderPairs(int count);
+  // shape_boxes.cpp: shape s's frame and box, grown by the speculative distance and its body's
+  // step; the moving shapes' (each kept while its body sleeps; carry: sleeping ones frozen).
+  void computeBox(int s, double dt);
+  void movingBoxes(double dt, bool carry);
   void applyPairMaterial(Contact& c, const ShapeDef& da, const ShapeDef& db) const;
 
   // island_schedule.cpp
