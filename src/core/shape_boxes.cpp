@@ -103,7 +103,9 @@ void World::Impl::movingBoxes(double dt, bool carry) {
       runKind(kind, jobs[kind], count[kind], spec, dt);
   };
   const int chunks = (moving + kChunk - 1) / kChunk;
-  if (splitOverThreads(moving, threadCount())) return parallelForSplit(chunks, threadCount(), chunk);
+  // A parallel region costs more than two chunks' boxes take on one thread (c, 120 shapes:
+  // 2.7 us alone, 5 us on two).
+  if (chunks >= 4 && threadCount() > 1) return parallelForSplit(chunks, threadCount(), chunk);
   for (int c = 0; c < chunks; ++c) chunk(c);
 }
 
