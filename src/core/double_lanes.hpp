@@ -112,6 +112,21 @@ inline void rotationMatrix(const D c[4], D R[9]) {
   R[8] = one - (txx + tyy);
 }
 
+// Whether x's sign bit is set, and |x| (std::abs's bits, a NaN's too).
+inline bool signBit(double x) { return __builtin_signbit(x); }
+inline double magnitude(double x) { return __builtin_fabs(x); }
+template <class D>
+inline auto signBit(D x) {
+  using Mask = decltype(x < x);  // the integer vector of D's width
+  Mask bits;
+  __builtin_memcpy(&bits, &x, sizeof bits);
+  return bits < Mask{};
+}
+template <class D>
+inline D magnitude(D x) {
+  return signBit(x) ? -x : x;
+}
+
 // The lanes of W bodies' arrays: out[j] = {p[0][j], ..., p[W-1][j]}, and back.
 inline double lane(double x, int) { return x; }
 template <class D>

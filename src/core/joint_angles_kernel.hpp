@@ -30,26 +30,13 @@ inline namespace RAGDOLL_SIM_ANGLES_ISA {
 using double_lanes::cross;
 using double_lanes::dot;
 using double_lanes::gather;
+using double_lanes::magnitude;
 using double_lanes::quatProduct;
 using double_lanes::rotate;
 using double_lanes::rotationMatrix;
 using double_lanes::scatter;
+using double_lanes::signBit;
 using double_lanes::squareRoot;
-
-// Whether x's sign bit is set, and |x|.
-inline bool signBit(double x) { return __builtin_signbit(x); }
-inline double magnitude(double x) { return __builtin_fabs(x); }
-template <class D>
-inline auto signBit(D x) {
-  using Mask = decltype(x < x);  // the integer vector of D's width
-  Mask bits;
-  __builtin_memcpy(&bits, &x, sizeof bits);
-  return bits < Mask{};
-}
-template <class D>
-inline D magnitude(D x) {
-  return signBit(x) ? -x : x;
-}
 
 // atan(num / den) for 0 <= num <= den, den > 0: above 0.66, atan((num - den) / (num + den)) +
 // pi/4 (num - den exact), so that one division forms the argument.

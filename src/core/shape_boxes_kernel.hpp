@@ -1,14 +1,13 @@
 // The collide phase's shape boxes on plain arrays, written once for a lane type D: double (one
 // shape), Double2 (two in an SSE2 register, the x86-64 baseline) or Double4 (four in an AVX
 // register, shape_boxes_w4.cpp, compiled with -mavx2 -mno-fma), the lanes of double_lanes.hpp.
-// Each lane does the IEEE operations, in the order, of the Eigen code it replaces (shapeFrame
-// and computeAabb, collide.cpp), so every type gives their bits:
+// Each lane does the IEEE operations, in the order, of the Eigen code it replaces
+// (World::Impl::computeBox, shape_boxes.cpp), so every type gives its bits:
 //   f = (q (p_local - com), q q_local);  R = f.q.toRotationMatrix();  c = x + f.p;
 //   box {c - e, c + e} grown by spec + |v dt| on each axis,
 // where e is the shape's half extent along the world axes: a sphere's radius; a capsule's
 // h |R_z| + r; a box's |R| half (Eigen's row sums a0 + (a1 + a2)); a cylinder's
-// h |R_z,i| + r sqrt(max(0, 1 - R_z,i^2)). |x| is written x <= 0 ? 0 - x : x (std::abs's
-// result for every x but a NaN's sign).
+// h |R_z,i| + r sqrt(max(0, 1 - R_z,i^2)).
 // As lanes.hpp: no std headers or Eigen (the AVX file includes this), and an inline namespace
 // per instruction set, so that no AVX copy of an inline function replaces a baseline one.
 #pragma once
@@ -37,18 +36,7 @@ struct ShapeBoxJob {
 
 inline namespace RAGDOLL_SIM_SHAPE_BOXES_ISA {
 
-using double_lanes::gather;
-using double_lanes::quatProduct;
-using double_lanes::rotate;
-using double_lanes::rotationMatrix;
-using double_lanes::scatter;
-using double_lanes::squareRoot;
-
-template <class D>
-inline D absolute(D x) {
-  return x <= D() + 0.0 ? (D() + 0.0) - x : x;
-}
-inline double absolute(double x) { return x <= 0.0 ? 0.0 - x : x; }
+using namespace double_lanes;
 
 template <class D>
 inline D atLeastZero(D x) {
@@ -88,16 +76,16 @@ inline void shapeBoxes(const ShapeBoxJob* jobs, int count, double spec, double d
       if (kKind == kSphereBox) {
         e[i] = sizel[0];
       } else if (kKind == kCapsuleBox) {
-        e[i] = sizel[1] * absolute(R[6 + i]) + sizel[0];
+        e[i] = sizel[1] * magnitude(R[6 + i]) + sizel[0];
       } else if (kKind == kBoxBox) {
-        e[i] = absolute(R[i]) * sizel[0] +
-               (absolute(R[3 + i]) * sizel[1] + absolute(R[6 + i]) * sizel[2]);
+        e[i] = magnitude(R[i]) * sizel[0] +
+               (magnitude(R[3 + i]) * sizel[1] + magnitude(R[6 + i]) * sizel[2]);
       } else {
         const D w = R[6 + i];
-        e[i] = sizel[1] * absolute(w) + sizel[0] * squareRoot(atLeastZero((D() + 1.0) - w * w));
+        e[i] = sizel[1] * magnitude(w) + sizel[0] * squareRoot(atLeastZero((D() + 1.0) - w * w));
       }
       const D c = xl[i] + fpl[i];
-      const D grow = specl + absolute(vl[i] * dtl);
+      const D grow = specl + magnitude(vl[i] * dtl);
       lol[i] = (c - e[i]) - grow;
       hil[i] = (c + e[i]) + grow;
     }
