@@ -75,7 +75,7 @@ void World::Impl::collide(double dt) {
   if (shape_lists_dirty || int(is_static_shape.size()) != n) rebuildShapeLists();
   const bool carry = tuning.carry_sleeping_pairs && !pairs_dirty;
   const double spec = def.solver.speculative_distance;
-  // Boxes of the dynamic bodies' shapes in parallel (each shape its own slot).
+  // Boxes of the dynamic bodies' shapes (shape_boxes.cpp).
   const int moving = int(moving_shapes.size());
   movingBoxes(dt, carry);
   // Static boxes and their tree only after a static shape was added, removed or moved.

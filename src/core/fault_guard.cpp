@@ -109,7 +109,7 @@ void World::Impl::resetFaulted() {
 }
 
 void World::Impl::finishStep() {
-  forEachGuarded([this](int i) { finishBody(i); }, [](int) { return false; });
+  forEachGuarded([this](int i) { finishBody(i); });
   resetFaulted();
   clearTouched();
 }

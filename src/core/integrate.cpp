@@ -44,16 +44,6 @@ integrate_kernel::BodyFields bodyFields(std::vector<SolverBody>& solver,
 }
 
 namespace {
-// Bodies [0, n) in runs by lane width: four at a time in AVX lanes where the CPU has AVX2, then
-// two in SSE2 lanes, the last one alone; run(width, first, count) for each run.
-template <class Run>
-void byLaneWidth(int n, Run&& run) {
-  const int n4 = cpuHasAvx2() ? n / 4 * 4 : 0;
-  const int n2 = n4 + (n - n4) / 2 * 2;
-  run(4, 0, n4);
-  run(2, n4, n2 - n4);
-  run(1, n2, n - n2);
-}
 
 // An awake body's solver body at the step start, but for its world inverse inertia.
 void startSolverBody(const BodyMotion& m, SolverBody& s) {

@@ -24,4 +24,16 @@ int chooseLaneWidth(int requested, const char* env, bool has_avx2);
 bool laneWidthAutomatic(int requested);
 bool laneWidthAutomatic(int requested, const char* env);
 
+// Items [0, n) of the double-lane kernels in runs by lane width: four at a time in AVX lanes
+// where the CPU has AVX2, then two in SSE2 lanes, the last one alone; run(width, first, count)
+// for each run.
+template <class Run>
+void byLaneWidth(int n, Run&& run) {
+  const int n4 = cpuHasAvx2() ? n / 4 * 4 : 0;
+  const int n2 = n4 + (n - n4) / 2 * 2;
+  run(4, 0, n4);
+  run(2, n4, n2 - n4);
+  run(1, n2, n - n2);
+}
+
 }  // namespace ragdoll_sim

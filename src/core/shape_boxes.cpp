@@ -1,6 +1,7 @@
 // The moving shapes' boxes and frames of the collide phase, by kind several at a time in double
 // lanes (shape_boxes_kernel.hpp: the bits of computeBox, one at a time).
 #include <algorithm>
+#include <cstddef>
 
 #include "lane_width.hpp"
 #include "parallel_for.hpp"
@@ -14,6 +15,8 @@ static_assert(int(ShapeType::Sphere) == shape_boxes::kSphereBox &&
                   int(ShapeType::Box) == shape_boxes::kBoxBox &&
                   int(ShapeType::Cylinder) == shape_boxes::kCylinderBox,
               "a shape's type is its box kind");
+static_assert(offsetof(Geometry, half_height) == offsetof(Geometry, radius) + sizeof(double),
+              "a round shape's job reads its radius and half height as two doubles");
 
 void World::Impl::computeBox(int s, double dt) {
   const BodyMotion& m = motions[shapes[s].body];
@@ -26,29 +29,15 @@ void World::Impl::computeBox(int s, double dt) {
 }
 
 namespace {
-// Jobs [0, n) of one kind: four at a time in AVX lanes where the CPU has AVX2, then two in SSE2
-// lanes, the last one alone.
+// Jobs [0, n) of one kind by lane width (byLaneWidth).
 void runKind(int kind, const shape_boxes::ShapeBoxJob* jobs, int n, double spec, double dt) {
-  using shape_boxes::shapeBoxes;
-  using double_lanes::Double2;
-  const int n4 = cpuHasAvx2() ? n / 4 * 4 : 0;
-  const int n2 = n4 + (n - n4) / 2 * 2;
-  if (n4 > 0) shape_boxes_w4::shapeBoxes(kind, jobs, n4, spec, dt);
-  const auto rest = [&](auto lanes_tag, int begin, int count) {
-    using D = decltype(lanes_tag);
-    switch (kind) {
-      case shape_boxes::kSphereBox:
-        return shapeBoxes<shape_boxes::kSphereBox, D>(jobs + begin, count, spec, dt);
-      case shape_boxes::kCapsuleBox:
-        return shapeBoxes<shape_boxes::kCapsuleBox, D>(jobs + begin, count, spec, dt);
-      case shape_boxes::kBoxBox:
-        return shapeBoxes<shape_boxes::kBoxBox, D>(jobs + begin, count, spec, dt);
-      default:
-        return shapeBoxes<shape_boxes::kCylinderBox, D>(jobs + begin, count, spec, dt);
-    }
-  };
-  if (n2 > n4) rest(Double2(), n4, n2 - n4);
-  if (n > n2) rest(0.0, n2, n - n2);
+  using shape_boxes::shapeBoxesOf;
+  byLaneWidth(n, [&](int width, int first, int count) {
+    const shape_boxes::ShapeBoxJob* j = jobs + first;
+    if (width == 4) shape_boxes_w4::shapeBoxes(kind, j, count, spec, dt);
+    else if (width == 2) shapeBoxesOf<double_lanes::Double2>(kind, j, count, spec, dt);
+    else shapeBoxesOf<double>(kind, j, count, spec, dt);
+  });
 }
 }  // namespace
 

@@ -96,6 +96,17 @@ inline void shapeBoxes(const ShapeBoxJob* jobs, int count, double spec, double d
   }
 }
 
+// The same for jobs of `kind` (the callers' one switch over the kinds).
+template <class D>
+inline void shapeBoxesOf(int kind, const ShapeBoxJob* jobs, int count, double spec, double dt) {
+  switch (kind) {
+    case kSphereBox: return shapeBoxes<kSphereBox, D>(jobs, count, spec, dt);
+    case kCapsuleBox: return shapeBoxes<kCapsuleBox, D>(jobs, count, spec, dt);
+    case kBoxBox: return shapeBoxes<kBoxBox, D>(jobs, count, spec, dt);
+    default: return shapeBoxes<kCylinderBox, D>(jobs, count, spec, dt);
+  }
+}
+
 }  // namespace RAGDOLL_SIM_SHAPE_BOXES_ISA
 }  // namespace shape_boxes
 

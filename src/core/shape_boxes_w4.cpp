@@ -8,14 +8,7 @@ namespace shape_boxes_w4 {
 
 void shapeBoxes(int kind, const shape_boxes::ShapeBoxJob* jobs, int count, double spec,
                 double dt) {
-  using namespace shape_boxes;
-  using Lanes = double_lanes::WidestLanes;
-  switch (kind) {
-    case kSphereBox: return shape_boxes::shapeBoxes<kSphereBox, Lanes>(jobs, count, spec, dt);
-    case kCapsuleBox: return shape_boxes::shapeBoxes<kCapsuleBox, Lanes>(jobs, count, spec, dt);
-    case kBoxBox: return shape_boxes::shapeBoxes<kBoxBox, Lanes>(jobs, count, spec, dt);
-    default: return shape_boxes::shapeBoxes<kCylinderBox, Lanes>(jobs, count, spec, dt);
-  }
+  shape_boxes::shapeBoxesOf<double_lanes::WidestLanes>(kind, jobs, count, spec, dt);
 }
 
 }  // namespace shape_boxes_w4

@@ -167,6 +167,10 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
       if (!skip(i) && bodies[i].alive) f(i);
     }
   }
+  template <class F>
+  void forEachGuarded(F&& f) {
+    forEachGuarded(f, [](int) { return false; });
+  }
   void clearTouched() {
     for (int b : touched_static) static_touched[b] = 0;
     touched_static.clear();

@@ -77,19 +77,10 @@ void kernelBoxes(ShapeType type, int width, double spec, double dt, std::vector<
                     type == ShapeType::Box ? c.g.half_extents.data() : &c.g.radius,
                     c.frame.p.data(), c.frame.q.coeffs().data(), c.box.lo.data(), c.box.hi.data()});
   const int n = int(jobs.size());
-  if (width == 4) return shape_boxes_w4::shapeBoxes(kind, jobs.data(), n, spec, dt);
-  const auto run = [&](auto lanes) {
-    using D = decltype(lanes);
-    using namespace shape_boxes;
-    switch (kind) {
-      case kSphereBox: return shapeBoxes<kSphereBox, D>(jobs.data(), n, spec, dt);
-      case kCapsuleBox: return shapeBoxes<kCapsuleBox, D>(jobs.data(), n, spec, dt);
-      case kBoxBox: return shapeBoxes<kBoxBox, D>(jobs.data(), n, spec, dt);
-      default: return shapeBoxes<kCylinderBox, D>(jobs.data(), n, spec, dt);
-    }
-  };
-  if (width == 2) run(double_lanes::Double2());
-  else run(0.0);
+  using shape_boxes::shapeBoxesOf;
+  if (width == 4) shape_boxes_w4::shapeBoxes(kind, jobs.data(), n, spec, dt);
+  else if (width == 2) shapeBoxesOf<double_lanes::Double2>(kind, jobs.data(), n, spec, dt);
+  else shapeBoxesOf<double>(kind, jobs.data(), n, spec, dt);
 }
 
 bool sameBits(const double* a, const double* b, int n) {
