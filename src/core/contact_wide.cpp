@@ -73,19 +73,26 @@ void ContactBatch::build(std::vector<ContactConstraint>& cs, const StepContext& 
   graph_.colour(edges_.data(), int(edges_.size()), int(bodies.size()));
   for (int c = 0; c < graph_.colourCount(); ++c) {
     // A block loops over the points of its largest manifold: by point count, most first, the
-    // manifolds of a colour fill the blocks' points better. The constraints of a colour share
-    // no body, so their order within it changes no bit.
+    // manifolds of a colour fill the blocks' points better. Within a count, those that carry
+    // no normal impulse (mostly speculative ones, which stay apart) go last, so that they fill
+    // blocks of their own, which the sweeps skip as idle. The constraints of a colour share no
+    // body, so their order within it changes no bit.
     const int* order = graph_.order().data() + graph_.colourBegin(c);
     const int size = graph_.colourSize(c);
-    // A counting sort: bucket kMax - count holds the manifolds of `count` points, in order.
+    // A counting sort: bucket 2 (kMax - count), then + 1 without a carried impulse, in order.
     constexpr int kMax = Manifold::kMaxPoints;
-    int first[kMax + 1] = {};  // where each bucket begins
-    for (int j = 0; j < size; ++j) ++first[kMax - cs[candidates[order[j]]].count + 1];
-    for (int k = 1; k <= kMax; ++k) first[k] += first[k - 1];
+    const auto bucket = [&](const ContactConstraint& cc) {
+      bool carried = false;
+      for (int i = 0; i < cc.count; ++i) carried |= cc.points[i].normal_impulse != 0.0;
+      return 2 * (kMax - cc.count) + (carried ? 0 : 1);
+    };
+    int first[2 * kMax + 1] = {};  // where each bucket begins
+    for (int j = 0; j < size; ++j) ++first[bucket(cs[candidates[order[j]]]) + 1];
+    for (int k = 1; k <= 2 * kMax; ++k) first[k] += first[k - 1];
     colour_slots_.resize(size);
     for (int j = 0; j < size; ++j) {
       const int slot = candidates[order[j]];
-      colour_slots_[first[kMax - cs[slot].count]++] = slot;
+      colour_slots_[first[bucket(cs[slot])]++] = slot;
     }
     for (int j = 0; j < int(colour_slots_.size()); ++j) {
       const int slot = colour_slots_[j];

@@ -49,6 +49,8 @@ class ContactBatch {
   // last position change: a relax sweep's, and no biased sweep (after which the positions
   // advance) since. False for a slot the blocks do not hold.
   bool apartAtLastUpdate(int slot, double separation) const;
+  // Where slot `slot` sits in the blocks: block * kRowBlock + lane, -1 for a scalar one.
+  int laneOf(int slot) const { return lane_of_slot_[slot - begin_]; }
 
  private:
   void updateSeparations(const StepContext& ctx);
@@ -68,7 +70,7 @@ class ContactBatch {
   int block_count_ = 0;
   std::vector<GraphEdge> edges_;
   std::vector<int> candidates_;    // the eligible slots, in slot order
-  std::vector<int> colour_slots_;  // one colour's slots, by point count
+  std::vector<int> colour_slots_;  // one colour's slots, by point count and carried impulse
   ConstraintGraph graph_;
 };
 

@@ -172,6 +172,41 @@ TEST(ContactBatches, TheGroundJoinsNoColour) {
   EXPECT_TRUE(batch->scalar().empty());
 }
 
+// Within a colour the manifolds that carry no normal impulse go after those that do, so that
+// the speculative ones share blocks the sweeps skip as idle: with every other island's ground
+// contacts cleared, the twelve contacts (one colour, four points each) take the lanes carried
+// first, whatever their slot order.
+TEST(ContactBatches, TheManifoldsWithoutImpulseGoLastInTheirColour) {
+  Pile p = makePile(false);
+  for (size_t c = 0; c < p.contacts.size(); ++c)
+    if ((c / 2) % 2 == 1)
+      for (int k = 0; k < 4; ++k) p.contacts[c].normal_impulse[k] = 0.0;
+  SolverSettings settings;
+  StepContext ctx;
+  ctx.dt = ctx.h = 1e-3;
+  ctx.inv_h = 1.0 / ctx.h;
+  ctx.lanes = 8;
+  ctx.contact_softness = Softness::make(30.0, 10.0, ctx.h);
+  ctx.settings = &settings;
+  ctx.bodies = &p.bodies;
+  ctx.motions = &p.motions;
+  ContactSolver solver;
+  solver.selectActive(p.contacts, p.motions);
+  solver.resize(1);
+  const int n = int(p.contacts.size());
+  solver.prepare(p.contacts, ctx, 0, n);
+  const ContactBatch* batch = solver.batchAt(0);
+  ASSERT_NE(batch, nullptr);
+  ASSERT_EQ(batch->colourCount(), 1);
+  int last_carried = -1, first_clear = n;
+  for (int c = 0; c < n; ++c) {
+    ASSERT_GE(batch->laneOf(c), 0);
+    if ((c / 2) % 2 == 1) first_clear = std::min(first_clear, batch->laneOf(c));
+    else last_carried = std::max(last_carried, batch->laneOf(c));
+  }
+  EXPECT_LT(last_carried, first_clear);
+}
+
 // The wide path solves something: its bits differ from the double rows' (else the batches
 // would not be found at all and the comparison above would hold trivially).
 TEST(ContactBatches, TheLanesSolveTheRanges) {
