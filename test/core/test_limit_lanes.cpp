@@ -172,6 +172,57 @@ TEST(LimitLanes, KernelMatchesDoubleParts) {
   }
 }
 
+// Limits far from their bounds in every lane, carrying nothing (the block skips such rows);
+// with `closing`, lane 3's second lower row is 1 mm from its bound and closes within the
+// substep (rate -3 rad/s along its row against C / h = 0.96 rad/s), so the block must solve it.
+LimitCase idleCase(bool closing) {
+  LimitCase k = makeCase(4);
+  for (int l = 0; l < kUsed; ++l)
+    for (int r = 0; r < 3; ++r) {
+      k.lower_c[l][r] = k.upper_c[l][r] = 0.5;
+      k.parts[l][r] = AngleLimitPart();
+    }
+  if (closing) {
+    k.lower_c[3][1] = 0.001;
+    k.bodies[7].w = k.bodies[6].w - 3.0 * k.rows[3][1];
+  }
+  return k;
+}
+
+// Open limits leave the bodies as they were, bit for bit; one row closing within the substep
+// among them is solved as the double part solves it, the others still apply nothing.
+TEST(LimitLanes, OnlyRowsThatActAreSolved) {
+  for (const bool closing : {false, true}) {
+    LimitCase d = idleCase(closing);
+    const std::vector<SolverBody> start = d.bodies;
+    PointRowBlock b4 = makeBlock(d);
+    std::vector<SolverBody> f4 = start;
+    runLanes(4, b4, f4);
+    runDouble(d);
+    for (int l = 0; l < kRowBlock; ++l)
+      for (int r = 0; r < 3; ++r) {
+        const bool acts = closing && l == 3 && r == 1;
+        EXPECT_EQ(b4.limit_impulse[r][1][l], 0.0f) << "lane " << l << " row " << r;
+        if (!acts) {
+          EXPECT_EQ(b4.limit_impulse[r][0][l], 0.0f) << "lane " << l << " row " << r;
+          continue;
+        }
+        const double expected = d.parts[l][r].lower_impulse;
+        EXPECT_GT(expected, 1e-4);
+        EXPECT_NEAR(b4.limit_impulse[r][0][l], expected, 2e-5 * expected);
+      }
+    for (size_t i = 0; i < start.size(); ++i) {
+      if (closing && (i == 6 || i == 7)) {
+        EXPECT_LT((f4[i].w - d.bodies[i].w).norm(), 2e-5 * (1.0 + d.bodies[i].w.norm()));
+        EXPECT_NE(f4[i].w, start[i].w) << "body " << i;
+      } else {
+        EXPECT_EQ(f4[i].w, start[i].w) << "body " << i;
+      }
+    }
+    if (cpuHasAvx2()) expectEightLanesSameBits(makeBlock(idleCase(closing)), start, b4, f4);
+  }
+}
+
 // The arm rests on its upper limit: the limit alone holds its weight's torque m g d about the
 // axis (the effort on B about +y is -m g d), and the angle stays within the slop of the bound,
 // at lanes 1 (the scalar rows) and 4 and 8.
