@@ -154,13 +154,33 @@ inline void scatter(const Double2 in[N], double* const p[2]) {
   }
 }
 #if defined(__AVX__)
+// Four rows of four doubles into four columns (and back: the transpose is its own inverse).
+inline void transpose4(__m256d r0, __m256d r1, __m256d r2, __m256d r3, Double4 out[4]) {
+  const __m256d t0 = _mm256_unpacklo_pd(r0, r1), t1 = _mm256_unpackhi_pd(r0, r1);
+  const __m256d t2 = _mm256_unpacklo_pd(r2, r3), t3 = _mm256_unpackhi_pd(r2, r3);
+  out[0] = Double4(_mm256_permute2f128_pd(t0, t2, 0x20));
+  out[1] = Double4(_mm256_permute2f128_pd(t1, t3, 0x20));
+  out[2] = Double4(_mm256_permute2f128_pd(t0, t2, 0x31));
+  out[3] = Double4(_mm256_permute2f128_pd(t1, t3, 0x31));
+}
+// Runs of four fields move as a 4 x 4 transpose of whole rows, the rest one double at a time.
 template <int N>
 inline void gather(const double* const p[4], Double4 out[N]) {
-  for (int j = 0; j < N; ++j) out[j] = Double4{p[0][j], p[1][j], p[2][j], p[3][j]};
+  int j = 0;
+  for (; j + 4 <= N; j += 4)
+    transpose4(_mm256_loadu_pd(p[0] + j), _mm256_loadu_pd(p[1] + j), _mm256_loadu_pd(p[2] + j),
+               _mm256_loadu_pd(p[3] + j), out + j);
+  for (; j < N; ++j) out[j] = Double4{p[0][j], p[1][j], p[2][j], p[3][j]};
 }
 template <int N>
 inline void scatter(const Double4 in[N], double* const p[4]) {
-  for (int j = 0; j < N; ++j)
+  int j = 0;
+  for (; j + 4 <= N; j += 4) {
+    Double4 rows[4];
+    transpose4(__m256d(in[j]), __m256d(in[j + 1]), __m256d(in[j + 2]), __m256d(in[j + 3]), rows);
+    for (int l = 0; l < 4; ++l) _mm256_storeu_pd(p[l] + j, __m256d(rows[l]));
+  }
+  for (; j < N; ++j)
     for (int l = 0; l < 4; ++l) p[l][j] = in[j][l];
 }
 #endif
