@@ -1,8 +1,8 @@
 // The wide contact batches of ContactSolver (contact_solver.hpp): whatever ranges a step cuts at
 // its islands' boundaries, each range finds its own batch and the bits do not depend on the cut;
 // the batches are reused step after step, one per range a thread prepares, not one per contact;
-// static bodies join no colour; the rows prepared straight into the lanes are the double rows
-// rounded.
+// static bodies join no colour; within a colour the manifolds without a carried impulse go last;
+// the rows prepared straight into the lanes are the double rows rounded.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,7 +1,7 @@
 // A joint's angle limits solved in its anchor's float lane (point_row_lanes.inc): the kernel
 // against the double parts (part_angle_limit.hpp) for the same state, 4 and 8 lanes give the
-// same bits, and in a world the lanes hold a limit's static load and a fast arm as the scalar
-// rows do.
+// same bits, a record passes over only the limits that apply nothing, and in a world the lanes
+// hold a limit's static load and a fast arm as the scalar rows do.
 #include <gtest/gtest.h>
 
 #include <cmath>
