@@ -38,11 +38,11 @@ inline namespace RAGDOLL_SIM_SHAPE_BOXES_ISA {
 
 using namespace double_lanes;
 
+// std::max(0.0, x) (a NaN gives 0), for a lane type or a double.
 template <class D>
 inline D atLeastZero(D x) {
   return D() + 0.0 < x ? x : D() + 0.0;
 }
-inline double atLeastZero(double x) { return 0.0 < x ? x : 0.0; }
 
 // jobs[0, count) of one kind, W = sizeof(D) / 8 at a time; count a multiple of W.
 template <int kKind, class D>
