@@ -10,6 +10,28 @@
 namespace ragdoll_sim {
 
 // (island_solve.hpp)
+void StealReserve::update(bool reserved, double waited, int stolen) {
+  if (reserved) {
+    window_stolen_ += stolen;
+    if (--window_left_ > 0) return;
+    const bool paid = window_stolen_ >= kWindow / kStealEvery;
+    pause_ = paid ? 0 : std::min(kMaxPause, std::max(kFirstPause, 2 * pause_));
+    pause_left_ = pause_;
+    window_stolen_ = 0;
+    return;
+  }
+  if (pause_left_ > 0) {
+    --pause_left_;
+    return;
+  }
+  idle_average_ += (waited - idle_average_) / kAverageSteps;
+  if (kImbalance * idle_average_ > 1.0) {
+    window_left_ = kWindow;
+    idle_average_ = 0.0;
+  }
+}
+
+// (island_solve.hpp)
 bool extendsRange(IslandRange& c, const IslandRange& r, int k, int left, int fill) {
   const bool follows = k == c.island_end && r.body_begin == c.body_end &&
                        r.joint_begin == c.joint_end && r.contact_begin == c.contact_end &&
@@ -26,16 +48,6 @@ bool extendsRange(IslandRange& c, const IslandRange& r, int k, int left, int fil
 }
 
 namespace {
-// The reserve of islands to steal costs the lanes' fill: ranges end at kLaneRangeFill instead of
-// kLaneRangeWork, and the last islands of a run go alone. It is kept for kReserveSteps once the
-// first thread to end its run has waited, on average over about kImbalanceSteps steps without
-// the reserve, more than 1 / kImbalance of the parallel region (a thread slowed by its core or
-// by the other's caches); otherwise the threads' runs, cut by work, end together, and the
-// reserve would only cost.
-constexpr int kReserveSteps = 64;
-constexpr int kImbalance = 12;
-constexpr int kImbalanceSteps = 8;
-
 // This thread's number and the team's size in the enclosing parallel region ({0, 1} outside).
 std::pair<int, int> teamSlot() {
 #ifdef _OPENMP
@@ -433,9 +445,8 @@ void World::Impl::solveIslands(const StepContexts& ctx) {
   // share its range (docs/physics.md, the wide solver), only the lanes' fill does.
   const bool chunks = ctx.full.lanes != 1;
   const int reserve_mode = tuning.range_reserve;
-  const bool reserve = reserve_mode > 0 || (reserve_mode < 0 && reserve_steps > 0);
+  const bool reserve = reserve_mode > 0 || (reserve_mode < 0 && steal_reserve.on());
   const int fill = reserve ? kLaneRangeFill : kLaneRangeWork;
-  if (chunks && reserve_steps > 0) --reserve_steps;
   run_queue.reset(island_runs);
   const auto solveRun = [&](int t) {
     // Alone (no team, or a team of one) nobody steals: the ranges need not shrink.
@@ -458,7 +469,9 @@ void World::Impl::solveIslands(const StepContexts& ctx) {
       open = true;
     }
     flush();
-    for (int k; (k = run_queue.steal(t)) >= 0;) solveOne(k);
+    int stolen = 0;
+    for (int k; (k = run_queue.steal(t)) >= 0; ++stolen) solveOne(k);
+    return stolen;
   };
   // (no runs when every island is split or goes along with a split one's half)
   const bool team = splitOverThreads(int(island_bodies.size()), threadCount());
@@ -469,20 +482,20 @@ void World::Impl::solveIslands(const StepContexts& ctx) {
     const Clock::time_point start = Clock::now();
 #pragma omp parallel num_threads(threadCount())
     {
-      solveRun(omp_get_thread_num());
-      run_ends[omp_get_thread_num()].at = Clock::now();
+      RunEnd& mine = run_ends[omp_get_thread_num()];
+      mine.stolen = solveRun(omp_get_thread_num());
+      mine.at = Clock::now();
     }
     const Clock::time_point end = Clock::now();
-    if (reserve_mode < 0 && chunks && !reserve && end > start) {
+    if (reserve_mode < 0 && chunks) {
       const auto first = std::min_element(
           run_ends.begin(), run_ends.end(),
           [](const RunEnd& a, const RunEnd& b) { return a.at < b.at; });
-      const double waited = std::chrono::duration<double>(end - first->at) / (end - start);
-      idle_average += (waited - idle_average) / kImbalanceSteps;
-      if (kImbalance * idle_average > 1.0) {
-        reserve_steps = kReserveSteps;
-        idle_average = 0.0;
-      }
+      const double waited =
+          end > start ? std::chrono::duration<double>(end - first->at) / (end - start) : 0.0;
+      int stolen = 0;
+      for (const RunEnd& e : run_ends) stolen += e.stolen;
+      steal_reserve.update(reserve, waited, stolen);
     }
 #else
     solveRun(0);  // threadCount() is 1

@@ -32,7 +32,7 @@ namespace ragdoll_sim {
 // the most work (IslandRange::work) of such a range, enough for full lanes.
 constexpr int kLaneRangeWork = 512;
 // The work a range may take before it must leave islands to steal, while the threads keep a
-// reserve (SolveData::reserve_steps): a lone ragdoll's joints fill about half the lanes of each
+// reserve (StealReserve): a lone ragdoll's joints fill about half the lanes of each
 // colour's blocks, three fill them.
 constexpr int kLaneRangeFill = 160;
 
@@ -43,6 +43,33 @@ constexpr int kLaneRangeFill = 160;
 // before it solves any of them, so the last rule shrinks the ranges towards the end of its run,
 // down to fill, and leaves the other threads islands to steal.
 bool extendsRange(IslandRange& c, const IslandRange& r, int k, int left, int fill);
+
+// Whether the threads' ranges of islands keep a reserve to steal (kLaneRangeFill), which costs
+// the lanes' fill and pays only where a thread ends its run more than an island after another
+// (slowed by its core or by the other's caches). A window of kWindow steps with the reserve
+// starts once the first thread to end has waited, on average over about kAverageSteps steps
+// without it, more than 1 / kImbalance of the parallel region. A window in which fewer than
+// kWindow / kStealEvery islands were stolen (the runs ended apart by less than an island) holds
+// off the next one for kFirstPause steps, doubled after each such window up to kMaxPause; a
+// window that stole ends the pauses.
+class StealReserve {
+ public:
+  bool on() const { return window_left_ > 0; }
+  // After a step's parallel region: whether it kept the reserve (on() before it), the share of
+  // the region that the first thread to end waited, and the islands stolen.
+  void update(bool reserved, double waited, int stolen);
+
+ private:
+  static constexpr int kWindow = 64;
+  static constexpr int kImbalance = 12;
+  static constexpr int kAverageSteps = 8;
+  static constexpr int kStealEvery = 8;
+  static constexpr int kFirstPause = 256;
+  static constexpr int kMaxPause = 4096;
+  int window_left_ = 0, window_stolen_ = 0;
+  int pause_ = 0, pause_left_ = 0;
+  double idle_average_ = 0.0;
+};
 
 // The step's two substep sequences: the full one, and the rest substeps of islands whose bodies
 // have all been slow for SleepDef::rest_time (full again when rest_mode is off).
@@ -73,15 +100,12 @@ struct SolveData {
   JointTree joint_tree;  // exact anchors (SolverSettings::exact_joints)
   PointLanes point_lanes;  // the joint anchors in float lanes (SolverSettings::lanes != 1)
   TeamBarrier team_barrier;  // the two threads of a split island
-  // Steps left on which the threads' ranges of islands keep a reserve to steal (kLaneRangeFill;
-  // else they grow to kLaneRangeWork), set once the threads end their runs far apart: the
-  // running average of the share of the parallel region that the first to end waited
-  // (solveIslands).
-  int reserve_steps = 0;
-  double idle_average = 0.0;
-  // When each thread ended its run of islands in the last step, a cache line each.
+  StealReserve steal_reserve;  // WorldTuning::range_reserve -1
+  // When each thread ended its run of islands in the last step and how many islands it stole,
+  // a cache line each.
   struct alignas(64) RunEnd {
     std::chrono::steady_clock::time_point at;
+    int stolen = 0;
   };
   std::vector<RunEnd> run_ends;
   // Per thread (a cache line each): the contact constraints solved, summed over the sweeps, in

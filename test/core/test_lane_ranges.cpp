@@ -1,6 +1,7 @@
 // The ranges of islands a thread solves together with lanes (extendsRange, island_solve.hpp):
 // consecutive islands up to kLaneRangeWork, and, when other threads may steal and the threads
-// keep a reserve, beyond kLaneRangeFill never more islands than the run still leaves after them.
+// keep a reserve, beyond kLaneRangeFill never more islands than the run still leaves after them;
+// and when they keep it (StealReserve).
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -78,6 +79,41 @@ TEST(LaneRanges, OnlyConsecutiveIslandsWithTheSameSubsteps) {
   rs[3].body_begin += 1;
   rs[3].body_end += 1;
   EXPECT_EQ(rangeSizes(rs, false), (std::vector<int>{2, 2}));
+}
+
+// The steps in [from, to) on which a StealReserve keeps the reserve, the first thread to end
+// waiting `waited` of every region and stolen(k) islands stolen on step k if it kept it.
+template <class Stolen>
+int reservedSteps(int from, int to, double waited, Stolen&& stolen) {
+  StealReserve s;
+  int on = 0;
+  for (int k = 0; k < to; ++k) {
+    const bool reserved = s.on();
+    if (k >= from) on += reserved;
+    s.update(reserved, waited, reserved ? stolen(k) : 0);
+  }
+  return on;
+}
+int reservedSteps(int steps, double waited, int stolen) {
+  return reservedSteps(0, steps, waited, [&](int) { return stolen; });
+}
+
+// Runs that end together never take the reserve; runs that end apart by more than an island
+// (islands get stolen) keep it on nearly every step: windows of 64 steps, two steps apart.
+TEST(StealReserve, KeptWhileItsIslandsAreStolen) {
+  EXPECT_EQ(reservedSteps(4000, 0.0, 1), 0);
+  EXPECT_EQ(reservedSteps(4000, 0.05, 1), 0);  // within a twelfth of the region
+  EXPECT_GE(reservedSteps(4000, 0.5, 1), 3800);
+}
+
+// Runs that end apart by less than an island wait as long but leave nothing to steal: each
+// window without steals holds off the next for 256, 512, 1024, 2048 steps, then 4096; a window
+// that stole ends the pauses.
+TEST(StealReserve, PausedWhileNothingIsStolen) {
+  EXPECT_EQ(reservedSteps(4000, 0.5, 0), 4 * 64);
+  EXPECT_EQ(reservedSteps(20000, 0.5, 0), 8 * 64);
+  const auto from_2000 = [](int k) { return k > 2000 ? 1 : 0; };  // the window at 1992 steals
+  EXPECT_GE(reservedSteps(2100, 4000, 0.5, from_2000), 1800);
 }
 
 }  // namespace
