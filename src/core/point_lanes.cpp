@@ -177,7 +177,12 @@ void PointLanes::build(const IslandRange& p, Joint* const* js,
     members.push_back(anchor);
     axes.push_back(hingeAxis(j));
     joints.push_back(&j);
-    edges.push_back({j.a, j.b, da, db});
+    // written in place: a temporary's flag bytes read back as one word stall the store buffer
+    GraphEdge& e = edges.emplace_back();
+    e.body_a = j.a;
+    e.body_b = j.b;
+    e.dynamic_a = da;
+    e.dynamic_b = db;
   }
   if (members != R->anchors || !sameEdges(edges, R->edges)) {
     R->anchors = members;
