@@ -95,6 +95,21 @@ Pile makePile(bool sides) {
   return p;
 }
 
+// One substep of 1 ms with one relax sweep, the contacts in `lanes` (1: double rows).
+StepContext contactContext(int lanes, const SolverSettings& settings,
+                           std::vector<SolverBody>& bodies, const std::vector<BodyMotion>& motions) {
+  StepContext ctx;
+  ctx.dt = ctx.h = 1e-3;
+  ctx.inv_h = 1.0 / ctx.h;
+  ctx.substeps = ctx.relax = 1;
+  ctx.lanes = lanes;
+  ctx.contact_softness = Softness::make(30.0, 10.0, ctx.h);
+  ctx.settings = &settings;
+  ctx.bodies = &bodies;
+  ctx.motions = &motions;
+  return ctx;
+}
+
 struct Result {
   std::vector<SolverBody> bodies;
   std::vector<Contact> contacts;
@@ -106,17 +121,7 @@ Result step(ContactSolver& solver, const std::vector<int>& cuts, int lanes, bool
   Pile p = makePile(sides);
   const int per = sides ? 3 : 2;  // contacts per island
   SolverSettings settings;
-  StepContext ctx;
-  ctx.dt = 1e-3;
-  ctx.substeps = 1;
-  ctx.h = ctx.dt;
-  ctx.inv_h = 1.0 / ctx.h;
-  ctx.relax = 1;
-  ctx.lanes = lanes;
-  ctx.contact_softness = Softness::make(30.0, 10.0, ctx.h);
-  ctx.settings = &settings;
-  ctx.bodies = &p.bodies;
-  ctx.motions = &p.motions;
+  const StepContext ctx = contactContext(lanes, settings, p.bodies, p.motions);
   solver.selectActive(p.contacts, p.motions);
   solver.resize(1);
   std::vector<std::pair<int, int>> ranges;
@@ -182,14 +187,7 @@ TEST(ContactBatches, TheManifoldsWithoutImpulseGoLastInTheirColour) {
     if ((c / 2) % 2 == 1)
       for (int k = 0; k < 4; ++k) p.contacts[c].normal_impulse[k] = 0.0;
   SolverSettings settings;
-  StepContext ctx;
-  ctx.dt = ctx.h = 1e-3;
-  ctx.inv_h = 1.0 / ctx.h;
-  ctx.lanes = 8;
-  ctx.contact_softness = Softness::make(30.0, 10.0, ctx.h);
-  ctx.settings = &settings;
-  ctx.bodies = &p.bodies;
-  ctx.motions = &p.motions;
+  const StepContext ctx = contactContext(8, settings, p.bodies, p.motions);
   ContactSolver solver;
   solver.selectActive(p.contacts, p.motions);
   solver.resize(1);
@@ -274,15 +272,7 @@ Stack makeStack(double stack_depth) {
 SolverBody firstSweep(int lanes, double stack_depth, double sink, bool relaxed) {
   Stack p = makeStack(stack_depth);
   SolverSettings settings;
-  StepContext ctx;
-  ctx.dt = ctx.h = 1e-3;
-  ctx.inv_h = 1.0 / ctx.h;
-  ctx.substeps = ctx.relax = 1;
-  ctx.lanes = lanes;
-  ctx.contact_softness = Softness::make(30.0, 10.0, ctx.h);
-  ctx.settings = &settings;
-  ctx.bodies = &p.bodies;
-  ctx.motions = &p.motions;
+  const StepContext ctx = contactContext(lanes, settings, p.bodies, p.motions);
   ContactSolver solver;
   const int n = int(solver.selectActive(p.contacts, p.motions).size());
   solver.resize(1);
