@@ -72,16 +72,15 @@ void World::Impl::finishBody(int i) {
     m.x_carry = d - on_grid;  // exact
     m.x += on_grid;           // exact: both on the grid
     m.q = (s.dq * m.q).normalized();
-    finishMotion(i);
+    finishMotion(i, s);
   }
   m.force.setZero();
   m.torque.setZero();
 }
 
 // An awake body after its pose: the velocities, the fault marks, the clamps.
-void World::Impl::finishMotion(int i) {
+void World::Impl::finishMotion(int i, const SolverBody& s) {
   BodyMotion& m = motions[i];
-  const SolverBody& s = solver[i];
   m.v = s.v;
   m.w = s.w;
   if (!motionFinite(m)) {

@@ -73,14 +73,15 @@ void World::Impl::prepareSolverBody(int i) {
 // An island's bodies (all awake): as prepareSolverBody, with the rotations and world inverse
 // inertias four bodies at a time in AVX lanes, then two in SSE2 lanes, the last one alone (the
 // same bits, integrate_kernel.hpp).
-void World::Impl::prepareSolverBodies(int begin, int end) {
+void World::Impl::prepareSolverBodies(int begin, int end, const StepContext& c) {
   if (begin >= end) return;
+  std::vector<SolverBody>& solver = *c.bodies;
   for (int k = begin; k < end; ++k) {
     const int i = island_bodies[k];
     startSolverBody(motions[i], solver[i]);
   }
   using namespace integrate_kernel;
-  const BodyFields f = bodyFields(solver, motions, rotations);
+  const BodyFields f = bodyFields(solver, motions, *c.rotations);
   const int* bodies = island_bodies.data() + begin;
   byLaneWidth(end - begin, [&](int width, int first, int count) {
     if (width == 4) integrate_w4::prepareRotations(f, bodies + first, count);
@@ -90,10 +91,10 @@ void World::Impl::prepareSolverBodies(int begin, int end) {
 }
 
 // The pose part of finishBody for island_bodies[begin, end) (all awake), by lane width as above.
-void World::Impl::finishPoses(int begin, int end) {
+void World::Impl::finishPoses(int begin, int end, const StepContext& c) {
   if (begin >= end) return;
   using namespace integrate_kernel;
-  const BodyFields f = bodyFields(solver, motions, rotations);
+  const BodyFields f = bodyFields(*c.bodies, motions, *c.rotations);
   const int* bodies = island_bodies.data() + begin;
   const double grid = kPositionGrid, range = kWorldRange;
   byLaneWidth(end - begin, [&](int width, int first, int count) {
@@ -107,11 +108,13 @@ void World::Impl::finishPoses(int begin, int end) {
 // Four bodies at a time in AVX lanes where the CPU has AVX2 (integrate_kernel.hpp), a chunk at a
 // time: the lanes find the few bodies that may need a clamp, which then run clampNorm. The rest
 // one at a time here (the same bits).
-void World::Impl::integrateVelocities(double h, int begin, int end) {
+void World::Impl::integrateVelocities(const StepContext& c, int begin, int end) {
+  const double h = c.h;
+  std::vector<SolverBody>& solver = *c.bodies;
   const double max_v = def.solver.max_linear_speed, max_w = def.solver.max_angular_speed;
   if (cpuHasAvx2() && end - begin >= 4) {
     constexpr int kChunk = 64;  // a multiple of 4
-    const integrate_kernel::BodyFields f = bodyFields(solver, motions, rotations);
+    const integrate_kernel::BodyFields f = bodyFields(solver, motions, *c.rotations);
     const double max_v2 = max_v * max_v, max_w2 = max_w * max_w;
     int clamp[kChunk];
     for (; end - begin >= 4; begin += kChunk) {
@@ -152,11 +155,11 @@ void World::Impl::integrateVelocities(double h, int begin, int end) {
 // one alone (integrate_kernel.hpp: each lane does the one-body operations, so all give the same
 // bits); the lanes' side-by-side chains (a square root and a division in the middle) keep the
 // core busy.
-void World::Impl::integratePositions(double h, int begin, int end) {
+void World::Impl::integratePositions(const StepContext& c, int begin, int end) {
   if (begin >= end) return;
   using namespace integrate_kernel;
-  const double half_h = 0.5 * h;
-  const BodyFields f = bodyFields(solver, motions, rotations);
+  const double h = c.h, half_h = 0.5 * h;
+  const BodyFields f = bodyFields(*c.bodies, motions, *c.rotations);
   const int* bodies = island_bodies.data() + begin;
   byLaneWidth(end - begin, [&](int width, int first, int count) {
     if (width == 4) integrate_w4::stepPositions(f, bodies + first, count, h, half_h);

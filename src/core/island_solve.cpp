@@ -72,6 +72,7 @@ StepContexts World::Impl::makeContexts(double dt) {
     c.odd_step = steps % 2 == 1;
     c.settings = &def.solver;
     c.bodies = &solver;
+    c.rotations = &rotations;
     c.motions = &motions;
     c.contact_softness = Softness::make(std::min(def.solver.contact_hertz, 0.25 * c.inv_h),
                                         def.solver.contact_damping_ratio, c.h);
@@ -107,13 +108,13 @@ void World::Impl::prepareOutsideBodies() {
 }
 
 void World::Impl::prepareIsland(const IslandRange& p, const StepContext& c) {
-  prepareSolverBodies(p.body_begin, p.body_end);
+  prepareSolverBodies(p.body_begin, p.body_end, c);
   for (int k = p.joint_begin; k < p.joint_end; ++k) prepareJoint(*active_joints[k], c);
-  if (c.lanes != 1) point_lanes.build(p, active_joints.data(), solver);
+  if (c.lanes != 1) point_lanes.build(p, active_joints.data(), *c.bodies);
   for (int k = p.joint_begin; k < p.joint_end; ++k)
     scalar_sweeps[k] = !active_joints[k]->broken && !active_joints[k]->sweeps_in_lanes;
   if (def.solver.exact_joints)
-    forIslands(p, [&](const IslandRange& q) { joint_tree.build(q, island_bodies, active_joints.data(), solver); });
+    forIslands(p, [&](const IslandRange& q) { joint_tree.build(q, island_bodies, active_joints.data(), *c.bodies); });
   contact_solver.prepare(contacts, c, p.contact_begin, p.contact_end);
 }
 
@@ -138,11 +139,11 @@ class World::Impl::IslandPass {
   // moved: the deltas changed since the separations were last computed.
   void integrateAndWarmStart(int sub, bool moved) {
     parts([&](const IslandRange& p) {
-      w.integrateVelocities(ctx.h, p.body_begin, p.body_end);
-      if (wide && w.tuning.lane_exact_angles) w.point_lanes.exactAngles(p, w.solver, ctx, sub == 0);
+      w.integrateVelocities(ctx, p.body_begin, p.body_end);
+      if (wide && w.tuning.lane_exact_angles) w.point_lanes.exactAngles(p, solver, ctx, sub == 0);
       joints(p, [&](Joint& j) { warmStartJoint(j, ctx, sub == 0); });
       if (wide)
-        w.point_lanes.load(p, w.solver, ctx, sub == 0, sub == 0 || !w.tuning.lane_angles_kept);
+        w.point_lanes.load(p, solver, ctx, sub == 0, sub == 0 || !w.tuning.lane_angles_kept);
       w.contact_solver.warmStart(ctx, p.contact_begin, p.contact_end, moved);
     });
     boundary([&](int b, int e) {
@@ -157,10 +158,10 @@ class World::Impl::IslandPass {
     parts([&](const IslandRange& p) {
       solveJoints(p, true, last_joint_sweep < 0);
       solveContacts(true, p.contact_begin, p.contact_end, false);
-      w.integratePositions(ctx.h, p.body_begin, p.body_end);
+      w.integratePositions(ctx, p.body_begin, p.body_end);
       // a joint whose sweeps are all in the lanes advances there (anchors, axis, angles)
       scalarJoints(p, [&](Joint& j) { advanceJoint(j, ctx); });
-      if (wide) w.point_lanes.refreshAnchors(p, w.solver, ctx);
+      if (wide) w.point_lanes.refreshAnchors(p, solver, ctx);
     });
   }
 
@@ -178,7 +179,7 @@ class World::Impl::IslandPass {
       if (it < w.def.solver.joint_relax_iterations) solveJoints(p, false, it == last_joint_sweep);
       if (it == last_tree_sweep)
         w.forIslands(p, [&](const IslandRange& q) {
-          w.joint_tree.projectVelocities(q, w.solver, w.island_bodies, ctx.h, tolerance);
+          w.joint_tree.projectVelocities(q, solver, w.island_bodies, ctx.h, tolerance);
         });
       solveContacts(false, p.contact_begin, p.contact_end, it == 0);
     });
@@ -216,7 +217,7 @@ class World::Impl::IslandPass {
 
   // The tracked bodies' velocities at the end of substep `sub` (substep_samples.hpp).
   void sample(int sub) {
-    parts([&](const IslandRange& p) { w.sampleSubstep(p, sub); });
+    parts([&](const IslandRange& p) { w.sampleSubstep(p, sub, solver); });
   }
 
  private:
@@ -239,7 +240,7 @@ class World::Impl::IslandPass {
   // (last: the substep's last joint sweep, after which the impulses are read).
   void solveJoints(const IslandRange& p, bool use_bias, bool last) {
     scalarJoints(p, [&](Joint& j) { solveJoint(j, ctx, use_bias); });
-    if (wide) w.point_lanes.solve(p, w.solver, ctx, use_bias, last);
+    if (wide) w.point_lanes.solve(p, solver, ctx, use_bias, last);
   }
   void solveContacts(bool use_bias, int begin, int end, bool positions_moved) {
     w.contact_solver.solve(ctx, use_bias, begin, end, positions_moved);
@@ -260,6 +261,7 @@ class World::Impl::IslandPass {
   World::Impl& w;
   const IslandRange& r;
   const StepContext& ctx;
+  std::vector<SolverBody>& solver = *ctx.bodies;
   const IslandRange halves[2];
   Joint* const* js;
   char* const scalar = w.scalar_sweeps.data();
@@ -285,7 +287,7 @@ void World::Impl::IslandPass::projectPositions() {
   bool mine = false;  // this thread moved a body in the current sweep
   // f(j): projectJointLimits or projectJointAnchor, as a lambda so that each is called directly
   const auto project = [&](Joint& j, int sweep, auto&& f) {
-    SolverBody &A = w.solver[j.a], &B = w.solver[j.b];
+    SolverBody &A = solver[j.a], &B = solver[j.b];
     if (unchangedSince(sweep, j.moved_sweep, A, B) || !f(j)) return;
     markMoved(sweep, j.moved_sweep, A, B);
     mine = true;
@@ -338,7 +340,7 @@ void World::Impl::IslandPass::projectPositions() {
   if (def.exact_joints)
     parts([&](const IslandRange& p) {
       w.forIslands(p, [&](const IslandRange& q) {
-        w.joint_tree.projectPositions(q, w.solver, w.island_bodies, def.joint_slop,
+        w.joint_tree.projectPositions(q, solver, w.island_bodies, def.joint_slop,
                                       def.max_position_correction);
       });
     });
@@ -372,11 +374,11 @@ void World::Impl::restitute(int begin, int end, const StepContext& c) {
 
 // The island's bodies take the step (joint breaks only mark the joints).
 // finishBody of each (all awake), the poses in lanes (finishPoses, integrate.cpp).
-void World::Impl::finishIslandBodies(const IslandRange& p) {
-  finishPoses(p.body_begin, p.body_end);
+void World::Impl::finishIslandBodies(const IslandRange& p, const StepContext& c) {
+  finishPoses(p.body_begin, p.body_end, c);
   for (int k = p.body_begin; k < p.body_end; ++k) {
     const int i = island_bodies[k];
-    finishMotion(i);
+    finishMotion(i, (*c.bodies)[size_t(i)]);
     motions[i].force.setZero();
     motions[i].torque.setZero();
   }
@@ -405,7 +407,7 @@ void World::Impl::solveSplitIsland(const IslandRange& r, const StepContexts& ctx
     for (int k = t; k < 2; k += nt) restitute(r.boundaryBegin(k), r.boundaryEnd(k), c);
     team_barrier.wait(t, nt);
     for (int k = t; k < 2; k += nt)
-      withHalf(k, [&](const IslandRange& p) { finishIslandBodies(p); });
+      withHalf(k, [&](const IslandRange& p) { finishIslandBodies(p, c); });
   };
   // One thread takes both halves in turn, outside a region (parallel_for.hpp says why).
   if (threadCount() > 1) {
@@ -424,17 +426,35 @@ void World::Impl::solveIslands(const StepContexts& ctx) {
   joint_tree.reserve(int(bodies.size()), int(island_bodies.size()), int(active_joints.size()));
   point_lanes.reserve(int(active_joints.size()));
   scalar_sweeps.resize(active_joints.size());
+  // A new body's entries are the identity a static body keeps (createBody); an island's are
+  // prepared by the thread that solves it.
+  team_bodies.resize(size_t(threadCount() - 1));
+  for (TeamBodies& t : team_bodies) {
+    t.solver.resize(solver.size());
+    t.rotations.resize(rotations.size(), Mat3::Identity());
+  }
   if (track_contacts) contact_tracks.assign(contacts.size(), ContactTrack());
   const int count = int(island_ranges.size());
   for (const IslandRange& r : island_ranges)
     if (r.split) solveSplitIsland(r, ctx);
   const auto solveRange = [&](const IslandRange& r) {
-    const StepContext& c = ctx.of(r.resting);
+    const int t = teamSlot().first;
+    StepContext c = ctx.of(r.resting);
+    if (t > 0) {
+      c.bodies = &team_bodies[size_t(t - 1)].solver;
+      c.rotations = &team_bodies[size_t(t - 1)].rotations;
+    }
     prepareIsland(r, c);
     solveIsland(r, c);
     restitute(r.contact_begin, r.contact_end, c);
-    finishIslandBodies(r);
+    finishIslandBodies(r, c);
     sleepIslands(r, c.dt);
+    if (t > 0)  // the step's motion, which the contact reports read after it
+      for (int k = r.body_begin; k < r.body_end; ++k) {
+        const size_t i = size_t(island_bodies[k]);
+        solver[i].dq = (*c.bodies)[i].dq;
+        solver[i].dp = (*c.bodies)[i].dp;
+      }
   };
   const auto solveOne = [&](int k) {
     const IslandRange& r = island_ranges[k];

@@ -114,6 +114,17 @@ struct SolveData {
     int64_t contacts = 0;
   };
   std::vector<SweepCount> contact_sweeps;
+  // Team thread t > 0 solves its whole islands in solver bodies and rotations of its own
+  // (team_bodies[t - 1], by body index as solver; the master and the split islands use solver
+  // and rotations), and copies dq and dp back to solver after each range for the contact
+  // reports. In one array two runs' bodies share a page, and the core of the run below, fetching
+  // ahead along its bodies, keeps taking the lines of the run above away from the other core.
+  // A row reads only its island's bodies and static ones, whose entries never change.
+  struct TeamBodies {
+    std::vector<SolverBody> solver;
+    std::vector<Mat3> rotations;
+  };
+  std::vector<TeamBodies> team_bodies;
   // Whether each thread of a split island moved a body in a position sweep, by the sweep's
   // parity (IslandPass::projectPositions).
   char position_moved[2][2] = {};

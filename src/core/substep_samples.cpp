@@ -61,7 +61,8 @@ void World::Impl::beginSamples(const StepContexts& ctx, bool solved) {
 }
 
 // Substep `sub` of part p (an island, or a half of a split one on this thread) just ended.
-void World::Impl::sampleSubstep(const IslandRange& p, int sub) {
+void World::Impl::sampleSubstep(const IslandRange& p, int sub,
+                                const std::vector<SolverBody>& solver) {
   for (BodyTrack& t : tracks)
     if (t.pos >= p.body_begin && t.pos < p.body_end) {
       t.samples.linear[size_t(sub)] = solver[t.body].v;

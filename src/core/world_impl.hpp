@@ -232,8 +232,9 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
   void chooseRows(StepContexts& ctx) const;
   class IslandPass;  // one island's substep sequence on this thread (island_solve.cpp)
   void prepareSolverBody(int i);  // integrate.cpp
-  void prepareSolverBodies(int begin, int end);  // island_bodies[begin, end), integrate.cpp
-  void finishPoses(int begin, int end);          // island_bodies[begin, end), integrate.cpp
+  // island_bodies[begin, end) in c's solver bodies, integrate.cpp
+  void prepareSolverBodies(int begin, int end, const StepContext& c);
+  void finishPoses(int begin, int end, const StepContext& c);
   void prepareOutsideBodies();
   void prepareIsland(const IslandRange& p, const StepContext& c);
   // f(each island of p) when p is several whole islands solved as one range, else f(p): the
@@ -243,18 +244,18 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
     if (p.island_end - p.island_begin < 2) return f(p);
     for (int k = p.island_begin; k < p.island_end; ++k) f(island_ranges[k]);
   }
-  void integrateVelocities(double h, int begin, int end);  // integrate.cpp
-  void integratePositions(double h, int begin, int end);   // integrate.cpp
+  void integrateVelocities(const StepContext& c, int begin, int end);  // integrate.cpp
+  void integratePositions(const StepContext& c, int begin, int end);   // integrate.cpp
   void solveIsland(const IslandRange& r, const StepContext& ctx);
   void restitute(int begin, int end, const StepContext& c);
-  void finishIslandBodies(const IslandRange& p);
+  void finishIslandBodies(const IslandRange& p, const StepContext& c);
   void solveSplitIsland(const IslandRange& r, const StepContexts& ctx);
   void solveIslands(const StepContexts& ctx);
 
   // fault_guard.cpp
   void guardInputs();
   void finishBody(int i);
-  void finishMotion(int i);  // finishBody after the pose
+  void finishMotion(int i, const SolverBody& s);  // finishBody after the pose
   void finishOutsideBodies();
   void resetFaulted();
   void finishStep();
@@ -270,7 +271,7 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
 
   // substep_samples.cpp (each only while something is tracked)
   void beginSamples(const StepContexts& ctx, bool solved);
-  void sampleSubstep(const IslandRange& p, int sub);
+  void sampleSubstep(const IslandRange& p, int sub, const std::vector<SolverBody>& solver);
   void sampleFinish(const IslandRange& p);
   void untrack(int body);
 
