@@ -98,9 +98,10 @@ void World::Impl::chooseRows(StepContexts& ctx) const {
   ctx.rest.lanes = 1;
 }
 
-// Solver bodies of the sleeping dynamic bodies here (they keep their last awake step's); an
-// island's bodies, joints and contacts are prepared by the thread that solves it, right before
-// it does, so they are in its core's cache. A static body's is the identity body it was made
+// The sleeping dynamic bodies' solver bodies here: the identity (no row reads them, a touching
+// contact wakes the whole island; the contact reports read their dp, 0). An island's bodies,
+// joints and contacts are prepared by the thread that solves it, right before it does, so they
+// are in its core's cache. A static body's is the identity body it was made
 // with (createBody): no row writes a body that is not movable() (solver_context.hpp).
 void World::Impl::prepareOutsideBodies() {
   for (const int i : dynamic_bodies)
