@@ -129,8 +129,12 @@ void World::Impl::prepareIsland(const IslandRange& p, const StepContext& c) {
 // core's cache.
 class World::Impl::IslandPass {
  public:
-  IslandPass(World::Impl& w, const IslandRange& r, const StepContext& ctx)
-      : w(w), r(r), ctx(ctx), halves{r.half(0), r.half(1)}, js(w.active_joints.data()) {
+  // shared: the boundary's context (on two threads a split island's halves are solved in solver
+  // bodies of their threads' own, its boundary in split_bodies: solveSplitIsland).
+  IslandPass(World::Impl& w, const IslandRange& r, const StepContext& ctx,
+             const StepContext& shared)
+      : w(w), r(r), ctx(ctx), shared(shared), halves{r.half(0), r.half(1)},
+        js(w.active_joints.data()) {
     const std::pair<int, int> slot = teamSlot();  // read by a split island's sweeps only
     t = slot.first;
     nt = slot.second;
@@ -148,8 +152,8 @@ class World::Impl::IslandPass {
       w.contact_solver.warmStart(ctx, p.contact_begin, p.contact_end, moved);
     });
     boundary([&](int b, int e) {
-      w.contact_solver.warmStart(ctx, b, e, moved);
-      solveContacts(true, b, e, false);
+      w.contact_solver.warmStart(shared, b, e, moved);
+      solveContacts(shared, true, b, e, false);
     });
   }
 
@@ -158,8 +162,9 @@ class World::Impl::IslandPass {
   void solveBiasedAndIntegrate() {
     parts([&](const IslandRange& p) {
       solveJoints(p, true, last_joint_sweep < 0);
-      solveContacts(true, p.contact_begin, p.contact_end, false);
+      solveContacts(ctx, true, p.contact_begin, p.contact_end, false);
       w.integratePositions(ctx, p.body_begin, p.body_end);
+      poses_shared = false;
       // a joint whose sweeps are all in the lanes advances there (anchors, axis, angles)
       scalarJoints(p, [&](Joint& j) { advanceJoint(j, ctx); });
       if (wide) w.point_lanes.refreshAnchors(p, solver, ctx);
@@ -175,14 +180,14 @@ class World::Impl::IslandPass {
     // an anchor velocity error that moves it less than a tenth of the slop per step is left
     const double tolerance = 0.1 * w.def.solver.joint_slop / ctx.dt;
     const int last_tree_sweep = w.def.solver.exact_joints ? last_joint_sweep : -1;
-    boundary([&](int b, int e) { solveContacts(false, b, e, it == 0); });
+    boundary([&](int b, int e) { solveContacts(shared, false, b, e, it == 0); });
     parts([&](const IslandRange& p) {
       if (it < w.def.solver.joint_relax_iterations) solveJoints(p, false, it == last_joint_sweep);
       if (it == last_tree_sweep)
         w.forIslands(p, [&](const IslandRange& q) {
           w.joint_tree.projectVelocities(q, solver, w.island_bodies, ctx.h, tolerance);
         });
-      solveContacts(false, p.contact_begin, p.contact_end, it == 0);
+      solveContacts(ctx, false, p.contact_begin, p.contact_end, it == 0);
     });
   }
 
@@ -233,9 +238,12 @@ class World::Impl::IslandPass {
   template <class F>
   void boundary(F&& contacts) {
     if (!r.split) return;
+    share(ctx, shared, !poses_shared);
+    poses_shared = true;
     w.team_barrier.wait(t, nt);
     for (int k = t; k < 2; k += nt) contacts(r.boundaryBegin(k), r.boundaryEnd(k));
     w.team_barrier.wait(t, nt);
+    share(shared, ctx, false);  // the boundary's rows change velocities only
   }
   // A joint sweep: with lanes, every joint's other parts, then the rigid anchors' wide pass
   // (last: the substep's last joint sweep, after which the impulses are read).
@@ -243,9 +251,13 @@ class World::Impl::IslandPass {
     scalarJoints(p, [&](Joint& j) { solveJoint(j, ctx, use_bias); });
     if (wide) w.point_lanes.solve(p, solver, ctx, use_bias, last);
   }
-  void solveContacts(bool use_bias, int begin, int end, bool positions_moved) {
-    w.contact_solver.solve(ctx, use_bias, begin, end, positions_moved);
+  void solveContacts(const StepContext& c, bool use_bias, int begin, int end,
+                     bool positions_moved) {
+    w.contact_solver.solve(c, use_bias, begin, end, positions_moved);
     swept += end - begin;
+  }
+  void share(const StepContext& from, const StepContext& to, bool whole) {
+    w.shareSplitBodies(from, to, t, nt, whole);
   }
   template <class F>
   void joints(const IslandRange& p, F&& f) {
@@ -262,6 +274,7 @@ class World::Impl::IslandPass {
   World::Impl& w;
   const IslandRange& r;
   const StepContext& ctx;
+  const StepContext& shared;
   std::vector<SolverBody>& solver = *ctx.bodies;
   const IslandRange halves[2];
   Joint* const* js;
@@ -270,6 +283,7 @@ class World::Impl::IslandPass {
   // the substep's last sweep that solves the joints (-1: the biased one)
   const int last_joint_sweep = std::min(ctx.relax, w.def.solver.joint_relax_iterations) - 1;
   int t = 0, nt = 1;
+  bool poses_shared = true;  // the boundary's copies hold this thread's dq and dp (share)
   int64_t swept = 0;  // contact constraints solved, summed over the sweeps
 };
 
@@ -308,14 +322,16 @@ void World::Impl::IslandPass::projectPositions() {
     mine = false;
     sweep = it + 1;
     if (r.split) {
+      share(ctx, shared, true);
       w.team_barrier.wait(t, nt);
       if (it > 0 && !teamMoved(it - 1)) {
         moved = false;
         break;
       }
       for (int k = t; k < 2; k += nt)
-        mine |= w.contact_solver.project(ctx, r.boundaryBegin(k), r.boundaryEnd(k), sweep);
+        mine |= w.contact_solver.project(shared, r.boundaryBegin(k), r.boundaryEnd(k), sweep);
       w.team_barrier.wait(t, nt);
+      share(shared, ctx, true);
     }
     parts([&](const IslandRange& p) {
       mine |= w.contact_solver.project(ctx, p.contact_begin, p.contact_end, sweep);
@@ -348,8 +364,9 @@ void World::Impl::IslandPass::projectPositions() {
 }
 
 // One island's substeps, then its position and anchor sweeps.
-void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx) {
-  IslandPass pass(*this, r, ctx);
+void World::Impl::solveIsland(const IslandRange& r, const StepContext& ctx,
+                              const StepContext& shared) {
+  IslandPass pass(*this, r, ctx, shared);
   for (int sub = 0; sub < ctx.substeps; ++sub) {
     // From the second substep on, the first relax sweep of the last one (if any) already set
     // the separations at the current deltas.
@@ -386,32 +403,101 @@ void World::Impl::finishIslandBodies(const IslandRange& p, const StepContext& c)
   if (!tracks.empty()) sampleFinish(p);
 }
 
+// The step's motion of p's bodies from c's solver bodies to solver, where the contact reports
+// read it after the step.
+void World::Impl::copyStepMotion(const IslandRange& p, const StepContext& c) {
+  for (int k = p.body_begin; k < p.body_end; ++k) {
+    const size_t i = size_t(island_bodies[k]);
+    solver[i].dq = (*c.bodies)[i].dq;
+    solver[i].dp = (*c.bodies)[i].dp;
+  }
+}
+
+// Half k's bodies that a boundary contact touches, into split_shared[k].
+void World::Impl::findSplitShared(const IslandRange& r, int k) {
+  const IslandRange h = r.half(k);
+  std::vector<char>& mark = split_mark[k];
+  mark.resize(bodies.size(), 0);
+  for (int i = h.body_begin; i < h.body_end; ++i) mark[size_t(island_bodies[i])] = 1;
+  std::vector<int>& shared = split_shared[k];
+  shared.clear();
+  for (int i = r.boundary_begin; i < r.contact_end; ++i) {
+    const Contact& c = contacts[size_t(contact_solver.active()[size_t(i)])];
+    for (const int b : {c.body_a, c.body_b})
+      if (mark[size_t(b)] == 1) {
+        mark[size_t(b)] = 2;
+        shared.push_back(b);
+      }
+  }
+  for (int i = h.body_begin; i < h.body_end; ++i) mark[size_t(island_bodies[i])] = 0;
+}
+
+// The boundary bodies of thread t's halves (split_shared) from `from`'s solver bodies to
+// `to`'s, whole or v and w (nothing on one thread, where the boundary is solved in the halves'
+// array).
+void World::Impl::shareSplitBodies(const StepContext& from, const StepContext& to, int t, int nt,
+                                   bool whole) {
+  if (from.bodies == to.bodies) return;
+  for (int k = t; k < 2; k += nt)
+    for (const int b : split_shared[k]) {
+      const SolverBody& f = (*from.bodies)[size_t(b)];
+      SolverBody& s = (*to.bodies)[size_t(b)];
+      if (whole) {
+        s = f;
+      } else {
+        s.v = f.v;
+        s.w = f.w;
+      }
+    }
+}
+
 // A split island by the whole team (two threads at most: it has two halves): each thread
 // prepares a half, then a group of the boundary contacts (their bodies are in both halves).
 void World::Impl::solveSplitIsland(const IslandRange& r, const StepContexts& ctx) {
   const auto team = [&] {
-    const auto [t, nt] = teamSlot();
-    const StepContext& c = ctx.of(r.resting);  // for the halves and the attached islands too
+    const std::pair<int, int> slot = teamSlot();  // not a binding: the lambdas below capture it
+    const int t = slot.first, nt = slot.second;
+    // On two threads each half (and the islands attached to it) in solver bodies of its
+    // thread's own, the boundary in split_bodies (SolveData::split_shared).
+    StepContext c = ctx.of(r.resting), shared = c;
+    if (t > 0) {
+      c.bodies = &team_bodies[0].solver;
+      c.rotations = &team_bodies[0].rotations;
+    }
+    if (nt > 1) {
+      shared.bodies = &split_bodies;
+      findSplitShared(r, t);
+    }
+    const auto share = [&](const StepContext& from, const StepContext& to, bool whole) {
+      shareSplitBodies(from, to, t, nt, whole);
+    };
     // half k and the islands attached to it (attachToSplitHalves)
     const auto withHalf = [&](int k, auto&& f) { withAttached(r, r.half(k), k, f); };
     for (int k = t; k < 2; k += nt) withHalf(k, [&](const IslandRange& p) { prepareIsland(p, c); });
+    share(c, shared, true);
     team_barrier.wait(t, nt);
     for (int k = t; k < 2; k += nt)
-      contact_solver.prepare(contacts, c, r.boundaryBegin(k), r.boundaryEnd(k));
+      contact_solver.prepare(contacts, shared, r.boundaryBegin(k), r.boundaryEnd(k));
     team_barrier.wait(t, nt);
-    solveIsland(r, c);
+    solveIsland(r, c, shared);
     // Restitution reads the halves' bodies as the boundary's does: halves first, then the
     // boundary, then the bodies take their velocities.
     for (int k = t; k < 2; k += nt)
       withHalf(k, [&](const IslandRange& p) { restitute(p.contact_begin, p.contact_end, c); });
+    share(c, shared, true);
     team_barrier.wait(t, nt);
-    for (int k = t; k < 2; k += nt) restitute(r.boundaryBegin(k), r.boundaryEnd(k), c);
+    for (int k = t; k < 2; k += nt) restitute(r.boundaryBegin(k), r.boundaryEnd(k), shared);
     team_barrier.wait(t, nt);
+    share(shared, c, false);
     for (int k = t; k < 2; k += nt)
-      withHalf(k, [&](const IslandRange& p) { finishIslandBodies(p, c); });
+      withHalf(k, [&](const IslandRange& p) {
+        finishIslandBodies(p, c);
+        if (t > 0) copyStepMotion(p, c);
+      });
   };
   // One thread takes both halves in turn, outside a region (parallel_for.hpp says why).
   if (threadCount() > 1) {
+    split_bodies.resize(solver.size());
 #pragma omp parallel num_threads(2)
     team();
   } else {
@@ -450,12 +536,7 @@ void World::Impl::solveIslands(const StepContexts& ctx) {
     restitute(r.contact_begin, r.contact_end, c);
     finishIslandBodies(r, c);
     sleepIslands(r, c.dt);
-    if (t > 0)  // the step's motion, which the contact reports read after it
-      for (int k = r.body_begin; k < r.body_end; ++k) {
-        const size_t i = size_t(island_bodies[k]);
-        solver[i].dq = (*c.bodies)[i].dq;
-        solver[i].dp = (*c.bodies)[i].dp;
-      }
+    if (t > 0) copyStepMotion(r, c);
   };
   const auto solveOne = [&](int k) {
     const IslandRange& r = island_ranges[k];

@@ -114,17 +114,27 @@ struct SolveData {
     int64_t contacts = 0;
   };
   std::vector<SweepCount> contact_sweeps;
-  // Team thread t > 0 solves its whole islands in solver bodies and rotations of its own
-  // (team_bodies[t - 1], by body index as solver; the master and the split islands use solver
-  // and rotations), and copies dq and dp back to solver after each range for the contact
-  // reports. In one array two runs' bodies share a page, and the core of the run below, fetching
-  // ahead along its bodies, keeps taking the lines of the run above away from the other core.
-  // A row reads only its island's bodies and static ones, whose entries never change.
+  // Team thread t > 0 solves its whole islands, and the second half of a split island, in
+  // solver bodies and rotations of its own (team_bodies[t - 1], by body index as solver; the
+  // master uses solver and rotations), and copies dq and dp back to solver after each range for
+  // the contact reports. In one array two runs' bodies share a page, and the core of the run
+  // below, fetching ahead along its bodies, keeps taking the lines of the run above away from
+  // the other core. A row reads only its island's bodies and static ones, whose entries never
+  // change.
   struct TeamBodies {
     std::vector<SolverBody> solver;
     std::vector<Mat3> rotations;
   };
   std::vector<TeamBodies> team_bodies;
+  // On two threads a split island's boundary is solved in split_bodies (by body index, only the
+  // boundary's bodies are read): before each boundary phase each thread copies its half's
+  // bodies that the boundary touches (split_shared[half]) there, and back after it. The
+  // boundary's rows then never write a line of the other thread's array: each moves between
+  // the cores in the copy's tight loop instead of in the middle of a sweep's dependent rows.
+  // split_mark[half]: its thread's scratch, by body.
+  std::vector<SolverBody> split_bodies;
+  std::vector<int> split_shared[2];
+  std::vector<char> split_mark[2];
   // Whether each thread of a split island moved a body in a position sweep, by the sweep's
   // parity (IslandPass::projectPositions).
   char position_moved[2][2] = {};

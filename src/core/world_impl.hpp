@@ -246,7 +246,12 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
   }
   void integrateVelocities(const StepContext& c, int begin, int end);  // integrate.cpp
   void integratePositions(const StepContext& c, int begin, int end);   // integrate.cpp
-  void solveIsland(const IslandRange& r, const StepContext& ctx);
+  void solveIsland(const IslandRange& r, const StepContext& ctx) { solveIsland(r, ctx, ctx); }
+  void solveIsland(const IslandRange& r, const StepContext& ctx, const StepContext& shared);
+  void copyStepMotion(const IslandRange& p, const StepContext& c);
+  void findSplitShared(const IslandRange& r, int k);
+  void shareSplitBodies(const StepContext& from, const StepContext& to, int t, int nt,
+                        bool whole);
   void restitute(int begin, int end, const StepContext& c);
   void finishIslandBodies(const IslandRange& p, const StepContext& c);
   void solveSplitIsland(const IslandRange& r, const StepContexts& ctx);
