@@ -2,7 +2,7 @@
 // (island_split.hpp). The splitter's halves and boundary on a small graph; then a world whose
 // one island is split: momentum is conserved through the boundary, a bounce across the cut
 // reaches both halves, the chains do not sink into each other, and 1 and 2 threads give the
-// same poses.
+// same poses and contact reports.
 #include <gtest/gtest.h>
 
 #include <algorithm>
