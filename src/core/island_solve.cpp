@@ -391,26 +391,33 @@ void World::Impl::restitute(int begin, int end, const StepContext& c) {
 }
 
 // The island's bodies take the step (joint breaks only mark the joints).
-// finishBody of each (all awake), the poses in lanes (finishPoses, integrate.cpp).
+// finishBody of each (all awake), the poses in lanes (finishPoses, integrate.cpp). Solved in a
+// team thread's own solver bodies, their step's motion (dq, dp) goes to solver too, where the
+// contact reports read it after the step.
 void World::Impl::finishIslandBodies(const IslandRange& p, const StepContext& c) {
   finishPoses(p.body_begin, p.body_end, c);
+  const bool own = c.bodies != &solver;
   for (int k = p.body_begin; k < p.body_end; ++k) {
     const int i = island_bodies[k];
-    finishMotion(i, (*c.bodies)[size_t(i)]);
+    const SolverBody& s = (*c.bodies)[size_t(i)];
+    finishMotion(i, s);
     motions[i].force.setZero();
     motions[i].torque.setZero();
+    if (own) {
+      solver[size_t(i)].dq = s.dq;
+      solver[size_t(i)].dp = s.dp;
+    }
   }
   if (!tracks.empty()) sampleFinish(p);
 }
 
-// The step's motion of p's bodies from c's solver bodies to solver, where the contact reports
-// read it after the step.
-void World::Impl::copyStepMotion(const IslandRange& p, const StepContext& c) {
-  for (int k = p.body_begin; k < p.body_end; ++k) {
-    const size_t i = size_t(island_bodies[k]);
-    solver[i].dq = (*c.bodies)[i].dq;
-    solver[i].dp = (*c.bodies)[i].dp;
+// c on team thread t: from the second thread on, in that thread's solver bodies and rotations.
+StepContext World::Impl::onTeamBodies(StepContext c, int t) {
+  if (t > 0) {
+    c.bodies = &team_bodies[size_t(t - 1)].solver;
+    c.rotations = &team_bodies[size_t(t - 1)].rotations;
   }
+  return c;
 }
 
 // Half k's bodies that a boundary contact touches, into split_shared[k].
@@ -455,26 +462,20 @@ void World::Impl::shareSplitBodies(const StepContext& from, const StepContext& t
 // prepares a half, then a group of the boundary contacts (their bodies are in both halves).
 void World::Impl::solveSplitIsland(const IslandRange& r, const StepContexts& ctx) {
   const auto team = [&] {
-    const std::pair<int, int> slot = teamSlot();  // not a binding: the lambdas below capture it
+    const std::pair<int, int> slot = teamSlot();
     const int t = slot.first, nt = slot.second;
     // On two threads each half (and the islands attached to it) in solver bodies of its
     // thread's own, the boundary in split_bodies (SolveData::split_shared).
-    StepContext c = ctx.of(r.resting), shared = c;
-    if (t > 0) {
-      c.bodies = &team_bodies[0].solver;
-      c.rotations = &team_bodies[0].rotations;
-    }
+    const StepContext c = onTeamBodies(ctx.of(r.resting), t);
+    StepContext shared = ctx.of(r.resting);
     if (nt > 1) {
       shared.bodies = &split_bodies;
       findSplitShared(r, t);
     }
-    const auto share = [&](const StepContext& from, const StepContext& to, bool whole) {
-      shareSplitBodies(from, to, t, nt, whole);
-    };
     // half k and the islands attached to it (attachToSplitHalves)
     const auto withHalf = [&](int k, auto&& f) { withAttached(r, r.half(k), k, f); };
     for (int k = t; k < 2; k += nt) withHalf(k, [&](const IslandRange& p) { prepareIsland(p, c); });
-    share(c, shared, true);
+    shareSplitBodies(c, shared, t, nt, true);
     team_barrier.wait(t, nt);
     for (int k = t; k < 2; k += nt)
       contact_solver.prepare(contacts, shared, r.boundaryBegin(k), r.boundaryEnd(k));
@@ -484,16 +485,13 @@ void World::Impl::solveSplitIsland(const IslandRange& r, const StepContexts& ctx
     // boundary, then the bodies take their velocities.
     for (int k = t; k < 2; k += nt)
       withHalf(k, [&](const IslandRange& p) { restitute(p.contact_begin, p.contact_end, c); });
-    share(c, shared, true);
+    shareSplitBodies(c, shared, t, nt, true);
     team_barrier.wait(t, nt);
     for (int k = t; k < 2; k += nt) restitute(r.boundaryBegin(k), r.boundaryEnd(k), shared);
     team_barrier.wait(t, nt);
-    share(shared, c, false);
+    shareSplitBodies(shared, c, t, nt, false);
     for (int k = t; k < 2; k += nt)
-      withHalf(k, [&](const IslandRange& p) {
-        finishIslandBodies(p, c);
-        if (t > 0) copyStepMotion(p, c);
-      });
+      withHalf(k, [&](const IslandRange& p) { finishIslandBodies(p, c); });
   };
   // One thread takes both halves in turn, outside a region (parallel_for.hpp says why).
   if (threadCount() > 1) {
@@ -525,18 +523,12 @@ void World::Impl::solveIslands(const StepContexts& ctx) {
   for (const IslandRange& r : island_ranges)
     if (r.split) solveSplitIsland(r, ctx);
   const auto solveRange = [&](const IslandRange& r) {
-    const int t = teamSlot().first;
-    StepContext c = ctx.of(r.resting);
-    if (t > 0) {
-      c.bodies = &team_bodies[size_t(t - 1)].solver;
-      c.rotations = &team_bodies[size_t(t - 1)].rotations;
-    }
+    const StepContext c = onTeamBodies(ctx.of(r.resting), teamSlot().first);
     prepareIsland(r, c);
     solveIsland(r, c);
     restitute(r.contact_begin, r.contact_end, c);
     finishIslandBodies(r, c);
     sleepIslands(r, c.dt);
-    if (t > 0) copyStepMotion(r, c);
   };
   const auto solveOne = [&](int k) {
     const IslandRange& r = island_ranges[k];

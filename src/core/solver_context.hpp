@@ -23,8 +23,9 @@ struct StepContext {
   Softness contact_softness;
   Softness joint_softness;
   const SolverSettings* settings = nullptr;
-  // The solver bodies and their rotations by body index: the World's, or for whole islands on
-  // a team thread after the first that thread's own copy (SolveData::team_bodies).
+  // The solver bodies and their rotations by body index: the World's, or on a team thread
+  // after the first that thread's own copy, or a split island's boundary array
+  // (SolveData::team_bodies, split_bodies).
   std::vector<SolverBody>* bodies = nullptr;
   std::vector<Mat3>* rotations = nullptr;
   const std::vector<BodyMotion>* motions = nullptr;  // poses at the start of the step

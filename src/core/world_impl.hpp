@@ -248,7 +248,7 @@ struct World::Impl : CollideData, IslandSchedule, SolveData, FaultGuardData, Sle
   void integratePositions(const StepContext& c, int begin, int end);   // integrate.cpp
   void solveIsland(const IslandRange& r, const StepContext& ctx) { solveIsland(r, ctx, ctx); }
   void solveIsland(const IslandRange& r, const StepContext& ctx, const StepContext& shared);
-  void copyStepMotion(const IslandRange& p, const StepContext& c);
+  StepContext onTeamBodies(StepContext c, int t);
   void findSplitShared(const IslandRange& r, int k);
   void shareSplitBodies(const StepContext& from, const StepContext& to, int t, int nt,
                         bool whole);
