@@ -24,19 +24,30 @@ rc=$?
 [[ $scripts_rc -ne 0 ]] && rc=1
 echo "$results"
 # Count test cases from the JUnit reports (catkin_test_results counts gtest files twice).
-read -r passed failed skipped < <(/usr/bin/python3 - "$WS/build/test_results" <<'PY'
-import glob, sys, xml.etree.ElementTree as ET
+# The failed cases are named last, next to the count, where the tail of a CI log shows them.
+counts="$(/usr/bin/python3 - "$WS/build/test_results" <<'PY'
+import glob, os, sys, xml.etree.ElementTree as ET
 p = f = s = 0
-for path in glob.glob(sys.argv[1] + "/**/*.xml", recursive=True):
+failed = []
+for path in sorted(glob.glob(sys.argv[1] + "/**/*.xml", recursive=True)):
     wrapper = "/rostest-" in path  # one case per launch; its test cases are in rosunit-*.xml
     for case in ET.parse(path).getroot().iter("testcase"):
-        if case.find("failure") is not None or case.find("error") is not None: f += 1
+        if case.find("failure") is not None or case.find("error") is not None:
+            f += 1
+            bad = case.find("failure") if case.find("failure") is not None else case.find("error")
+            why = " ".join((bad.get("message") or bad.text or "").split())[:160]
+            failed.append(f"{os.path.relpath(path, sys.argv[1])}: {case.get('classname', '')}."
+                          f"{case.get('name', '')}: {why}")
         elif wrapper: continue
         elif case.find("skipped") is not None or case.get("status") == "notrun": s += 1
         else: p += 1
+for name in failed[:10]:
+    print("failed:", name)
 print(p, f, s)
 PY
-)
+)"
+grep '^failed: ' <<<"$counts"
+read -r passed failed skipped < <(tail -n 1 <<<"$counts")
 if [[ "$((passed + failed))" -eq 0 ]]; then
   echo "test: no tests ran"
   rc=1
