@@ -10,24 +10,15 @@
 namespace ragdoll_sim {
 
 // (island_solve.hpp)
-void StealReserve::update(bool reserved, double waited, int stolen) {
-  if (reserved) {
-    window_stolen_ += stolen;
-    if (--window_left_ > 0) return;
-    const bool paid = window_stolen_ >= kWindow / kStealEvery;
-    pause_ = paid ? 0 : std::min(kMaxPause, std::max(kFirstPause, 2 * pause_));
-    pause_left_ = pause_;
-    window_stolen_ = 0;
-    return;
-  }
-  if (pause_left_ > 0) {
-    --pause_left_;
-    return;
-  }
-  idle_average_ += (waited - idle_average_) / kAverageSteps;
-  if (kImbalance * idle_average_ > 1.0) {
-    window_left_ = kWindow;
-    idle_average_ = 0.0;
+void StealReserve::update(double seconds) {
+  const int in_trial = step_ % kTrial;
+  if (step_ < kTrial && in_trial >= kSettle) time_off_ += seconds;
+  else if (step_ < 2 * kTrial && in_trial >= kSettle) time_on_ += seconds;
+  if (++step_ == 2 * kTrial) {
+    faster_on_ = time_on_ < time_off_;
+    time_off_ = time_on_ = 0.0;
+  } else if (step_ == kPeriod) {
+    step_ = 0;
   }
 }
 
@@ -563,34 +554,18 @@ void World::Impl::solveIslands(const StepContexts& ctx) {
       open = true;
     }
     flush();
-    int stolen = 0;
-    for (int k; (k = run_queue.steal(t)) >= 0; ++stolen) solveOne(k);
-    return stolen;
+    for (int k; (k = run_queue.steal(t)) >= 0;) solveOne(k);
   };
   // (no runs when every island is split or goes along with a split one's half)
   const bool team = splitOverThreads(int(island_bodies.size()), threadCount());
   if (run_work > 0 && count > 1 && team) {
 #ifdef _OPENMP
     using Clock = std::chrono::steady_clock;
-    run_ends.resize(threadCount());
     const Clock::time_point start = Clock::now();
 #pragma omp parallel num_threads(threadCount())
-    {
-      RunEnd& mine = run_ends[omp_get_thread_num()];
-      mine.stolen = solveRun(omp_get_thread_num());
-      mine.at = Clock::now();
-    }
-    const Clock::time_point end = Clock::now();
-    if (reserve_mode < 0 && chunks) {
-      const auto first = std::min_element(
-          run_ends.begin(), run_ends.end(),
-          [](const RunEnd& a, const RunEnd& b) { return a.at < b.at; });
-      const double waited =
-          end > start ? std::chrono::duration<double>(end - first->at) / (end - start) : 0.0;
-      int stolen = 0;
-      for (const RunEnd& e : run_ends) stolen += e.stolen;
-      steal_reserve.update(reserve, waited, stolen);
-    }
+    solveRun(omp_get_thread_num());
+    if (reserve_mode < 0 && chunks)
+      steal_reserve.update(std::chrono::duration<double>(Clock::now() - start).count());
 #else
     solveRun(0);  // threadCount() is 1
 #endif

@@ -14,7 +14,6 @@
 #pragma once
 
 #include <atomic>
-#include <chrono>
 #include <cstdint>
 #include <vector>
 
@@ -44,31 +43,25 @@ constexpr int kLaneRangeFill = 160;
 // down to fill, and leaves the other threads islands to steal.
 bool extendsRange(IslandRange& c, const IslandRange& r, int k, int left, int fill);
 
-// Whether the threads' ranges of islands keep a reserve to steal (kLaneRangeFill), which costs
-// the lanes' fill and pays only where a thread ends its run more than an island after another
-// (slowed by its core or by the other's caches). A window of kWindow steps with the reserve
-// starts once the first thread to end has waited, on average over about kAverageSteps steps
-// without it, more than 1 / kImbalance of the parallel region. A window in which fewer than
-// kWindow / kStealEvery islands were stolen (the runs ended apart by less than an island) holds
-// off the next one for kFirstPause steps, doubled after each such window up to kMaxPause; a
-// window that stole ends the pauses.
+// Whether the threads' ranges of islands keep a reserve to steal (kLaneRangeFill). The reserve
+// costs the lanes' fill and pays where the threads end their runs apart; which weighs more
+// depends on the machine (how fast its cores hand work over) and on the scene, so the rule
+// times both: every kPeriod steps it runs kTrial steps without the reserve, then kTrial with it,
+// sums the parallel region's time of each trial's steps after its first kSettle (the caches
+// follow the new ranges), and keeps the faster until the period ends.
 class StealReserve {
  public:
-  bool on() const { return window_left_ > 0; }
-  // After a step's parallel region: whether it kept the reserve (on() before it), the share of
-  // the region that the first thread to end waited, and the islands stolen.
-  void update(bool reserved, double waited, int stolen);
+  bool on() const { return step_ < kTrial ? false : step_ < 2 * kTrial ? true : faster_on_; }
+  // After a step's parallel region (on() before it decided its ranges): its wall time.
+  void update(double seconds);
 
  private:
-  static constexpr int kWindow = 64;
-  static constexpr int kImbalance = 12;
-  static constexpr int kAverageSteps = 8;
-  static constexpr int kStealEvery = 8;
-  static constexpr int kFirstPause = 256;
-  static constexpr int kMaxPause = 4096;
-  int window_left_ = 0, window_stolen_ = 0;
-  int pause_ = 0, pause_left_ = 0;
-  double idle_average_ = 0.0;
+  static constexpr int kTrial = 32;
+  static constexpr int kSettle = 8;
+  static constexpr int kPeriod = 512;
+  int step_ = 0;
+  bool faster_on_ = false;
+  double time_off_ = 0.0, time_on_ = 0.0;
 };
 
 // The step's two substep sequences: the full one, and the rest substeps of islands whose bodies
@@ -101,13 +94,6 @@ struct SolveData {
   PointLanes point_lanes;  // the joint anchors in float lanes (SolverSettings::lanes != 1)
   TeamBarrier team_barrier;  // the two threads of a split island
   StealReserve steal_reserve;  // WorldTuning::range_reserve -1
-  // When each thread ended its run of islands in the last step and how many islands it stole,
-  // a cache line each.
-  struct alignas(64) RunEnd {
-    std::chrono::steady_clock::time_point at;
-    int stolen = 0;
-  };
-  std::vector<RunEnd> run_ends;
   // Per thread (a cache line each): the contact constraints solved, summed over the sweeps, in
   // which each is solved once (WorldInternals::contactSweeps, for tests).
   struct alignas(64) SweepCount {

@@ -29,9 +29,8 @@ struct WorldTuning {
   bool lane_exact_angles = true;
   // m, manifold_cache.hpp; 0 (or a value not below speculative_distance) turns the cache off.
   double manifold_cache_distance = kManifoldCacheDistance;
-  // The threads' ranges of islands in the lanes keep a reserve to steal: -1 once the threads
-  // end their runs far apart and while it pays (StealReserve), 0 never, 1 always. The same bits
-  // whichever.
+  // The threads' ranges of islands in the lanes keep a reserve to steal: -1 while it times
+  // faster than none (StealReserve), 0 never, 1 always. The same bits whichever.
   int range_reserve = -1;
   // Last step's island schedule is kept while nothing it is built from changed
   // (World::Impl::scheduleIslands). Off: it is built every step; the same bits.
