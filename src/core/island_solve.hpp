@@ -103,10 +103,10 @@ struct SolveData {
   // Team thread t > 0 solves its whole islands, and the second half of a split island, in
   // solver bodies and rotations of its own (team_bodies[t - 1], by body index as solver; the
   // master uses solver and rotations), and copies dq and dp back to solver as its bodies finish
-  // (finishIslandBodies), for the contact reports. In one array two runs' bodies share a page, and the core of the run
-  // below, fetching ahead along its bodies, keeps taking the lines of the run above away from
-  // the other core. A row reads only its island's bodies and static ones, whose entries never
-  // change.
+  // (finishIslandBodies), for the contact reports. In one array two runs' bodies share a
+  // page, and the core of the run below, fetching ahead along its bodies, keeps taking the
+  // lines of the run above away from the other core. A row reads only its island's bodies and
+  // static ones, whose entries never change.
   struct TeamBodies {
     std::vector<SolverBody> solver;
     std::vector<Mat3> rotations;
