@@ -38,12 +38,14 @@ using namespace ragdoll_sim;
 namespace {
 
 // --opt profile=1's fields, in the line's order.
-constexpr std::array<double StepProfile::*, 9> kProfileFields = {
+constexpr std::array<double StepProfile::*, 10> kProfileFields = {
     &StepProfile::step,    &StepProfile::guard,   &StepProfile::collide,
     &StepProfile::boxes,   &StepProfile::pairs,   &StepProfile::narrowphase,
-    &StepProfile::islands, &StepProfile::solve,   &StepProfile::finish};
-constexpr std::array<const char*, 9> kProfileNames = {
-    "step", "guard", "collide", "boxes", "pairs", "narrowphase", "islands", "solve", "finish"};
+    &StepProfile::islands, &StepProfile::solve,   &StepProfile::finish,
+    &StepProfile::solve_wait};
+constexpr std::array<const char*, 10> kProfileNames = {
+    "step",    "guard", "collide", "boxes",  "pairs", "narrowphase",
+    "islands", "solve", "finish",  "solve_wait"};
 
 struct Scene {
   char id;

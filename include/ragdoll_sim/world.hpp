@@ -160,6 +160,11 @@ struct StepProfile {
   double islands = 0.0;      // union-find, active joints, islands' ranges, splits, thread runs
   double solve = 0.0;        // the islands' solve
   double finish = 0.0;       // joint breaks, bodies outside the islands, faults, sleep
+  // Within solve, summed over its threads: the time a thread had nothing to solve in a parallel
+  // region (before its start reached the thread, after the thread's last island) or waited for
+  // the other half of a split island at a barrier. Not a phase: `step` leaves it out. 0 on one
+  // thread.
+  double solve_wait = 0.0;
 };
 
 // The deepest overlap of some bodies' shapes with static shapes (World::staticOverlap).

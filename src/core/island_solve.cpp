@@ -39,6 +39,42 @@ bool extendsRange(IslandRange& c, const IslandRange& r, int k, int left, int fil
 }
 
 namespace {
+using Clock = std::chrono::steady_clock;
+double microseconds(Clock::duration d) {
+  return std::chrono::duration<double, std::micro>(d).count();
+}
+
+// body(t) on each thread t of a parallel region of `threads`; with `wait` (while profiling),
+// adds the region's time each thread spent outside body (the region reaching it, the others'
+// end) to *wait.
+template <class Body>
+void teamRegion(int threads, double* wait, std::vector<SolveData::RegionSpan>& spans,
+                Body&& body) {
+#ifdef _OPENMP
+  if (!wait) {
+#pragma omp parallel num_threads(threads)
+    body(omp_get_thread_num());
+    return;
+  }
+  spans.resize(threads);
+  int team = 1;
+  const Clock::time_point start = Clock::now();
+#pragma omp parallel num_threads(threads)
+  {
+    const Clock::time_point in = Clock::now();
+    const int t = omp_get_thread_num();
+    if (t == 0) team = omp_get_num_threads();
+    body(t);
+    spans[t].us = microseconds(Clock::now() - in);
+  }
+  const double region = microseconds(Clock::now() - start);
+  for (int t = 0; t < team; ++t) *wait += region - spans[t].us;
+#else
+  (void)threads, (void)wait, (void)spans;
+  body(0);
+#endif
+}
+
 // This thread's number and the team's size in the enclosing parallel region ({0, 1} outside).
 std::pair<int, int> teamSlot() {
 #ifdef _OPENMP
@@ -487,8 +523,9 @@ void World::Impl::solveSplitIsland(const IslandRange& r, const StepContexts& ctx
   // One thread takes both halves in turn, outside a region (parallel_for.hpp says why).
   if (threadCount() > 1) {
     split_bodies.resize(solver.size());
-#pragma omp parallel num_threads(2)
-    team();
+    double* wait = profiling ? &profile.solve_wait : nullptr;
+    teamRegion(2, wait, region_spans, [&](int) { team(); });
+    if (wait) *wait += team_barrier.takeWaited();
   } else {
     team();
   }
@@ -510,6 +547,7 @@ void World::Impl::solveIslands(const StepContexts& ctx) {
     t.rotations.resize(rotations.size(), Mat3::Identity());
   }
   if (track_contacts) contact_tracks.assign(contacts.size(), ContactTrack());
+  team_barrier.setTimed(profiling);
   const int count = int(island_ranges.size());
   for (const IslandRange& r : island_ranges)
     if (r.split) solveSplitIsland(r, ctx);
@@ -559,16 +597,10 @@ void World::Impl::solveIslands(const StepContexts& ctx) {
   // (no runs when every island is split or goes along with a split one's half)
   const bool team = splitOverThreads(int(island_bodies.size()), threadCount());
   if (run_work > 0 && count > 1 && team) {
-#ifdef _OPENMP
-    using Clock = std::chrono::steady_clock;
     const Clock::time_point start = Clock::now();
-#pragma omp parallel num_threads(threadCount())
-    solveRun(omp_get_thread_num());
+    teamRegion(threadCount(), profiling ? &profile.solve_wait : nullptr, region_spans, solveRun);
     if (reserve_mode < 0 && chunks)
       steal_reserve.update(std::chrono::duration<double>(Clock::now() - start).count());
-#else
-    solveRun(0);  // threadCount() is 1
-#endif
   } else if (run_work > 0) {
     solveRun(0);  // its own run, then the others' (stolen from the back)
   }

@@ -22,7 +22,8 @@ std::vector<BodyId> boxScene(World& w) {
 
 bool allZero(const StepProfile& p) {
   return p.step == 0 && p.guard == 0 && p.collide == 0 && p.boxes == 0 && p.pairs == 0 &&
-         p.narrowphase == 0 && p.islands == 0 && p.solve == 0 && p.finish == 0;
+         p.narrowphase == 0 && p.islands == 0 && p.solve == 0 && p.finish == 0 &&
+         p.solve_wait == 0;
 }
 }  // namespace
 
@@ -94,5 +95,35 @@ TEST(StepProfile, ProfilingChangesNoResult) {
     EXPECT_EQ(x.pose.q.coeffs(), y.pose.q.coeffs());
     EXPECT_EQ(x.linear_velocity, y.linear_velocity);
     EXPECT_EQ(x.angular_velocity, y.angular_velocity);
+  }
+}
+
+// 64 boxes apart on the ground, each an island of its own: enough for both threads to take runs
+// of them. Each thread's idle time in the solve's region is part of solve_wait: some on two
+// threads (the region reaches the second thread late), at most the two threads' whole solve;
+// none on one.
+TEST(StepProfile, SolveWaitIsTheThreadsIdleTimeInTheSolve) {
+  for (const int threads : {1, 2}) {
+    WorldDef def;
+    def.sleep.enabled = false;
+    def.threads = threads;
+    World w(def);
+    addGround(w);
+    for (int i = 0; i < 64; ++i)
+      addBox(w, Vec3(0.1, 0.1, 0.1), 1.0, Vec3(0.5 * (i % 8), 0.5 * (i / 8), 0.1));
+    w.setProfiling(true);
+    double wait = 0.0, solve = 0.0;
+    for (int i = 0; i < 20; ++i) {
+      w.step(kDt);
+      const StepProfile& p = w.stepProfile();
+      EXPECT_GE(p.solve_wait, 0.0) << "step " << i;
+      EXPECT_LE(p.solve_wait, threads * p.solve) << "step " << i;
+      EXPECT_DOUBLE_EQ(p.step, p.guard + p.collide + p.islands + p.solve + p.finish);
+      wait += p.solve_wait;
+      solve += p.solve;
+    }
+    EXPECT_GT(solve, 0.0);
+    if (threads == 1) EXPECT_EQ(wait, 0.0);
+    else EXPECT_GT(wait, 0.0);
   }
 }
