@@ -44,8 +44,8 @@ constexpr std::array<double StepProfile::*, 10> kProfileFields = {
     &StepProfile::islands, &StepProfile::solve,   &StepProfile::finish,
     &StepProfile::solve_wait};
 constexpr std::array<const char*, 10> kProfileNames = {
-    "step",    "guard", "collide", "boxes",  "pairs", "narrowphase",
-    "islands", "solve", "finish",  "solve_wait"};
+    "step", "guard", "collide", "boxes", "pairs", "narrowphase", "islands", "solve", "finish",
+    "solve_wait"};
 
 struct Scene {
   char id;

@@ -44,34 +44,32 @@ double microseconds(Clock::duration d) {
   return std::chrono::duration<double, std::micro>(d).count();
 }
 
-// body(t) on each thread t of a parallel region of `threads`; with `wait` (while profiling),
-// adds the region's time each thread spent outside body (the region reaching it, the others'
-// end) to *wait.
+// body(t) on each thread t of a parallel region of `threads`; returns the region's wall time in
+// microseconds. With `wait` (while profiling), adds the region's time each thread spent outside
+// body (the region reaching it, the others' end) to *wait.
 template <class Body>
-void teamRegion(int threads, double* wait, std::vector<SolveData::RegionSpan>& spans,
-                Body&& body) {
-#ifdef _OPENMP
-  if (!wait) {
-#pragma omp parallel num_threads(threads)
-    body(omp_get_thread_num());
-    return;
-  }
-  spans.resize(threads);
-  int team = 1;
+double teamRegion(int threads, double* wait, std::vector<SolveData::RegionSpan>& spans,
+                  Body&& body) {
   const Clock::time_point start = Clock::now();
+#ifdef _OPENMP
+  if (wait) spans.resize(threads);
+  int team = 1;
 #pragma omp parallel num_threads(threads)
   {
-    const Clock::time_point in = Clock::now();
+    const Clock::time_point in = wait ? Clock::now() : Clock::time_point();
     const int t = omp_get_thread_num();
     if (t == 0) team = omp_get_num_threads();
     body(t);
-    spans[t].us = microseconds(Clock::now() - in);
+    if (wait) spans[t].us = microseconds(Clock::now() - in);
   }
   const double region = microseconds(Clock::now() - start);
-  for (int t = 0; t < team; ++t) *wait += region - spans[t].us;
+  if (wait)
+    for (int t = 0; t < team; ++t) *wait += region - spans[t].us;
+  return region;
 #else
   (void)threads, (void)wait, (void)spans;
   body(0);
+  return microseconds(Clock::now() - start);
 #endif
 }
 
@@ -597,10 +595,9 @@ void World::Impl::solveIslands(const StepContexts& ctx) {
   // (no runs when every island is split or goes along with a split one's half)
   const bool team = splitOverThreads(int(island_bodies.size()), threadCount());
   if (run_work > 0 && count > 1 && team) {
-    const Clock::time_point start = Clock::now();
-    teamRegion(threadCount(), profiling ? &profile.solve_wait : nullptr, region_spans, solveRun);
-    if (reserve_mode < 0 && chunks)
-      steal_reserve.update(std::chrono::duration<double>(Clock::now() - start).count());
+    double* wait = profiling ? &profile.solve_wait : nullptr;
+    const double region = teamRegion(threadCount(), wait, region_spans, solveRun);
+    if (reserve_mode < 0 && chunks) steal_reserve.update(1e-6 * region);
   } else if (run_work > 0) {
     solveRun(0);  // its own run, then the others' (stolen from the back)
   }
