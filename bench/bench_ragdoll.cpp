@@ -376,6 +376,10 @@ int main(int argc, char** argv) {
   const int window = std::min(1000, steps);
   world.setProfiling(profile);
   StepProfile phases;  // summed over the steps
+  struct {
+    long lane_batches = 0, contact_lane_rows = 0, contact_lanes = 0, joint_lane_rows = 0,
+         joint_lanes = 0;
+  } lanes;  // IslandCounters' wide solver fields, summed over the steps (profile=1)
   const auto loop0 = std::chrono::steady_clock::now();
   for (int step = 1; step <= steps; ++step) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -393,6 +397,12 @@ int main(int argc, char** argv) {
     if (profile) {
       const StepProfile& p = world.stepProfile();
       for (double StepProfile::*f : kProfileFields) phases.*f += p.*f;
+      const IslandCounters c = world.islandCounters();
+      lanes.lane_batches += c.lane_batches;
+      lanes.contact_lane_rows += c.contact_lane_rows;
+      lanes.contact_lanes += c.contact_lanes;
+      lanes.joint_lane_rows += c.joint_lane_rows;
+      lanes.joint_lanes += c.joint_lanes;
     }
     awake_body_steps += world.awakeBodyCount();
     resting_body_steps += world.islandCounters().resting_bodies;
@@ -463,6 +473,14 @@ int main(int argc, char** argv) {
                     phases.*kProfileFields[k] / steps);
       extra += buf;
     }
+    // The wide solver's batches per step and how full their lanes were (IslandCounters).
+    const auto fill = [](long rows, long lanes) { return lanes > 0 ? double(rows) / lanes : 0.0; };
+    std::snprintf(buf, sizeof buf, " lane_batches=%.2f", double(lanes.lane_batches) / steps);
+    extra += buf;
+    std::snprintf(buf, sizeof buf, " contact_lane_fill=%.3f joint_lane_fill=%.3f",
+                  fill(lanes.contact_lane_rows, lanes.contact_lanes),
+                  fill(lanes.joint_lane_rows, lanes.joint_lanes));
+    extra += buf;
   }
   if (hash) {
     char buf[48];

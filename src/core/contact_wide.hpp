@@ -30,6 +30,9 @@ class ContactBatch {
   const std::vector<int>& scalar() const { return scalar_; }
   // The colours of the blocks (0 without any).
   int colourCount() const { return wide_.empty() ? 0 : graph_.colourCount(); }
+  // The constraints in the blocks, and the blocks' lanes.
+  int laneRows() const { return int(wide_.size()); }
+  int lanes() const { return block_count_ * kRowBlock; }
 
   // Once per substep, first. positions_moved: the double separations are recomputed (in the
   // blocks' geometry; the constraints keep prepare's) and rounded into the lanes first.

@@ -81,6 +81,26 @@ std::pair<int, int> teamSlot() {
   return {0, 1};
 #endif
 }
+
+// The batch just built in the lanes (the joints of p, none for nullptr, and the contacts
+// [begin, end)) into this thread's LaneCount (World::islandCounters).
+void countLanes(SolveData& s, const StepContext& c, const IslandRange* p, int begin, int end) {
+  if (c.lanes == 1) return;
+  const ContactBatch* b = begin < end ? s.contact_solver.batchAt(begin) : nullptr;
+  if (b && !b->holds(begin, end)) b = nullptr;
+  const bool joints = p && p->joint_end > p->joint_begin;
+  if (!b && !joints) return;
+  SolveData::LaneCount& n = s.lane_counts[teamSlot().first];
+  ++n.batches;
+  if (joints) {
+    n.joint_rows += s.point_lanes.laneRows(*p);
+    n.joint_lanes += s.point_lanes.lanes(*p);
+  }
+  if (b) {
+    n.contact_rows += b->laneRows();
+    n.contact_lanes += b->lanes();
+  }
+}
 }  // namespace
 
 StepContexts World::Impl::makeContexts(double dt) {
@@ -142,6 +162,7 @@ void World::Impl::prepareIsland(const IslandRange& p, const StepContext& c) {
   if (def.solver.exact_joints)
     forIslands(p, [&](const IslandRange& q) { joint_tree.build(q, island_bodies, active_joints.data(), *c.bodies); });
   contact_solver.prepare(contacts, c, p.contact_begin, p.contact_end);
+  countLanes(*this, c, &p, p.contact_begin, p.contact_end);
 }
 
 // The substep sequence of one island on this thread; touches only the island's bodies and
@@ -502,8 +523,10 @@ void World::Impl::solveSplitIsland(const IslandRange& r, const StepContexts& ctx
     for (int k = t; k < 2; k += nt) withHalf(k, [&](const IslandRange& p) { prepareIsland(p, c); });
     shareSplitBodies(c, shared, t, nt, true);
     team_barrier.wait(t, nt);
-    for (int k = t; k < 2; k += nt)
+    for (int k = t; k < 2; k += nt) {
       contact_solver.prepare(contacts, shared, r.boundaryBegin(k), r.boundaryEnd(k));
+      countLanes(*this, shared, nullptr, r.boundaryBegin(k), r.boundaryEnd(k));
+    }
     team_barrier.wait(t, nt);
     solveIsland(r, c, shared);
     // Restitution reads the halves' bodies as the boundary's does: halves first, then the
@@ -534,6 +557,7 @@ void World::Impl::solveSplitIsland(const IslandRange& r, const StepContexts& ctx
 void World::Impl::solveIslands(const StepContexts& ctx) {
   contact_solver.resize(threadCount());
   contact_sweeps.resize(std::max(threadCount(), TeamBarrier::kMaxTeam));
+  lane_counts.assign(contact_sweeps.size(), LaneCount());
   joint_tree.reserve(int(bodies.size()), int(island_bodies.size()), int(active_joints.size()));
   point_lanes.reserve(int(active_joints.size()));
   scalar_sweeps.resize(active_joints.size());

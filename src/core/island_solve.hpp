@@ -106,6 +106,12 @@ struct SolveData {
     int64_t contacts = 0;
   };
   std::vector<SweepCount> contact_sweeps;
+  // Per thread (a cache line each): the batches it built in the lanes and their rows and lanes
+  // (World::islandCounters).
+  struct alignas(64) LaneCount {
+    int batches = 0, contact_rows = 0, contact_lanes = 0, joint_rows = 0, joint_lanes = 0;
+  };
+  std::vector<LaneCount> lane_counts;
   // Team thread t > 0 solves its whole islands, and the second half of a split island, in
   // solver bodies and rotations of its own (team_bodies[t - 1], by body index as solver; the
   // master uses solver and rotations), and copies dq and dp back to solver as its bodies finish

@@ -90,6 +90,13 @@ IslandCounters World::islandCounters() const {
     c.resting_islands += r.resting ? 1 : 0;
     c.resting_bodies += r.resting ? r.body_end - r.body_begin : 0;
   }
+  for (const SolveData::LaneCount& n : impl_->lane_counts) {
+    c.lane_batches += n.batches;
+    c.contact_lane_rows += n.contact_rows;
+    c.contact_lanes += n.contact_lanes;
+    c.joint_lane_rows += n.joint_rows;
+    c.joint_lanes += n.joint_lanes;
+  }
   return c;
 }
 

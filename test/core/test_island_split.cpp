@@ -206,6 +206,16 @@ TEST(SplitIsland, MomentumConservedChainsStayApartSameForOneAndTwoThreads) {
     EXPECT_EQ(n.islands, 1);
     EXPECT_EQ(n.split_islands, 1);
     EXPECT_EQ(n.largest_island, 64);
+    // The halves and the boundary's groups are batches of their own, the same on two threads;
+    // the 56 ball joints are all in the lanes.
+    const IslandCounters m = two.world->islandCounters();
+    EXPECT_GE(n.lane_batches, 3);
+    EXPECT_EQ(n.joint_lane_rows, Raft::kChains * (Raft::kLinks - 1));
+    EXPECT_EQ(m.lane_batches, n.lane_batches);
+    EXPECT_EQ(m.joint_lanes, n.joint_lanes);
+    EXPECT_EQ(m.contact_lane_rows, n.contact_lane_rows);
+    EXPECT_EQ(m.contact_lanes, n.contact_lanes);
+    EXPECT_GT(n.contact_lane_rows, 0);
     // After the first step chains 3 and 4 (across the cut) bounce apart at 0.5 x 1.6 m/s.
     const auto chainVy = [&](int c) {
       double vy = 0;

@@ -237,3 +237,42 @@ TEST(WidePoints, HangingBobComesToRest) {
     std::printf("[ bob      ] lanes %d: speed %.2e m/s\n", lanes, v);
   }
 }
+
+// IslandCounters' wide solver fields. addRagdoll's torso joins five joints, so first fit gives
+// its 9 joints 5 colours: the neck, both elbows and both knees in one, a shoulder or a hip alone
+// in each other. Alone, a humanoid's records are one per colour (5 x 8 lanes for 9 rows); two
+// humanoids of one range (one thread) share them: 10 rows in the first colour take two records
+// and 2 in each other one, 6 x 8 lanes for 18 rows. A box resting on the ground is one manifold
+// in a block of its own; the double rows count nothing.
+TEST(WidePoints, CountersGiveTheRowsInTheLanesAndTheLanes) {
+  const auto counters = [](int lanes, int ragdolls, bool box) {
+    World w(wideDef(lanes, 1));
+    for (int k = 0; k < ragdolls; ++k)
+      addRagdoll(w, Vec3(3.0 * k, 0, 5.0), Vec3::Zero(), Vec3::Zero());
+    if (box) {
+      addGround(w);
+      addBox(w, Vec3(0.2, 0.2, 0.2), 1.0, Vec3(-3.0, 0, 0.2));
+    }
+    w.step(kDt);
+    return w.islandCounters();
+  };
+  IslandCounters c = counters(8, 1, false);
+  EXPECT_EQ(c.lane_batches, 1);
+  EXPECT_EQ(c.joint_lane_rows, 9);
+  EXPECT_EQ(c.joint_lanes, 40);
+  EXPECT_EQ(c.contact_lane_rows, 0);
+  EXPECT_EQ(c.contact_lanes, 0);
+  c = counters(4, 2, false);
+  EXPECT_EQ(c.lane_batches, 1) << "two islands in one range";
+  EXPECT_EQ(c.joint_lane_rows, 18);
+  EXPECT_EQ(c.joint_lanes, 48);
+  c = counters(8, 0, true);
+  EXPECT_EQ(c.lane_batches, 1);
+  EXPECT_EQ(c.contact_lane_rows, 1);
+  EXPECT_EQ(c.contact_lanes, 8);
+  EXPECT_EQ(c.joint_lanes, 0);
+  c = counters(1, 2, true);
+  EXPECT_EQ(c.lane_batches + c.joint_lane_rows + c.joint_lanes + c.contact_lane_rows +
+                c.contact_lanes,
+            0);
+}
