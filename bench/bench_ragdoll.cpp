@@ -394,10 +394,11 @@ int main(int argc, char** argv) {
     if (step > steps - window) wall_last += dt_wall;
     wall_trace += dt_wall;
     if (hash) state_hash = hashStates(world, state_hash);
+    const IslandCounters counters = world.islandCounters();
     if (profile) {
       const StepProfile& p = world.stepProfile();
       for (double StepProfile::*f : kProfileFields) phases.*f += p.*f;
-      const IslandCounters c = world.islandCounters();
+      const IslandCounters& c = counters;
       lanes.lane_batches += c.lane_batches;
       lanes.contact_lane_rows += c.contact_lane_rows;
       lanes.contact_lanes += c.contact_lanes;
@@ -405,7 +406,7 @@ int main(int argc, char** argv) {
       lanes.joint_lanes += c.joint_lanes;
     }
     awake_body_steps += world.awakeBodyCount();
-    resting_body_steps += world.islandCounters().resting_bodies;
+    resting_body_steps += counters.resting_bodies;
     if (trace > 0 && step % trace == 0) {
       // fastest ragdoll link: COM speed and angular speed (what sleeping compares)
       // and the mechanical energy (kinetic + potential in the scene's gravity) of the ragdolls

@@ -144,11 +144,11 @@ struct IslandCounters {
   int contacts = 0;       // contact manifolds solved
   int resting_islands = 0;  // solved with the rest substeps (SleepDef::rest_substeps)
   int resting_bodies = 0;   // bodies in those
-  // The wide solver (SolverSettings::lanes 4 or 8; all 0 with the double rows): the batches the
-  // solve built (a range of whole islands of a thread's run, or a split island's half or an
-  // island attached to it; docs/physics.md, the wide solver), and the rows in float lanes
-  // against the lanes of their blocks (rows / lanes: how full the lanes are), of the contact
-  // manifolds and of the joint anchors. With more than one thread the batches follow the
+  // The wide solver (SolverSettings::lanes; all 0 in a step solved in double rows): the batches
+  // the solve built (a range of whole islands of a thread's run, a split island's half or an
+  // island attached to it, a group of its boundary; docs/physics.md, the wide solver), and the
+  // contact manifolds and joint anchors in their float lanes against the lanes of their blocks
+  // (rows / lanes: how full the lanes are). With more than one thread the batches follow the
   // threads' runs and what they stole, so they can differ between runs; the bits never do.
   int lane_batches = 0;
   int contact_lane_rows = 0, contact_lanes = 0;
