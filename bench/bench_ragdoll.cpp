@@ -398,12 +398,11 @@ int main(int argc, char** argv) {
     if (profile) {
       const StepProfile& p = world.stepProfile();
       for (double StepProfile::*f : kProfileFields) phases.*f += p.*f;
-      const IslandCounters& c = counters;
-      lanes.lane_batches += c.lane_batches;
-      lanes.contact_lane_rows += c.contact_lane_rows;
-      lanes.contact_lanes += c.contact_lanes;
-      lanes.joint_lane_rows += c.joint_lane_rows;
-      lanes.joint_lanes += c.joint_lanes;
+      lanes.lane_batches += counters.lane_batches;
+      lanes.contact_lane_rows += counters.contact_lane_rows;
+      lanes.contact_lanes += counters.contact_lanes;
+      lanes.joint_lane_rows += counters.joint_lane_rows;
+      lanes.joint_lanes += counters.joint_lanes;
     }
     awake_body_steps += world.awakeBodyCount();
     resting_body_steps += counters.resting_bodies;

@@ -109,6 +109,8 @@ class ContactSolver {
   const ContactBatch* batchAt(int begin) const {
     return begin < int(batch_at_.size()) ? batch_at_[begin] : nullptr;
   }
+  // The wide batch of [begin, end) when this step solves it in lanes, else nullptr.
+  ContactBatch* batchOf(const StepContext& ctx, int begin, int end);
   // With ctx.lanes != 1 it also builds the range's wide batch (contact_wide.hpp), which the
   // calls with the same range then solve before the scalar rest.
   void prepare(const std::vector<Contact>& contacts, const StepContext& ctx, int begin, int end);
@@ -134,8 +136,6 @@ class ContactSolver {
                    double h, int begin, int end) const;
 
  private:
-  // The wide batch of [begin, end) when this step solves it in lanes, else nullptr.
-  ContactBatch* batchOf(const StepContext& ctx, int begin, int end);
   // The lanes' impulses into the double constraints of [begin, end) (a no-op without a batch).
   void syncImpulses(int begin, int end);
 

@@ -86,16 +86,12 @@ std::pair<int, int> teamSlot() {
 // [begin, end)) into this thread's LaneCount (World::islandCounters).
 void countLanes(SolveData& s, const StepContext& c, const IslandRange* p, int begin, int end) {
   if (c.lanes == 1) return;
-  const ContactBatch* b = begin < end ? s.contact_solver.batchAt(begin) : nullptr;
-  if (b && !b->holds(begin, end)) b = nullptr;
+  const ContactBatch* b = s.contact_solver.batchOf(c, begin, end);
   const bool joints = p && p->joint_end > p->joint_begin;
   if (!b && !joints) return;
   SolveData::LaneCount& n = s.lane_counts[teamSlot().first];
   ++n.batches;
-  if (joints) {
-    n.joint_rows += s.point_lanes.laneRows(*p);
-    n.joint_lanes += s.point_lanes.lanes(*p);
-  }
+  if (joints) s.point_lanes.addLaneFill(*p, n.joint_rows, n.joint_lanes);
   if (b) {
     n.contact_rows += b->laneRows();
     n.contact_lanes += b->lanes();

@@ -149,14 +149,11 @@ bool sameEdges(const std::vector<GraphEdge>& x, const std::vector<GraphEdge>& y)
 }
 }  // namespace
 
-int PointLanes::laneRows(const IslandRange& p) const {
-  if (p.joint_end <= p.joint_begin || !ranges_[p.joint_begin]) return 0;
-  return int(ranges_[p.joint_begin]->lanes.size());
-}
-
-int PointLanes::lanes(const IslandRange& p) const {
-  if (p.joint_end <= p.joint_begin || !ranges_[p.joint_begin]) return 0;
-  return int(ranges_[p.joint_begin]->blocks.size()) * kRowBlock;
+void PointLanes::addLaneFill(const IslandRange& p, int& rows, int& lanes) const {
+  if (p.joint_end <= p.joint_begin || !ranges_[p.joint_begin]) return;
+  const Range& r = *ranges_[p.joint_begin];
+  rows += int(r.lanes.size());
+  lanes += int(r.blocks.size()) * kRowBlock;
 }
 
 void PointLanes::build(const IslandRange& p, Joint* const* js,

@@ -58,9 +58,8 @@ class PointLanes {
   // After the range's joints are prepared (ctx.lanes != 1): the blocks, and the joints they
   // hold marked in_lanes.
   void build(const IslandRange& p, Joint* const* js, const std::vector<SolverBody>& bodies);
-  // Of the range built last at p: the joints in the blocks, and the blocks' lanes.
-  int laneRows(const IslandRange& p) const;
-  int lanes(const IslandRange& p) const;
+  // Of the range built last at p: the joints in the blocks to rows, the blocks' lanes to lanes.
+  void addLaneFill(const IslandRange& p, int& rows, int& lanes) const;
   // Before the range's joints warm start: the exact angles and rows of the joints whose angle
   // rows are all in the lanes (hinges, Euler ball joints) where their warm start would compute
   // them (AngleAxes::recomputes), W joints at a time (joint_angles_lanes.hpp), with the bits of
