@@ -1,7 +1,7 @@
 // `bench_ragdoll sync`: what the solver's two-thread handoffs cost on this machine, for the
-// record of a sitting (scripts/bench.sh runs it before every round). An empty OpenMP region of
-// two threads (parallelFor and the island solve open one per call) and a TeamBarrier wait (a
-// split island's, team_barrier.hpp), each the median over batches. Both are cheap when the two
+// record of a sitting (scripts/bench.sh runs it before every round). An empty region of two
+// threads (teamRun, thread_team.hpp: parallelFor and the island solve open one per call) and a
+// TeamBarrier wait (a split island's, team_barrier.hpp), each the median over batches. Both are cheap when the two
 // cores share a cache and several times dearer when the threads talk across a slower link (on a
 // VM, vCPUs placed on different core complexes), and the two-thread steps lose with them.
 #pragma once
@@ -11,21 +11,17 @@
 #include <chrono>
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include "team_barrier.hpp"
+#include "thread_team.hpp"
 
 namespace ragdoll_sim {
 
 struct SyncCost {
-  double region_us = 0.0, barrier_us = 0.0;  // 0: no OpenMP (one thread)
+  double region_us = 0.0, barrier_us = 0.0;
 };
 
 inline SyncCost measureSync() {
   SyncCost cost;
-#ifdef _OPENMP
   constexpr int kBatches = 7, kCalls = 20000;
   using Clock = std::chrono::steady_clock;
   const auto perCall = [](Clock::time_point t0) {
@@ -38,25 +34,20 @@ inline SyncCost measureSync() {
   std::vector<double> regions, barriers;
   for (int b = 0; b < kBatches; ++b) {
     const Clock::time_point t0 = Clock::now();
-    for (int i = 0; i < kCalls; ++i) {
-#pragma omp parallel num_threads(2)
-      std::atomic_signal_fence(std::memory_order_seq_cst);  // a body the compiler keeps
-    }
+    for (int i = 0; i < kCalls; ++i)  // a body the compiler keeps
+      teamRun(2, [](int) { std::atomic_signal_fence(std::memory_order_seq_cst); });
     regions.push_back(perCall(t0));
     TeamBarrier barrier;
     Clock::time_point t1;
-#pragma omp parallel num_threads(2)
-    {
-      const int t = omp_get_thread_num(), team = omp_get_num_threads();
-      barrier.wait(t, team);
+    teamRun(2, [&](int t) {
+      barrier.wait(t, 2);
       if (t == 0) t1 = Clock::now();
-      for (int i = 0; i < kCalls; ++i) barrier.wait(t, team);
+      for (int i = 0; i < kCalls; ++i) barrier.wait(t, 2);
       if (t == 0) barriers.push_back(perCall(t1));
-    }
+    });
   }
   cost.region_us = median(regions);
   cost.barrier_us = median(barriers);
-#endif
   return cost;
 }
 

@@ -116,7 +116,7 @@ struct WorldDef {
   // depend on it: islands share no bodies and each is solved in the same order. Default 1: on a
   // machine whose cores are busy, waiting for a preempted worker costs more than it gains.
   int threads = 1;
-  static constexpr int kMaxThreads = 256;  // more is a typo: OpenMP would start them all
+  static constexpr int kMaxThreads = 256;  // more is a typo: the step would start them all
 };
 
 // "" when the World can simulate with these settings, else what is wrong with the first field

@@ -45,9 +45,7 @@
 #include <algorithm>
 #include <cmath>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
+#include "thread_team.hpp"
 
 namespace ragdoll_sim {
 
@@ -225,12 +223,7 @@ int ContactSolver::batchCount() const {
 }
 
 ContactBatch& ContactSolver::takeBatch() {
-#ifdef _OPENMP
-  const int t = omp_get_thread_num();
-#else
-  const int t = 0;
-#endif
-  BatchPool& pool = pools_.at(t);
+  BatchPool& pool = pools_.at(teamSlot().first);
   if (pool.used == int(pool.batches.size())) pool.batches.push_back(std::make_unique<ContactBatch>());
   return *pool.batches[pool.used++];
 }

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "parallel_for.hpp"
+#include "thread_team.hpp"
 #include "world_impl.hpp"
 
 namespace ragdoll_sim {
@@ -51,35 +52,18 @@ template <class Body>
 double teamRegion(int threads, double* wait, std::vector<SolveData::RegionSpan>& spans,
                   Body&& body) {
   const Clock::time_point start = Clock::now();
-#ifdef _OPENMP
   if (wait) spans.resize(threads);
   int team = 1;
-#pragma omp parallel num_threads(threads)
-  {
+  teamRun(threads, [&](int t) {
     const Clock::time_point in = wait ? Clock::now() : Clock::time_point();
-    const int t = omp_get_thread_num();
-    if (t == 0) team = omp_get_num_threads();
+    if (t == 0) team = teamSlot().second;
     body(t);
     if (wait) spans[t].us = microseconds(Clock::now() - in);
-  }
+  });
   const double region = microseconds(Clock::now() - start);
   if (wait)
     for (int t = 0; t < team; ++t) *wait += region - spans[t].us;
   return region;
-#else
-  (void)threads, (void)wait, (void)spans;
-  body(0);
-  return microseconds(Clock::now() - start);
-#endif
-}
-
-// This thread's number and the team's size in the enclosing parallel region ({0, 1} outside).
-std::pair<int, int> teamSlot() {
-#ifdef _OPENMP
-  return {omp_get_thread_num(), omp_get_num_threads()};
-#else
-  return {0, 1};
-#endif
 }
 
 // The batch just built in the lanes (the joints of p, none for nullptr, and the contacts

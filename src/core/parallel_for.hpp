@@ -5,17 +5,14 @@
 #include <cstdint>
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include "constants.hpp"
 #include "run_queue.hpp"
+#include "thread_team.hpp"
 
 namespace ragdoll_sim {
 
 // Whether n items go to `threads` threads: from kParallelMin items, and never for one thread, since
-// an OpenMP region costs microseconds even for a team of one: a good part of a small world's step.
+// a region costs about a microsecond even for a team of one: a good part of a small world's step.
 inline bool splitOverThreads(int n, int threads) { return threads > 1 && n >= kParallelMin; }
 
 // f(i) for i in [0, n) split over `threads` threads (more than one), whatever n. Each thread
@@ -26,7 +23,6 @@ inline bool splitOverThreads(int n, int threads) { return threads > 1 && n >= kP
 // at the end of the loop. f must be independent per item.
 template <class F>
 void parallelForSplit(int n, int threads, F&& f) {
-#ifdef _OPENMP
   constexpr int kChunksPerThread = 16;
   const int chunk = std::max(1, n / (threads * kChunksPerThread));
   const int chunks = (n + chunk - 1) / chunk;
@@ -42,20 +38,14 @@ void parallelForSplit(int n, int threads, F&& f) {
     const int end = std::min(n, (c + 1) * chunk);
     for (int i = c * chunk; i < end; ++i) f(i);
   };
-#pragma omp parallel num_threads(threads)
-  {
-    const int t = omp_get_thread_num();
+  teamRun(threads, [&](int t) {
     for (int c; (c = queue.take(t)) >= 0;) run(c);
     for (int c; (c = queue.steal(t)) >= 0;) run(c);
-  }
-#else
-  (void)threads;
-  for (int i = 0; i < n; ++i) f(i);
-#endif
+  });
 }
 
 // f(i) for i in [0, n): split over the threads when splitOverThreads, else on the caller's thread
-// without entering OpenMP (parallelForSplit).
+// without starting a region (parallelForSplit).
 template <class F>
 void parallelFor(int n, int threads, F&& f) {
   if (splitOverThreads(n, threads)) return parallelForSplit(n, threads, f);
