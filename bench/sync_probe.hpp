@@ -1,9 +1,10 @@
 // `bench_ragdoll sync`: what the solver's two-thread handoffs cost on this machine, for the
 // record of a sitting (scripts/bench.sh runs it before every round). An empty region of two
 // threads (teamRun, thread_team.hpp: parallelFor and the island solve open one per call) and a
-// TeamBarrier wait (a split island's, team_barrier.hpp), each the median over batches. Both are cheap when the two
-// cores share a cache and several times dearer when the threads talk across a slower link (on a
-// VM, vCPUs placed on different core complexes), and the two-thread steps lose with them.
+// TeamBarrier wait (a split island's, team_barrier.hpp), each the median over batches. Both are
+// cheap when the two cores share a cache and several times dearer when the threads talk across a
+// slower link (on a VM, vCPUs placed on different core complexes), and the two-thread steps lose
+// with them.
 #pragma once
 
 #include <algorithm>

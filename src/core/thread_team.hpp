@@ -26,7 +26,8 @@ void run(int threads, Call call, void* body);
 }  // namespace thread_team_detail
 
 // body(t) on threads t = 0 .. threads - 1 (the caller is 0); returns when every thread is done.
-// body must not throw.
+// A nested or oversized region runs body(0) alone, so a body takes its team's size from teamSlot()
+// or its work from a shared queue. body must not throw.
 template <class Body>
 void teamRun(int threads, Body&& body) {
   using B = std::remove_reference_t<Body>;
