@@ -53,6 +53,18 @@ std::string errorText(const sdf::Error& e) {
   return "SDF: " + (where.empty() ? "" : where + ": ") + e.Message();
 }
 
+// SDFormat 12 throws sdf::Exception (not a std::exception) where a check of its own fails, e.g.
+// converting a SDF 1.7 joint named "a::b": its "Error: ..." line, on one line.
+std::string exceptionText(const sdf::Exception& e) {
+  const std::string text = e.GetErrorStr();
+  const size_t error = text.find("Error: ");
+  const size_t begin = error == std::string::npos ? text.find_first_not_of(" \n") : error + 7;
+  if (begin == std::string::npos) return "SDF: SDFormat 12 refused the document";
+  std::string line = text.substr(begin, text.find('\n', begin) - begin);
+  line.erase(line.find_last_not_of(' ') + 1);
+  return "SDF: SDFormat 12 refused the document: " + line;
+}
+
 Transform transform(const ignition::math::Pose3d& p) {
   return Transform(Vec3(p.Pos().X(), p.Pos().Y(), p.Pos().Z()),
                    Quat(p.Rot().W(), p.Rot().X(), p.Rot().Y(), p.Rot().Z()).normalized());
@@ -189,8 +201,11 @@ WorldLoadResult load(const std::string& text, const std::string& file, const Wor
     c.unresolved = pw.unresolved;
     r.ok = true;
   } catch (const LoadError& e) {
-    r.ok = false;
     r.error = e.what();
+  } catch (const sdf::Exception& e) {
+    r.error = exceptionText(e);
+  }
+  if (!r.ok) {
     // One line whatever the file (or SDFormat) put in it.
     for (char& c : r.error)
       if (c == '\n' || c == '\r') c = ' ';

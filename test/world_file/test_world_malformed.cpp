@@ -66,6 +66,11 @@ const std::vector<Case>& cases() {
        world("<model name='m'><static>1</static><link name='l'><collision name='c'><geometry><plane>"
              "<normal>0 0 0</normal></plane></geometry></collision></link></model>"),
        "collision 'c' <plane><normal>: must be a finite non-zero vector"},
+      // SDFormat 12 throws from its 1.7 -> 1.8 conversion of a joint named like a nested path
+      {"joint_name_with_delimiter",
+       world("<model name='m'><link name='a'/><link name='b'/><joint name='x::y' type='fixed'>"
+             "<parent>a</parent><child>b</child></joint></model>"),
+       "SDF: SDFormat 12 refused the document: Joint's <parent> value does not start with x"},
       {"missing_include_strict", world("<include><uri>model://nowhere</uri></include>"),
        "<include> world 'w' <include> model://nowhere: model 'nowhere' not found"},
   };
