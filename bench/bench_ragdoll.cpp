@@ -12,7 +12,8 @@
 //      (every step a full one), 5 000 steps: f on the plane alone; w among 10 000 static boxes,
 //      each its own body; v the same boxes as shapes of one static body (static_world.hpp)
 //   Every line also gives the cost per step in the first and the last second (p, s: asleep).
-// `bench_ragdoll sync` prints what two threads' handoffs cost instead (sync_probe.hpp).
+// `bench_ragdoll sync` prints what two threads' handoffs cost and how fast the two cores run at
+// once instead (sync_probe.hpp).
 // dt = 1 ms, gravity -9.81 z, ground z = 0, friction 0.8. Only World::step is timed. The
 // metrics are computed here from link poses and the URDF joint data alone (anchor error,
 // ground penetration of the analytic shapes, joint angles vs limits, rest state at 3 s).
@@ -23,6 +24,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <string>
 
 #include "joint_angles.hpp"
@@ -203,13 +205,72 @@ struct Metrics {
   }
 };
 
+// The scene in `world`: the ground, the ragdolls (each root turned `yaw` about z), the walls, the
+// static boxes, the dynamic boxes; friction 0.8 and `rolling` resistance everywhere.
+std::vector<Ragdoll> populate(World& world, const Scene& sc, const RagdollDef& def, double yaw,
+                              double rolling) {
+  BodyDef ground;
+  ground.type = BodyType::Static;
+  Material mat;
+  mat.static_friction = mat.kinetic_friction = 0.8;
+  mat.rolling_resistance = rolling;
+  world.addShape(world.createBody(ground), {Geometry::plane(Vec3::UnitZ(), 0.0), Transform(), mat});
+  std::vector<Ragdoll> ragdolls;
+  for (const Transform& root : sc.roots)
+    ragdolls.push_back(spawnRagdoll(
+        world, def, {root.p, Quat(Eigen::AngleAxisd(yaw, Vec3::UnitZ())) * root.q}, &mat));
+  for (const auto& [centre, half] : sc.walls) {
+    BodyDef wall;
+    wall.type = BodyType::Static;
+    wall.pose.p = centre;
+    world.addShape(world.createBody(wall), {Geometry::box(half), Transform(), mat});
+  }
+  if (sc.static_boxes) static_world::addBoxes(world, sc.static_boxes == 2, mat);
+  for (const Vec3& c : sc.boxes) {
+    BodyDef box;
+    box.pose.p = c;
+    box.inertia = Mat3::Identity() * (1.0 / 6.0) * 0.4 * 0.4;
+    world.addShape(world.createBody(box), {Geometry::box(Vec3::Constant(0.2)), Transform(), mat});
+  }
+  return ragdolls;
+}
+
+// `bench_ragdoll sync`: the handoffs, and the cores' speed on the solver's own work: one world of
+// scene g with 8 ragdolls per team thread, each stepped by one thread, sleep off (sync_probe.hpp).
+int syncProbe(const std::string& urdf) {
+  const UrdfLoadResult loaded = loadUrdfFile(urdf);
+  if (!loaded.ok) {
+    std::fprintf(stderr, "bench_ragdoll: %s\n", loaded.error.c_str());
+    return 1;
+  }
+  WorldDef wd;
+  wd.threads = 1;
+  wd.sleep.enabled = false;
+  const Scene sc = makeScene('g', 8);
+  std::vector<std::unique_ptr<World>> worlds;
+  for (int t = 0; t < 2; ++t) {
+    worlds.push_back(std::make_unique<World>(wd));
+    populate(*worlds.back(), sc, loaded.def, 0.0, 0.0);
+  }
+  const SyncCost c = measureSync([&](int t, int steps) {
+    for (int k = 0; k < steps; ++k) worlds[size_t(t)]->step(1e-3);
+  });
+  std::printf("region_us=%.3f barrier_us=%.3f core0=%.3f core1=%.3f ceiling=%.2f\n",
+              c.region_us, c.barrier_us, c.core_speed[0], c.core_speed[1], c.ceiling);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc == 2 && std::strcmp(argv[1], "sync") == 0) {
-    const SyncCost c = measureSync();
-    std::printf("region_us=%.3f barrier_us=%.3f\n", c.region_us, c.barrier_us);
-    return 0;
+  if (argc >= 2 && std::strcmp(argv[1], "sync") == 0) {
+    std::string urdf = "../shared/peers/ragdoll15.urdf";
+    if (argc == 4 && std::strcmp(argv[2], "--urdf") == 0) urdf = argv[3];
+    else if (argc != 2) {
+      std::fprintf(stderr, "usage: %s sync [--urdf F]\n", argv[0]);
+      return 2;
+    }
+    return syncProbe(urdf);
   }
   char scenario = 'a';
   int steps = -1, n_ragdolls = -1;
@@ -339,29 +400,7 @@ int main(int argc, char** argv) {
   world.setContactImpulseTracking(track);
   std::vector<ContactReport> contact_reports;
   size_t reported_points = 0;  // summed over the steps, so the reports cannot be optimised away
-  BodyDef ground;
-  ground.type = BodyType::Static;
-  Material mat;
-  mat.static_friction = mat.kinetic_friction = 0.8;
-  mat.rolling_resistance = rolling;
-  world.addShape(world.createBody(ground), {Geometry::plane(Vec3::UnitZ(), 0.0), Transform(), mat});
-  std::vector<Ragdoll> ragdolls;
-  for (const Transform& root : sc.roots)
-    ragdolls.push_back(spawnRagdoll(
-        world, def, {root.p, Quat(Eigen::AngleAxisd(yaw, Vec3::UnitZ())) * root.q}, &mat));
-  for (const auto& [centre, half] : sc.walls) {
-    BodyDef wall;
-    wall.type = BodyType::Static;
-    wall.pose.p = centre;
-    world.addShape(world.createBody(wall), {Geometry::box(half), Transform(), mat});
-  }
-  if (sc.static_boxes) static_world::addBoxes(world, sc.static_boxes == 2, mat);
-  for (const Vec3& c : sc.boxes) {
-    BodyDef box;
-    box.pose.p = c;
-    box.inertia = Mat3::Identity() * (1.0 / 6.0) * 0.4 * 0.4;
-    world.addShape(world.createBody(box), {Geometry::box(Vec3::Constant(0.2)), Transform(), mat});
-  }
+  const std::vector<Ragdoll> ragdolls = populate(world, sc, def, yaw, rolling);
 
   Metrics m;
   std::vector<Transform> poses(n * def.links.size());

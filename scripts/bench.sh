@@ -201,8 +201,10 @@ t0=$SECONDS
 for r in $(seq "$ROUNDS"); do
   echo "bench: round $r of $ROUNDS ($((SECONDS - t0)) s so far)"
   copy_round_binaries
-  # what two threads' handoffs cost in this round (bench_ragdoll sync, bench/sync_probe.hpp)
-  echo "# meta sync_round_$r=$(cd "$BUILD" && "$ROUND_BINS/bench_ragdoll" sync)" >>"$RAW_TMP"
+  # what two threads' handoffs cost in this round and how fast the two cores run at once
+  # (bench_ragdoll sync, bench/sync_probe.hpp)
+  echo "# meta sync_round_$r=$(cd "$BUILD" && "$ROUND_BINS/bench_ragdoll" sync --urdf "$URDF")" \
+    >>"$RAW_TMP"
   mapfile -t order < <(rotated "$r")
   for s in $SCENES; do
     for e in "${order[@]}"; do

@@ -88,8 +88,10 @@ run_one() {
 }
 
 for r in $(seq "$ROUNDS"); do
-  # The two threads' handoffs before the round (`bench_ragdoll sync`; an older binary has none).
-  if probe="$("$NEW_BIN" sync 2>/dev/null)" && [[ "$probe" == region_us=* ]]; then
+  # The two threads' handoffs and the cores' ceiling before the round (`bench_ragdoll sync`; an
+  # older binary has none, or no ceiling).
+  if probe="$("$NEW_BIN" sync --urdf "$URDF" 2>/dev/null || "$NEW_BIN" sync 2>/dev/null)" &&
+     [[ "$probe" == region_us=* ]]; then
     echo "# meta sync_round_$r=$probe" >>"$OUT_RAW"
   fi
   fresh_copies "$COPIES/old" "$OLD_BIN"

@@ -41,15 +41,25 @@ def parse(lines):
 
 
 def sync_lines(meta):
-    """The two-thread handoffs measured before each round (bench.sh, bench_compare.sh:
-    `# meta sync_round_R`), as a list item; none in an older raw file."""
+    """The two-thread handoffs and the cores' ceiling measured before each round (bench.sh,
+    bench_compare.sh: `# meta sync_round_R`), as list items; none in an older raw file."""
     rounds = sorted((int(k[len("sync_round_"):]), parse_kv(v))
                     for k, v in meta.items() if k.startswith("sync_round_"))
     if not rounds:
         return []
     cells = ["round %d %s / %s" % (r, kv.get("region_us", "?"), kv.get("barrier_us", "?"))
              for r, kv in rounds]
-    return ["- two-thread handoffs before each round (an empty parallel region / a TeamBarrier "
-            "wait, µs; `bench_ragdoll sync`): " + ", ".join(cells) + ". Where they cost more, "
-            "the threads talk over a slower link (on a VM: vCPUs on different core complexes) "
-            "and that round's two-thread figures are lower."]
+    out = ["- two-thread handoffs before each round (an empty parallel region / a TeamBarrier "
+           "wait, µs; `bench_ragdoll sync`): " + ", ".join(cells) + ". Where they cost more, "
+           "the threads talk over a slower link (on a VM: vCPUs on different core complexes) "
+           "and that round's two-thread figures are lower."]
+    ceilings = [(r, kv) for r, kv in rounds if "ceiling" in kv]
+    if ceilings:
+        cells = ["round %d %s (%s + %s)" % (r, kv["ceiling"], kv.get("core0", "?"),
+                                            kv.get("core1", "?")) for r, kv in ceilings]
+        out.append("- two-thread ceiling before each round (`bench_ragdoll sync`: scene g with 8 "
+                   "ragdolls on each of two threads at once, each thread's speed over one "
+                   "thread's alone, summed): " + ", ".join(cells) + ". What two threads can "
+                   "gain over one on work that fits each core's cache; a larger world can gain "
+                   "more, its halves fitting caches its whole does not.")
+    return out

@@ -112,6 +112,12 @@ def test_sync_by_round(tmp_path):
     assert ("(an empty parallel region / a TeamBarrier wait, µs; `bench_ragdoll sync`): "
             "round 1 0.435 / 0.024, round 2 1.240 / 0.300.") in text
     assert "TeamBarrier" not in make_report(tmp_path)  # an older raw file has none
+    assert "two-thread ceiling" not in text  # nor a ceiling before the probe timed the cores
+    raw = ("# meta sync_round_1=region_us=0.5 barrier_us=0.2 core0=0.83 core1=0.94 "
+           "ceiling=1.77\n" + RAW)
+    assert ("each thread's speed over one thread's alone, summed): round 1 1.77 (0.83 + 0.94). "
+            "What two threads can gain over one on work that fits each core's cache"
+            ) in make_report(tmp_path, raw)
 
 
 def test_flops_section(tmp_path):
@@ -213,7 +219,8 @@ def test_compare_table():
 FAKE = """#!/bin/bash
 echo "$(basename "$0") $*" >> "%s"
 echo "$0" >> "%s.paths"
-[[ "$1" == sync ]] && { echo "region_us=0.4 barrier_us=0.05"; exit 0; }
+[[ "$1" == sync ]] &&
+  { echo "region_us=0.4 barrier_us=0.05 core0=0.9 core1=0.85 ceiling=1.75"; exit 0; }
 sps=1000; [[ "$0" == *new* ]] && sps=1500
 echo "engine=ragdoll_sim scenario=$1 steps_per_s=$sps max_anchor_err_m=0 max_ground_pen_m=0 max_limit_viol_rad=0"
 """
@@ -236,13 +243,13 @@ def test_compare_script_alternates_and_passes_options(tmp_path):
     calls = log.read_text().splitlines()
     base = "--urdf u.urdf --opt sleep=0,threads=%d --steps 7 --opt substeps=3"
     assert calls == [
-        "new_bench sync",  # the handoffs before each round
+        "new_bench sync --urdf u.urdf",  # the handoffs and the ceiling before each round
         "old_bench b " + base % 1, "new_bench b " + base % 1 + " --opt lanes=1",
         "old_bench b " + base % 2, "new_bench b " + base % 2 + " --opt lanes=1",
         "old_bench g --urdf u.urdf --opt sleep=0,threads=1 --ragdolls 1 --steps 7 --opt substeps=3",
         "new_bench g --urdf u.urdf --opt sleep=0,threads=1 --ragdolls 1 --steps 7 --opt substeps=3 --opt lanes=1",
         # round 2: new first
-        "new_bench sync",
+        "new_bench sync --urdf u.urdf",
         "new_bench b " + base % 1 + " --opt lanes=1", "old_bench b " + base % 1,
         "new_bench b " + base % 2 + " --opt lanes=1", "old_bench b " + base % 2,
         "new_bench g --urdf u.urdf --opt sleep=0,threads=1 --ragdolls 1 --steps 7 --opt substeps=3 --opt lanes=1",
@@ -251,11 +258,12 @@ def test_compare_script_alternates_and_passes_options(tmp_path):
     assert (tmp_path / "t.md").read_text() in out.stdout
     # every timed run is of a copy made for its round, not of the given file; the copies are gone
     paths = (tmp_path / "calls.txt.paths").read_text().splitlines()
-    runs = [p for p, c in zip(paths, calls) if not c.endswith(" sync")]
+    runs = [p for p, c in zip(paths, calls) if " sync" not in c]
     assert len(paths) == len(calls) and len(runs) == 12 and not set(runs) & set(bins)
     assert all(os.path.dirname(p).endswith(("/old", "/new")) for p in runs)
     assert not (tmp_path / "binaries").exists()
     assert "`bench_ragdoll sync`): round 1 0.4 / 0.05, round 2 0.4 / 0.05." in out.stdout
+    assert "summed): round 1 1.75 (0.9 + 0.85), round 2 1.75 (0.9 + 0.85)." in out.stdout
     assert "| b | 2 | 1,000 (1,000–1,000) | 1,500 (1,500–1,500) | 1.50 (1.50–1.50) |" in out.stdout
     assert "| g N=1 | 1 | 1,000 (1,000–1,000) | 1,500 (1,500–1,500) | 1.50 (1.50–1.50) | ≥ 1.20: met |" in out.stdout
 
