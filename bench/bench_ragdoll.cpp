@@ -235,8 +235,9 @@ std::vector<Ragdoll> populate(World& world, const Scene& sc, const RagdollDef& d
   return ragdolls;
 }
 
-// `bench_ragdoll sync`: the handoffs, and the cores' speed on the solver's own work: one world of
-// scene g with 8 ragdolls per team thread, each stepped by one thread, sleep off (sync_probe.hpp).
+// `bench_ragdoll sync`: the handoffs, and the cores' speed on the solver's own work: a world of
+// scene g with 8 ragdolls for each of two threads, stepped on that thread alone, sleep off
+// (sync_probe.hpp).
 int syncProbe(const std::string& urdf) {
   const UrdfLoadResult loaded = loadUrdfFile(urdf);
   if (!loaded.ok) {
