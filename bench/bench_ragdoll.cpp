@@ -205,6 +205,9 @@ struct Metrics {
   }
 };
 
+// --urdf's default, from the build folder (scripts/bench.sh runs there).
+constexpr const char* kDefaultUrdf = "../shared/peers/ragdoll15.urdf";
+
 // The scene in `world`: the ground, the ragdolls (each root turned `yaw` about z), the walls, the
 // static boxes, the dynamic boxes; friction 0.8 and `rolling` resistance everywhere.
 std::vector<Ragdoll> populate(World& world, const Scene& sc, const RagdollDef& def, double yaw,
@@ -265,7 +268,7 @@ int syncProbe(const std::string& urdf) {
 
 int main(int argc, char** argv) {
   if (argc >= 2 && std::strcmp(argv[1], "sync") == 0) {
-    std::string urdf = "../shared/peers/ragdoll15.urdf";
+    std::string urdf = kDefaultUrdf;
     if (argc == 4 && std::strcmp(argv[2], "--urdf") == 0) urdf = argv[3];
     else if (argc != 2) {
       std::fprintf(stderr, "usage: %s sync [--urdf F]\n", argv[0]);
@@ -297,7 +300,7 @@ int main(int argc, char** argv) {
   bool track = false, reports = false;
   // --opt profile=1: World::stepProfile's phases, mean µs per step, at the end of the line
   bool profile = false;
-  std::string urdf = "../shared/peers/ragdoll15.urdf";
+  std::string urdf = kDefaultUrdf;
   for (int i = 1; i < argc; ++i) {
     const std::string s = argv[i];
     if (s == "--steps" && i + 1 < argc) steps = std::atoi(argv[++i]);

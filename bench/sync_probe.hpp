@@ -4,10 +4,10 @@
 // solve open one per call) and a TeamBarrier wait (a split island's, team_barrier.hpp), each the
 // median over batches. Both are cheap when the two cores share a cache and several times dearer
 // when the threads talk across a slower link (on a VM, vCPUs placed on different core
-// complexes), and the two-thread steps lose with them. The cores' speed: the same arithmetic on
-// one thread alone, then on two threads at once, each on its own data; the ceiling is the
-// work both do at once over the work one does alone (2 when neither slows the other, less where
-// both busy run slower), what two threads can gain that round on work that fits a core's cache.
+// complexes), and the two-thread steps lose with them. The cores' speed: the same world steps
+// on one thread alone, then on two threads at once, each its own world; the ceiling is the work
+// both do at once over the work one does alone (2 when neither slows the other, less where both
+// busy run slower), what two threads can gain that round on work that fits a core's cache.
 #pragma once
 
 #include <algorithm>
