@@ -346,11 +346,14 @@ void solveConstraint(ContactConstraint& cc, const ContactRows& rows, SolverBody&
     const ContactRow(&t)[2] = rows.tangent[i];
     double t0 = old0 - t[0].mass * u.rowVelocity(t[0], cc.tangent[0]);
     double t1 = old1 - t[1].mass * u.rowVelocity(t[1], cc.tangent[1]);
-    const double mag = std::sqrt(t0 * t0 + t1 * t1);
-    if (mag > limit) {
-      const double scale = mag > 0.0 ? limit / mag : 0.0;
-      t0 *= scale;
-      t1 *= scale;
+    const double mag2 = t0 * t0 + t1 * t1;
+    if (!insideCone(mag2, limit)) {
+      const double mag = std::sqrt(mag2);
+      if (mag > limit) {
+        const double scale = mag > 0.0 ? limit / mag : 0.0;
+        t0 *= scale;
+        t1 *= scale;
+      }
     }
     p.tangent_impulse[0] = t0;
     p.tangent_impulse[1] = t1;

@@ -1,6 +1,7 @@
 // Contact constraints for one step; see contact_solver.cpp for the math.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -64,6 +65,15 @@ struct ContactConstraint {
   Vec3 roll_iA[2], roll_iB[2];
   Eigen::Matrix2d roll_mass;
 };
+
+// The friction clamp's shortcut (solveConstraint): whether sqrt(mag2) <= limit is certain
+// without the square root, as for a sticking point (most of a resting pile's): mag2 is below
+// limit^2 by far more than the roundings of limit^2 and of the root. Only a normal limit^2 is
+// trusted (a subnormal one has few bits).
+inline bool insideCone(double mag2, double limit) {
+  const double limit2 = limit * limit;
+  return limit2 >= std::numeric_limits<double>::min() && mag2 < limit2 * (1.0 - 0x1p-40);
+}
 
 // Whether cc may be solved in the wide blocks (contact_wide.hpp): rigid, without rolling
 // resistance.

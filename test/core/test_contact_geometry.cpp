@@ -4,11 +4,13 @@
 // and four (AVX, where the CPU has AVX2) the double results must have the scalar bits and the
 // float lanes those bits rounded. A row in double lanes is compared in double too: a row one
 // ulp off rounds to the same float almost always, so the floats alone would not see the order
-// of a sum.
+// of a sum. The scalar friction clamp's shortcut (insideCone) must skip only square roots that
+// would not clamp.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -239,6 +241,43 @@ TEST(ContactRowLanes, TwoAndFourLanesGiveTheScalarBits) {
         }
     }
   }
+}
+
+// insideCone says a point is inside the friction cone only where sqrt(mag2) > limit is false,
+// for magnitudes within a few ulp of the edge and limits from subnormal to overflowing squares,
+// and it says so for points clearly inside (else the shortcut would never be taken).
+TEST(FrictionCone, ShortcutSkipsNoClamp) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double offsets[] = {-1e-3, -1e-9, -0x1p-40, -0x1p-44, -0x1p-50, -0x1p-52,
+                            0.0,   0x1p-52, 0x1p-50,  1e-9};
+  int clear_inside = 0, clear_count = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const double limit = std::ldexp(1.0 + unit(rng), int(-540.0 + 1080.0 * unit(rng)));
+    for (const double rel : offsets) {
+      for (int ulps = -3; ulps <= 3; ++ulps) {
+        double mag2 = limit * limit * (1.0 + rel);
+        for (int k = 0; k < std::abs(ulps); ++k)
+          mag2 = std::nextafter(mag2, ulps > 0 ? HUGE_VAL : 0.0);
+        if (insideCone(mag2, limit)) {
+          ASSERT_FALSE(std::sqrt(mag2) > limit) << "mag2 " << mag2 << " limit " << limit;
+        }
+        if (rel == -1e-3 && limit * limit >= std::numeric_limits<double>::min() &&
+            std::isfinite(limit * limit)) {
+          ++clear_count;
+          clear_inside += insideCone(mag2, limit);
+        }
+      }
+    }
+  }
+  EXPECT_GT(clear_count, 1000);
+  EXPECT_EQ(clear_inside, clear_count);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(insideCone(0.0, 0.0));  // a speculative point: the cone is a point
+  EXPECT_FALSE(insideCone(0.0, 1e-170));  // limit^2 below the normal range
+  EXPECT_FALSE(insideCone(nan, 1.0));
+  EXPECT_FALSE(insideCone(0.25, nan));
+  EXPECT_TRUE(insideCone(1e300, 1e200));  // limit^2 overflows: any finite root is below limit
 }
 
 }  // namespace
