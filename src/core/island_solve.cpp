@@ -172,6 +172,8 @@ class World::Impl::IslandPass {
     parts([&](const IslandRange& p) {
       w.integrateVelocities(ctx, p.body_begin, p.body_end);
       if (wide && w.tuning.lane_exact_angles) w.point_lanes.exactAngles(p, solver, ctx, sub == 0);
+      else if (sub == 0 && w.tuning.lane_exact_angles)
+        firstSubstepAngles(js + p.joint_begin, p.joint_end - p.joint_begin, ctx);
       joints(p, [&](Joint& j) { warmStartJoint(j, ctx, sub == 0); });
       if (wide)
         w.point_lanes.load(p, solver, ctx, sub == 0, sub == 0 || !w.tuning.lane_angles_kept);

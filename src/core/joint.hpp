@@ -96,6 +96,10 @@ void prepareJoint(Joint& j, const StepContext& ctx);
 // (AngleAxes::limitsOpen) and the anchors and axes advanceJoint refreshed.
 void warmStartJoint(Joint& j, const StepContext& ctx, bool first_substep);
 void solveJoint(Joint& j, const StepContext& ctx, bool use_bias);
+// Before the first substep's warm starts of joints[0, count) (scalar sweeps): the exact angles
+// those warm starts would compute one joint at a time, several joints at once in double lanes
+// (joint_angles_lanes.hpp; the same bits), with their rows and masses.
+void firstSubstepAngles(Joint* const* joints, int count, const StepContext& ctx);
 // After a substep's last sweep: sets a rigid anchor's force (N, from its accumulated impulse)
 // and says whether the joint breaks (break force or torque passed, or the anchor capped).
 bool breaksAfterSubstep(Joint& j, const StepContext& ctx);

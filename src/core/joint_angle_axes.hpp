@@ -23,6 +23,9 @@ struct AngleAxes {
   // This step's exact angles are computed with other joints' (PointLanes::exactAngles), by the
   // rule of recomputes; set per step.
   bool exact_in_lanes = false;
+  // The first substep's exact angles, rows and masses were computed with the island's other
+  // joints (firstSubstepAngles, joint.cpp); the warm start takes them and clears the mark.
+  bool batched = false;
   std::array<JointMotor, N> motors;
   std::array<double, N> lower{}, upper{};
   std::array<AngleMotorPart, N> motor_parts;

@@ -52,8 +52,9 @@ void BallJoint::updateAngles(const JointBase& j, const SolverBody& A, const Solv
 void BallJoint::warmStart(JointBase& j, SolverBody& A, SolverBody& B, const StepContext& ctx,
                           bool first_substep) {
   // Swing-twist rows turn with the swing plane: always recomputed.
-  if (!axes.exact_in_lanes &&
-      (swing_twist_limits || axes.recomputes(A, B, ctx.h, first_substep)))
+  if (axes.batched) axes.batched = false;
+  else if (!axes.exact_in_lanes &&
+           (swing_twist_limits || axes.recomputes(A, B, ctx.h, first_substep)))
     updateAngles(j, A, B, ctx);
   axes.warmStart(A, B);
   if (swing_twist_limits) swing_twist.warmStart(A, B);

@@ -36,7 +36,8 @@ void HingeJoint::updateAngle(const JointBase& j, const SolverBody& A, const Solv
 // velocities changed since.
 void HingeJoint::warmStart(JointBase& j, SolverBody& A, SolverBody& B, const StepContext& ctx,
                            bool first_substep) {
-  if (!axes.exact_in_lanes && axes.recomputes(A, B, ctx.h, first_substep))
+  if (axes.batched) axes.batched = false;
+  else if (!axes.exact_in_lanes && axes.recomputes(A, B, ctx.h, first_substep))
     updateAngle(j, A, B, ctx);
   const bool current = !first_substep;
   axes.warmStart(A, B);

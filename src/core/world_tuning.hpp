@@ -24,8 +24,9 @@ struct WorldTuning {
   // After the first substep the wide pass keeps the angles it advanced and takes only those the
   // joints recomputed (PointLanes::load). Off: every substep puts them all; the same bits.
   bool lane_angles_kept = true;
-  // The exact angles of the joints in the lanes are computed there, several joints at a time
-  // (PointLanes::exactAngles). Off: each joint's warm start computes its own; the same bits.
+  // The joints' exact angles are computed several joints at a time: in the lanes
+  // (PointLanes::exactAngles), and with double rows at the first substep (firstSubstepAngles).
+  // Off: each joint's warm start computes its own; the same bits.
   bool lane_exact_angles = true;
   // m, manifold_cache.hpp; 0 (or a value not below speculative_distance) turns the cache off.
   double manifold_cache_distance = kManifoldCacheDistance;

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdio>
 #include <functional>
+#include <initializer_list>
 #include <random>
 #include <vector>
 
@@ -361,12 +362,14 @@ uint64_t limitedChains(int lanes, Tune&& tune, double* worst_limit,
   return hashStates(w);
 }
 
-// The chains' state with a switch of WorldTuning on and with it off, at both widths: the same
-// bits, with a hinge near its limit (so that the limit rows take part).
+// The chains' state with a switch of WorldTuning on and with it off, at each width of `widths`
+// (both lane widths unless given): the same bits, with a hinge near its limit (so that the limit
+// rows take part).
 void expectSwitchChangesNoBit(
     bool WorldTuning::*field,
-    const std::function<void(World&, const std::vector<JointId>&)>& midway = {}) {
-  for (const int lanes : {4, 8}) {
+    const std::function<void(World&, const std::vector<JointId>&)>& midway = {},
+    std::initializer_list<int> widths = {4, 8}) {
+  for (const int lanes : widths) {
     double reach = -1.0;
     const auto set = [field](bool on) { return [field, on](WorldTuning& t) { t.*field = on; }; };
     const uint64_t on = limitedChains(lanes, set(true), &reach, midway);
@@ -386,10 +389,11 @@ TEST(JointLanes, KeptLaneAnglesChangeNoBit) {
 }
 
 // The joints' exact angles computed in the lanes, several at a time, at every substep where a
-// joint's warm start would recompute its own (PointLanes::exactAngles), give the chains' state
-// of each joint computing its own.
+// joint's warm start would recompute its own (PointLanes::exactAngles), and with double rows
+// (lanes 1) those of the first substep (firstSubstepAngles), give the chains' state of each
+// joint computing its own.
 TEST(JointLanes, ExactAnglesInLanesChangeNoBit) {
-  expectSwitchChangesNoBit(&WorldTuning::lane_exact_angles);
+  expectSwitchChangesNoBit(&WorldTuning::lane_exact_angles, {}, {1, 4, 8});
 }
 
 // The lanes keep their exact-angle jobs, which point into the bodies' arrays, from step to step
