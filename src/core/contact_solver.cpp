@@ -101,7 +101,8 @@ void applyRolling(PairVelocity<kLiveA>& u, const ContactConstraint& cc, double l
 // once per manifold instead of rotating each lever arm.
 void updateSeparations(const SolverBody& A, const SolverBody& B, ContactConstraint& cc) {
   const double dpn = (B.dp - A.dp).dot(cc.normal);
-  const Vec3 nA = A.dq.conjugate() * cc.normal, nB = B.dq.conjugate() * cc.normal;
+  const Vec3 nB = B.dq.conjugate() * cc.normal;
+  const Vec3 nA = unturned(A) ? cc.normal : Vec3(A.dq.conjugate() * cc.normal);
   for (int i = 0; i < cc.count; ++i) {
     ContactConstraintPoint& p = cc.points[i];
     p.separation = dpn + p.rB.dot(nB) - p.rA.dot(nA) + p.base_separation;
@@ -429,9 +430,11 @@ bool ContactSolver::project(const StepContext& ctx, int begin, int end, int swee
     if (batch && A.moved_sweep != sweep && B.moved_sweep != sweep &&
         batch->apartAtLastUpdate(k, clear))
       continue;
+    // the ground's lever arms need no turning (only its separation reads them: it is not moved)
+    const bool fixed_a = !movable(A) && unturned(A);
     for (int i = 0; i < cc.count; ++i) {
       const ContactConstraintPoint& p = cc.points[i];
-      const Vec3 rA = A.dq * p.rA, rB = B.dq * p.rB;
+      const Vec3 rA = fixed_a ? p.rA : Vec3(A.dq * p.rA), rB = B.dq * p.rB;
       const double s = (B.dp - A.dp + rB - rA).dot(cc.normal) + p.base_separation;
       const double C = std::max(settings.position_factor * std::min(s + settings.linear_slop, 0.0),
                                 -settings.max_position_correction);

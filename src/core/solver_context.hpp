@@ -41,6 +41,13 @@ inline bool movable(const SolverBody& b) {
          std::abs(b.inv_inertia(1, 1)) > kZero || std::abs(b.inv_inertia(2, 2)) > kZero;
 }
 
+// Whether b has not turned in the step (a static or sleeping body, or any at the step start):
+// its delta turns nothing, so a vector it would turn is used as it is (the same value; only a
+// -0 component could come back as +0).
+inline bool unturned(const SolverBody& b) {
+  return b.dq.w() == 1.0 && b.dq.x() == 0.0 && b.dq.y() == 0.0 && b.dq.z() == 0.0;
+}
+
 // Accumulated impulses are per substep (about force x h), so warm starting on substep h from
 // impulses accumulated over h0 scales them by h / h0 (1 when h0 == h, exactly; h0 = 0: none
 // kept yet); an island that changes its substep count thus starts with the impulse that holds it.
