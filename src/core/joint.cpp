@@ -1,5 +1,6 @@
 // The joint step functions: a switch on the type (Joint::visit) that ends in a call to the
-// type's own step function (joint_<type>.cpp).
+// type's own step function (joint_<type>.cpp); and firstSubstepAngles, the angles of several
+// joints at once.
 #include "joint.hpp"
 
 #include <vector>
