@@ -51,14 +51,11 @@ void firstSubstepAngles(Joint* const* joints, int count, const StepContext& ctx)
     if (HingeJoint* h = std::get_if<HingeJoint>(&j.kind)) {
       if (!h->axes.rowsNeeded()) continue;
       hinges.push_back(&j);
-      hinge_jobs.push_back({currentFrames(j, A, B, m), h->axis.data(), h->perp.data(),
-                            h->axes.rows[0].data(), &h->axes.angles[0]});
+      hinge_jobs.push_back(h->angleJob(currentFrames(j, A, B, m)));
     } else if (BallJoint* b = std::get_if<BallJoint>(&j.kind)) {
       if (b->swing_twist_limits || !b->axes.rowsNeeded()) continue;
       balls.push_back(&j);
-      ball_jobs.push_back({currentFrames(j, A, B, m), b->euler.qP.coeffs().data(), &b->euler.s,
-                           b->axes.angles.data(), b->axes.rows[0].data(),
-                           &ok[ball_jobs.size()]});
+      ball_jobs.push_back(b->angleJob(currentFrames(j, A, B, m), &ok[ball_jobs.size()]));
     }
   }
   hingeAngles(hinge_jobs.data(), int(hinge_jobs.size()));

@@ -21,6 +21,12 @@ struct BallJoint {
   AngleAxes<3> axes;  // limits_enabled: Euler limits
   AnchorPart anchor;
 
+  // The kernel job that writes the Euler angles and rows at the frames `in` into axes (*ok: 0
+  // near gimbal lock, the rows left), as HingeJoint::angleJob.
+  EulerAngleJob angleJob(const JointFrameInputs& in, double* ok) {
+    return {in, euler.qP.coeffs().data(), &euler.s, axes.angles.data(), axes.rows[0].data(), ok};
+  }
+
   // Swing-twist limits: cone about twist_axis (joint frame) and twist range.
   bool swing_twist_limits = false;
   Vec3 twist_axis = Vec3::UnitX();

@@ -22,6 +22,12 @@ struct HingeJoint {
   HingeAxisPart hinge_axis;
   AnchorPart anchor;
 
+  // The kernel job that writes the angle and its row at the frames `in` into axes, for the
+  // joints whose angles are computed together (PointLanes::exactAngles, firstSubstepAngles).
+  HingeAngleJob angleJob(const JointFrameInputs& in) {
+    return {in, axis.data(), perp.data(), axes.rows[0].data(), &axes.angles[0]};
+  }
+
   void prepare(JointBase& j, const StepContext& ctx);
   void warmStart(JointBase& j, SolverBody& A, SolverBody& B, const StepContext& ctx,
                  bool first_substep);

@@ -316,12 +316,10 @@ void PointLanes::exactAngles(const IslandRange& p, std::vector<SolverBody>& bodi
         if (!l.exact) continue;
         const JointFrameInputs in = currentFrames(*l.joint, bodies[l.a], bodies[l.b], m);
         if (HingeJoint* h = std::get_if<HingeJoint>(&l.joint->kind)) {
-          J.hinges.push_back({in, h->axis.data(), h->perp.data(), h->axes.rows[0].data(),
-                              &h->axes.angles[0]});
+          J.hinges.push_back(h->angleJob(in));
           J.hinge_of.push_back({&h->axes, l.a, l.b});
         } else if (BallJoint* b = std::get_if<BallJoint>(&l.joint->kind)) {
-          J.balls.push_back({in, b->euler.qP.coeffs().data(), &b->euler.s,
-                             b->axes.angles.data(), b->axes.rows[0].data(), &J.ok[J.balls.size()]});
+          J.balls.push_back(b->angleJob(in, &J.ok[J.balls.size()]));
           J.ball_of.push_back({&b->axes, l.a, l.b});
         }
       }
