@@ -71,8 +71,8 @@ void World::Impl::prepareSolverBody(int i) {
 }
 
 // An island's bodies (all awake): as prepareSolverBody, with the rotations and world inverse
-// inertias four bodies at a time in AVX lanes, then two in SSE2 lanes, the last one alone (the
-// same bits, integrate_kernel.hpp).
+// inertias four bodies at a time in AVX lanes, or two in SSE2 lanes, by byLaneWidth (the same
+// bits, integrate_kernel.hpp).
 void World::Impl::prepareSolverBodies(int begin, int end, const StepContext& c) {
   if (begin >= end) return;
   std::vector<SolverBody>& solver = *c.bodies;
@@ -82,11 +82,9 @@ void World::Impl::prepareSolverBodies(int begin, int end, const StepContext& c) 
   }
   using namespace integrate_kernel;
   const BodyFields f = bodyFields(solver, motions, *c.rotations);
-  const int* bodies = island_bodies.data() + begin;
-  byLaneWidth(end - begin, [&](int width, int first, int count) {
-    if (width == 4) integrate_w4::prepareRotations(f, bodies + first, count);
-    else if (width == 2) prepareRotations<Double2>(f, bodies + first, count);
-    else prepareRotations<double>(f, bodies + first, count);
+  byLaneWidth(island_bodies.data() + begin, end - begin, [&](int width, const int* b, int n) {
+    if (width == 4) integrate_w4::prepareRotations(f, b, n);
+    else prepareRotations<Double2>(f, b, n);
   });
 }
 
@@ -95,43 +93,43 @@ void World::Impl::finishPoses(int begin, int end, const StepContext& c) {
   if (begin >= end) return;
   using namespace integrate_kernel;
   const BodyFields f = bodyFields(*c.bodies, motions, *c.rotations);
-  const int* bodies = island_bodies.data() + begin;
   const double grid = kPositionGrid, range = kWorldRange;
-  byLaneWidth(end - begin, [&](int width, int first, int count) {
-    const int* b = bodies + first;
-    if (width == 4) integrate_w4::finishPoses(f, b, count, grid, range);
-    else if (width == 2) integrate_kernel::finishPoses<Double2>(f, b, count, grid, range);
-    else integrate_kernel::finishPoses<double>(f, b, count, grid, range);
+  byLaneWidth(island_bodies.data() + begin, end - begin, [&](int width, const int* b, int n) {
+    if (width == 4) integrate_w4::finishPoses(f, b, n, grid, range);
+    else integrate_kernel::finishPoses<Double2>(f, b, n, grid, range);
   });
 }
 
 // Four bodies at a time in AVX lanes where the CPU has AVX2 (integrate_kernel.hpp), a chunk at a
-// time: the lanes find the few bodies that may need a clamp, which then run clampNorm. The rest
-// one at a time here (the same bits).
+// time: the lanes find the few bodies that may need a clamp, which then run clampNorm. The last
+// one to three go as four lanes that repeat the last body (byLaneWidth), which is clamped once.
+// Without AVX2 one at a time here (the same bits).
 void World::Impl::integrateVelocities(const StepContext& c, int begin, int end) {
   const double h = c.h;
   std::vector<SolverBody>& solver = *c.bodies;
   const double max_v = def.solver.max_linear_speed, max_w = def.solver.max_angular_speed;
-  if (cpuHasAvx2() && end - begin >= 4) {
+  if (cpuHasAvx2()) {
     constexpr int kChunk = 64;  // a multiple of 4
     const integrate_kernel::BodyFields f = bodyFields(solver, motions, *c.rotations);
     const double max_v2 = max_v * max_v, max_w2 = max_w * max_w;
     int clamp[kChunk];
-    for (; end - begin >= 4; begin += kChunk) {
-      const int* bodies = island_bodies.data() + begin;
-      const int n = std::min(kChunk, (end - begin) / 4 * 4);
+    // bodies[0, n), n a multiple of 4, of which the first `own` are not repeats
+    const auto run = [&](const int* bodies, int n, int own) {
       const int clamped = integrate_w4::advanceVelocities(f, bodies, n, h, def.gravity.data(),
                                                           max_v2, max_w2, clamp);
-      for (int j = 0; j < clamped; ++j) {
+      for (int j = 0; j < clamped && clamp[j] < own; ++j) {
         SolverBody& s = solver[bodies[clamp[j]]];
         clampNorm(s.v, max_v);
         clampNorm(s.w, max_w);
       }
-      if (n < kChunk) {
-        begin += n;
-        break;
-      }
-    }
+    };
+    int done = 0;
+    byLaneWidth(island_bodies.data() + begin, end - begin, [&](int, const int* bodies, int n) {
+      const int own = std::min(n, end - begin - done);
+      for (int k = 0; k < n; k += kChunk) run(bodies + k, std::min(kChunk, n - k), own - k);
+      done += n;
+    });
+    return;
   }
   for (int k = begin; k < end; ++k) {
     const int i = island_bodies[k];
@@ -151,20 +149,18 @@ void World::Impl::integrateVelocities(const StepContext& c, int begin, int end) 
 // The rotation advances with w; then w is recomputed from the world angular momentum
 // L = R I R^T w, which free rotation conserves: w' = R' I^-1 R'^T L. This is the gyroscopic
 // term (precession, the middle-axis flip) and keeps L exact in free flight. Bodies go four at a
-// time through AVX lanes where the CPU has AVX2, then two at a time through SSE2 lanes, the last
-// one alone (integrate_kernel.hpp: each lane does the one-body operations, so all give the same
-// bits); the lanes' side-by-side chains (a square root and a division in the middle) keep the
-// core busy.
+// time through AVX lanes where the CPU has AVX2, else two at a time through SSE2 lanes
+// (byLaneWidth; integrate_kernel.hpp: each lane does the one-body operations, so all give the
+// same bits); the lanes' side-by-side chains (a square root and a division in the middle) keep
+// the core busy.
 void World::Impl::integratePositions(const StepContext& c, int begin, int end) {
   if (begin >= end) return;
   using namespace integrate_kernel;
   const double h = c.h, half_h = 0.5 * h;
   const BodyFields f = bodyFields(*c.bodies, motions, *c.rotations);
-  const int* bodies = island_bodies.data() + begin;
-  byLaneWidth(end - begin, [&](int width, int first, int count) {
-    if (width == 4) integrate_w4::stepPositions(f, bodies + first, count, h, half_h);
-    else if (width == 2) stepPositions<Double2>(f, bodies + first, count, h, half_h);
-    else stepPositions<double>(f, bodies + first, count, h, half_h);
+  byLaneWidth(island_bodies.data() + begin, end - begin, [&](int width, const int* b, int n) {
+    if (width == 4) integrate_w4::stepPositions(f, b, n, h, half_h);
+    else stepPositions<Double2>(f, b, n, h, half_h);
   });
 }
 

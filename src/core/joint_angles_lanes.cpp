@@ -1,18 +1,18 @@
 // The baseline build of the joint angle kernel (two lanes in SSE2, one alone) and the run-time
-// choice of width; see joint_angles_kernel.hpp.
+// choice of width (byLaneWidth); see joint_angles_kernel.hpp.
 #include "joint_angles_kernel.hpp"
 #include "lane_width.hpp"
 
 namespace ragdoll_sim {
 
 namespace {
-// Four at a time where the CPU has AVX2, then two, then one.
+// Four at a time where the CPU has AVX2, else two (byLaneWidth).
 template <class Job>
 void allJobs(const Job* jobs, int count, int (*four)(const Job*, int)) {
-  using joint_angles::jobBlocks;
-  int done = cpuHasAvx2() ? four(jobs, count) : 0;
-  done += jobBlocks<double_lanes::Double2>(jobs + done, count - done);
-  jobBlocks<double>(jobs + done, count - done);
+  byLaneWidth(jobs, count, [&](int width, const Job* j, int n) {
+    if (width == 4) four(j, n);
+    else joint_angles::jobBlocks<double_lanes::Double2>(j, n);
+  });
 }
 }  // namespace
 

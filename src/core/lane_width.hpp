@@ -24,16 +24,20 @@ int chooseLaneWidth(int requested, const char* env, bool has_avx2);
 bool laneWidthAutomatic(int requested);
 bool laneWidthAutomatic(int requested, const char* env);
 
-// Items [0, n) of the double-lane kernels in runs by lane width: four at a time in AVX lanes
-// where the CPU has AVX2, then two in SSE2 lanes, the last one alone; run(width, first, count)
-// for each run.
-template <class Run>
-void byLaneWidth(int n, Run&& run) {
-  const int n4 = cpuHasAvx2() ? n / 4 * 4 : 0;
-  const int n2 = n4 + (n - n4) / 2 * 2;
-  run(4, 0, n4);
-  run(2, n4, n2 - n4);
-  run(1, n2, n - n2);
+// Items [0, n) of the double-lane kernels, in runs of the widest lanes the CPU runs: four at a
+// time in AVX lanes where it has AVX2, else two in SSE2 lanes; run(width, items, count) with
+// count a multiple of width. The last few go as one more run whose spare lanes repeat the last
+// item: each lane of those kernels gathers its inputs before any lane writes and does the
+// operations of its item alone, so a repeated item's results are written twice, the same bits.
+template <class T, class Run>
+void byLaneWidth(const T* items, int n, Run&& run) {
+  const int width = cpuHasAvx2() ? 4 : 2;
+  const int full = n / width * width;
+  if (full > 0) run(width, items, full);
+  if (full == n) return;
+  T tail[4];
+  for (int l = 0; l < width; ++l) tail[l] = items[full + l < n ? full + l : n - 1];
+  run(width, static_cast<const T*>(tail), width);
 }
 
 }  // namespace ragdoll_sim

@@ -32,11 +32,9 @@ namespace {
 // Jobs [0, n) of one kind by lane width (byLaneWidth).
 void runKind(int kind, const shape_boxes::ShapeBoxJob* jobs, int n, double spec, double dt) {
   using shape_boxes::shapeBoxesOf;
-  byLaneWidth(n, [&](int width, int first, int count) {
-    const shape_boxes::ShapeBoxJob* j = jobs + first;
+  byLaneWidth(jobs, n, [&](int width, const shape_boxes::ShapeBoxJob* j, int count) {
     if (width == 4) shape_boxes_w4::shapeBoxes(kind, j, count, spec, dt);
-    else if (width == 2) shapeBoxesOf<double_lanes::Double2>(kind, j, count, spec, dt);
-    else shapeBoxesOf<double>(kind, j, count, spec, dt);
+    else shapeBoxesOf<double_lanes::Double2>(kind, j, count, spec, dt);
   });
 }
 }  // namespace

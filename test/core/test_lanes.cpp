@@ -2,6 +2,7 @@
 // (lane_width.hpp). The kernels built on them: test_wide_contacts.cpp, test_wide_points.cpp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -9,6 +10,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "lane_ops.hpp"
 #include "lane_width.hpp"
@@ -170,6 +172,30 @@ TEST(Lanes, ChooseLaneWidthReadsTheEnvironment) {
   unsetenv("RAGDOLL_SIM_LANES");
   EXPECT_EQ(chooseLaneWidth(0), cpuHasAvx2() ? 8 : 4);
   if (old) setenv("RAGDOLL_SIM_LANES", saved.c_str(), 1);
+}
+
+// The double-lane kernels' runs: the widest lanes the CPU runs, every item once and in order,
+// and the last run's spare lanes holding the last item (a kernel's lanes write what that item
+// alone gives, twice).
+TEST(Lanes, ByLaneWidthFillsTheLastRunWithTheLastItem) {
+  const int width = cpuHasAvx2() ? 4 : 2;
+  for (int n = 0; n <= 11; ++n) {
+    std::vector<int> items;
+    for (int i = 0; i < n; ++i) items.push_back(100 + i);
+    std::vector<int> seen;
+    int runs = 0;
+    byLaneWidth(items.data(), n, [&](int w, const int* run, int count) {
+      EXPECT_EQ(w, width) << n;
+      EXPECT_GT(count, 0) << n;
+      EXPECT_EQ(count % w, 0) << n;
+      seen.insert(seen.end(), run, run + count);
+      ++runs;
+    });
+    ASSERT_EQ(int(seen.size()), (n + width - 1) / width * width) << n;
+    EXPECT_LE(runs, 2) << n;
+    for (int i = 0; i < int(seen.size()); ++i)
+      EXPECT_EQ(seen[i], 100 + std::min(i, n - 1)) << "n " << n << ", lane " << i;
+  }
 }
 
 // The World says which width it runs, from its settings and as they change.
