@@ -1,5 +1,5 @@
-// The baseline build of the joint angle kernel (two lanes in SSE2, one alone) and the run-time
-// choice of width (byLaneWidth); see joint_angles_kernel.hpp.
+// The baseline build of the joint angle kernel (two lanes in SSE2; one alone for the tests'
+// atan2 and asin) and the run-time choice of width (byLaneWidth); see joint_angles_kernel.hpp.
 #include "joint_angles_kernel.hpp"
 #include "lane_width.hpp"
 

@@ -1,10 +1,11 @@
 // The exact angles and rate rows of hinges and Euler ball joints (joint_angles.hpp derives
 // them), computed W joints at a time in double lanes: four in AVX registers
-// (joint_angles_w4.cpp, only on a CPU with AVX2), else two in SSE2 ones (joint_angles_lanes.cpp,
-// by byLaneWidth), or one alone. Every width does the same IEEE operations in the same order, with
-// atan2 and asin of their own (joint_angles_kernel.hpp) instead of libm's, so a joint's angles
-// have the same bits whether it was computed alone (HingeJoint::updateAngle, the projection,
-// the reports) or with others (PointLanes::exactAngles).
+// (joint_angles_w4.cpp, only on a CPU with AVX2), else two in SSE2 ones (joint_angles_lanes.cpp;
+// a last joint or a lone one fills the spare lanes, byLaneWidth). Every width (one alone too, in
+// the tests) does the same IEEE operations in the same order, with atan2 and asin of their own
+// (joint_angles_kernel.hpp) instead of libm's, so a joint's angles have the same bits whether
+// it was computed alone (HingeJoint::updateAngle, the projection, the reports) or with others
+// (PointLanes::exactAngles).
 // Plain records and declarations only: the AVX2 kernel file includes this header too.
 #pragma once
 
