@@ -113,21 +113,19 @@ void World::Impl::integrateVelocities(const StepContext& c, int begin, int end) 
     const integrate_kernel::BodyFields f = bodyFields(solver, motions, *c.rotations);
     const double max_v2 = max_v * max_v, max_w2 = max_w * max_w;
     int clamp[kChunk];
-    // bodies[0, n), n a multiple of 4, of which the first `own` are not repeats
-    const auto run = [&](const int* bodies, int n, int own) {
-      const int clamped = integrate_w4::advanceVelocities(f, bodies, n, h, def.gravity.data(),
-                                                          max_v2, max_w2, clamp);
-      for (int j = 0; j < clamped && clamp[j] < own; ++j) {
-        SolverBody& s = solver[bodies[clamp[j]]];
-        clampNorm(s.v, max_v);
-        clampNorm(s.w, max_w);
-      }
-    };
-    int done = 0;
     byLaneWidth(island_bodies.data() + begin, end - begin, [&](int, const int* bodies, int n) {
-      const int own = std::min(n, end - begin - done);
-      for (int k = 0; k < n; k += kChunk) run(bodies + k, std::min(kChunk, n - k), own - k);
-      done += n;
+      for (int k = 0; k < n; k += kChunk) {
+        const int* chunk = bodies + k;
+        const int clamped = integrate_w4::advanceVelocities(
+            f, chunk, std::min(kChunk, n - k), h, def.gravity.data(), max_v2, max_w2, clamp);
+        for (int j = 0; j < clamped; ++j) {
+          // a repeated last body follows itself in the lanes: clamped once
+          if (j > 0 && chunk[clamp[j]] == chunk[clamp[j - 1]]) continue;
+          SolverBody& s = solver[chunk[clamp[j]]];
+          clampNorm(s.v, max_v);
+          clampNorm(s.w, max_w);
+        }
+      }
     });
     return;
   }
