@@ -179,13 +179,11 @@ inline void jobLanes(const EulerAngleJob* jobs) {
       for (int j = 0; j < 9; ++j) rows_out[l][j] = double_lanes::lane(rows[j], l);
 }
 
-// jobs[0, count) W at a time; returns how many were done (count rounded down to W).
+// jobs[0, count) W at a time; count is a multiple of W (byLaneWidth).
 template <class D, class Job>
-inline int jobBlocks(const Job* jobs, int count) {
+inline void jobBlocks(const Job* jobs, int count) {
   constexpr int W = sizeof(D) / sizeof(double);
-  int k = 0;
-  for (; k + W <= count; k += W) jobLanes<D>(jobs + k);
-  return k;
+  for (int k = 0; k + W <= count; k += W) jobLanes<D>(jobs + k);
 }
 
 }  // namespace RAGDOLL_SIM_ANGLES_ISA

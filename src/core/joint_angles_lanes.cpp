@@ -8,7 +8,7 @@ namespace ragdoll_sim {
 namespace {
 // Four at a time where the CPU has AVX2, else two (byLaneWidth).
 template <class Job>
-void allJobs(const Job* jobs, int count, int (*four)(const Job*, int)) {
+void allJobs(const Job* jobs, int count, void (*four)(const Job*, int)) {
   byLaneWidth(jobs, count, [&](int width, const Job* j, int n) {
     if (width == 4) four(j, n);
     else joint_angles::jobBlocks<double_lanes::Double2>(j, n);

@@ -41,10 +41,10 @@ void eulerAngles(const EulerAngleJob* jobs, int count);
 double laneAtan2(double y, double x);
 double laneAsin(double s);
 
-// The kernels behind them: how many of the jobs (a multiple of the width) they did.
+// The kernels behind them, on a count that is a multiple of four (byLaneWidth).
 namespace joint_angles_w4 {
-int hingeAngles(const HingeAngleJob* jobs, int count);
-int eulerAngles(const EulerAngleJob* jobs, int count);
+void hingeAngles(const HingeAngleJob* jobs, int count);
+void eulerAngles(const EulerAngleJob* jobs, int count);
 }  // namespace joint_angles_w4
 
 }  // namespace ragdoll_sim

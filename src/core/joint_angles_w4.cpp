@@ -8,11 +8,11 @@ namespace joint_angles_w4 {
 
 using Lanes = double_lanes::WidestLanes;
 
-int hingeAngles(const HingeAngleJob* jobs, int count) {
-  return joint_angles::jobBlocks<Lanes>(jobs, count);
+void hingeAngles(const HingeAngleJob* jobs, int count) {
+  joint_angles::jobBlocks<Lanes>(jobs, count);
 }
-int eulerAngles(const EulerAngleJob* jobs, int count) {
-  return joint_angles::jobBlocks<Lanes>(jobs, count);
+void eulerAngles(const EulerAngleJob* jobs, int count) {
+  joint_angles::jobBlocks<Lanes>(jobs, count);
 }
 
 }  // namespace joint_angles_w4
